@@ -1,0 +1,64 @@
+"""Joint-target controller between 15 Hz actions and the physics substeps.
+
+Arm targets are linearly interpolated over the control period; torso yaw and head pitch follow a
+velocity/acceleration-limited (trapezoidal) profile with the paper's limits; grippers are set
+directly (their actuators are force-limited).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import action as A
+from .embodiment import HEAD_LIMITS, TORSO_LIMITS
+
+
+class RateLimitedAxis:
+    """A 1-D reference that moves toward a goal with bounded velocity and acceleration."""
+
+    def __init__(self, vmax: float, amax: float, q: float):
+        self.vmax, self.amax = vmax, amax
+        self.q, self.v = float(q), 0.0
+
+    def reset(self, q: float) -> None:
+        self.q, self.v = float(q), 0.0
+
+    def step(self, goal: float, dt: float) -> float:
+        e = goal - self.q
+        # Fastest velocity that can still stop at the goal.
+        v_des = np.sign(e) * min(self.vmax, np.sqrt(2 * self.amax * abs(e)))
+        dv = np.clip(v_des - self.v, -self.amax * dt, self.amax * dt)
+        self.v += dv
+        q_next = self.q + self.v * dt
+        if (goal - q_next) * e <= 0:  # would pass the goal: land on it
+            q_next, self.v = goal, 0.0
+        self.q = q_next
+        return self.q
+
+
+class JointTargetController:
+    """Turns one 18-D action into per-substep actuator targets (16 joints + 2 grippers)."""
+
+    def __init__(self, substeps: int, dt: float):
+        self.substeps, self.dt = substeps, dt
+        self.prev = np.zeros(A.ACTION_DIM)
+        self.torso = RateLimitedAxis(*TORSO_LIMITS, 0.0)
+        self.head = RateLimitedAxis(*HEAD_LIMITS, 0.0)
+
+    def reset(self, state18: np.ndarray) -> None:
+        self.prev = np.asarray(state18, float).copy()
+        self.torso.reset(state18[A.TORSO_YAW])
+        self.head.reset(state18[A.HEAD_PITCH])
+
+    def substep_targets(self, target: np.ndarray):
+        """Yield the 18-D reference for each physics substep of one control step."""
+        start = self.prev.copy()
+        for k in range(1, self.substeps + 1):
+            ref = target.copy()
+            alpha = k / self.substeps
+            for sl in (A.LEFT_ARM, A.RIGHT_ARM):
+                ref[sl] = start[sl] + alpha * (target[sl] - start[sl])
+            ref[A.TORSO_YAW] = self.torso.step(target[A.TORSO_YAW], self.dt)
+            ref[A.HEAD_PITCH] = self.head.step(target[A.HEAD_PITCH], self.dt)
+            yield ref
+        self.prev = target.copy()

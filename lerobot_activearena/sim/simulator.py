@@ -1,0 +1,165 @@
+"""The simulator: 18-D joint-target control at 15 Hz, head-camera rendering, camera parameters,
+end-effector poses and per-object visibility for a compiled scene."""
+
+from __future__ import annotations
+
+import logging
+
+import mujoco
+import numpy as np
+
+from . import action as A
+from . import embodiment as E
+from .camera import cam2world_gl, extrinsic_cv, intrinsics
+from .controller import JointTargetController
+from .gl_backend import rendering_error
+from .scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH, SUBSTEPS, WRIST_HEIGHT, WRIST_WIDTH, SceneInfo
+from .visibility import Visibility, VisibilityChecker
+
+log = logging.getLogger(__name__)
+
+
+class ActiveArenaSim:
+    def __init__(self, model: mujoco.MjModel, info: SceneInfo):
+        self.model, self.info = model, info
+        self.data = mujoco.MjData(model)
+        self.substeps = SUBSTEPS
+        self.control_dt = 1.0 / CONTROL_HZ
+        if abs(model.opt.timestep * SUBSTEPS - self.control_dt) > 1e-9:
+            raise ValueError("model timestep must be 1/(15*SUBSTEPS) s")
+        robot = info.robot
+        self._qadr = np.array([model.joint(j).qposadr[0] for j in robot.actuated_joints])
+        self._dadr = np.array([model.joint(j).dofadr[0] for j in robot.actuated_joints])
+        self._grip_qadr = np.array([model.joint(robot.gripper_joints[s]).qposadr[0] for s in ("left", "right")])
+        act = [model.actuator(j).id for j in robot.actuated_joints]
+        grip = [model.actuator(f"{E.PREFIX}gripper_{s}").id for s in ("left", "right")]
+        # action index -> actuator index
+        self._act_of_action = np.array(act[:7] + [grip[0]] + act[7:14] + [grip[1]] + act[14:16])
+        self._joint_of_action = np.array(list(range(7)) + [-1] + list(range(7, 14)) + [-1] + [14, 15])
+        ranges = np.array([model.joint(j).range for j in robot.actuated_joints])
+        self.action_low = np.zeros(A.ACTION_DIM)
+        self.action_high = np.ones(A.ACTION_DIM)
+        for i, j in enumerate(self._joint_of_action):
+            if j >= 0:
+                self.action_low[i], self.action_high[i] = ranges[j]
+        self.controller = JointTargetController(SUBSTEPS, model.opt.timestep)
+        self.head_cam_id = model.camera(E.HEAD_CAMERA).id
+        self.head_K = intrinsics(float(model.cam_fovy[self.head_cam_id]), HEAD_WIDTH, HEAD_HEIGHT)
+        self._renderers: dict[tuple[int, int], mujoco.Renderer] = {}
+        self.visibility_checker = VisibilityChecker(
+            model, info.objects, E.HEAD_CAMERA, HEAD_WIDTH, HEAD_HEIGHT, exclude_body=f"{E.PREFIX}head_link_2"
+        )
+        self.last_clip: A.ClipReport | None = None
+        self.clip_count = 0
+        self.reset()
+
+    # ---- state -------------------------------------------------------------------------------
+    def home_action(self) -> np.ndarray:
+        a = np.zeros(A.ACTION_DIM)
+        a[A.LEFT_ARM], a[A.RIGHT_ARM] = E.HOME_ARM["left"], E.HOME_ARM["right"]
+        a[A.LEFT_GRIPPER] = a[A.RIGHT_GRIPPER] = 1.0
+        a[A.TORSO_YAW], a[A.HEAD_PITCH] = E.HOME_TORSO_YAW, E.HOME_HEAD_PITCH
+        return a
+
+    def reset(self, start: np.ndarray | None = None) -> None:
+        """Objects at their spawn poses, robot at ``start`` (default: home) with matching targets."""
+        mujoco.mj_resetData(self.model, self.data)
+        start = self.home_action() if start is None else A.validate_action(start)
+        self._set_joint_state(start)
+        self.data.ctrl[:] = self._ctrl_from_reference(start)
+        self.controller.reset(start)
+        mujoco.mj_forward(self.model, self.data)
+
+    def _set_joint_state(self, a: np.ndarray) -> None:
+        for i, j in enumerate(self._joint_of_action):
+            if j >= 0:
+                self.data.qpos[self._qadr[j]] = a[i]
+        for k, side in enumerate(("left", "right")):
+            q = self._gripper_to_joint(a[A.GRIPPER_INDICES[k]])
+            prefix = f"{E.PREFIX}gripper_{side}_joint_"
+            for name, coef in (("L1", 1), ("L11", 1), ("R1", 1), ("R11", -1)):
+                self.data.qpos[self.model.joint(prefix + name).qposadr[0]] = coef * q
+
+    @staticmethod
+    def _gripper_to_joint(g):
+        return E.GRIPPER_CLOSED_RAD * (1.0 - np.asarray(g))
+
+    def state(self) -> np.ndarray:
+        s = np.zeros(A.ACTION_DIM)
+        for i, j in enumerate(self._joint_of_action):
+            if j >= 0:
+                s[i] = self.data.qpos[self._qadr[j]]
+        g = 1.0 - self.data.qpos[self._grip_qadr] / E.GRIPPER_CLOSED_RAD
+        s[A.LEFT_GRIPPER], s[A.RIGHT_GRIPPER] = np.clip(g, 0.0, 1.0)
+        return s
+
+    # ---- control -----------------------------------------------------------------------------
+    def _ctrl_from_reference(self, ref: np.ndarray) -> np.ndarray:
+        ctrl = np.zeros(self.model.nu)
+        vals = ref.copy()
+        vals[list(A.GRIPPER_INDICES)] = self._gripper_to_joint(ref[list(A.GRIPPER_INDICES)])
+        ctrl[self._act_of_action] = vals
+        return ctrl
+
+    def step(self, action) -> A.ClipReport:
+        """Apply one 15 Hz action (absolute joint targets). Out-of-range entries are clipped to the
+        joint limits and reported in the returned ``ClipReport`` (and logged)."""
+        a = A.validate_action(action)
+        a, report = A.clip_action(a, self.action_low, self.action_high)
+        if report.any:
+            self.clip_count += 1
+            (log.warning if self.clip_count == 1 else log.debug)(
+                "action clipped to joint limits (requested, applied): %s%s", report.as_dict(),
+                "; further clips are reported in step() results and logged at DEBUG" if self.clip_count == 1 else "",
+            )
+        for ref in self.controller.substep_targets(a):
+            self.data.ctrl[:] = self._ctrl_from_reference(ref)
+            mujoco.mj_step(self.model, self.data)
+        self.last_clip = report
+        return report
+
+    # ---- sensing -----------------------------------------------------------------------------
+    def _renderer(self, width: int, height: int) -> mujoco.Renderer:
+        key = (width, height)
+        if key not in self._renderers:
+            try:
+                self._renderers[key] = mujoco.Renderer(self.model, height=height, width=width)
+            except Exception as exc:  # GL context creation failures surface here
+                raise rendering_error(exc) from exc
+        return self._renderers[key]
+
+    def render_head(self) -> np.ndarray:
+        r = self._renderer(HEAD_WIDTH, HEAD_HEIGHT)
+        r.update_scene(self.data, camera=self.head_cam_id)
+        return r.render()
+
+    def render_wrist(self, side: str) -> np.ndarray:
+        if not self.info.wrist_cameras:
+            raise ValueError("wrist cameras are off; build the scene with SceneBuilder(wrist_cameras=True)")
+        r = self._renderer(WRIST_WIDTH, WRIST_HEIGHT)
+        r.update_scene(self.data, camera=E.WRIST_CAMERAS[side])
+        return r.render()
+
+    def head_camera(self) -> dict[str, np.ndarray]:
+        return {
+            "intrinsic_cv": self.head_K.copy(),
+            "extrinsic_cv": extrinsic_cv(self.data, self.head_cam_id),
+            "cam2world_gl": cam2world_gl(self.data, self.head_cam_id),
+        }
+
+    def end_effector_poses(self) -> dict[str, np.ndarray]:
+        """TCP position and orientation quaternion (w, x, y, z) per arm."""
+        out = {}
+        for side, site in E.TCP_SITES.items():
+            q = np.zeros(4)
+            mujoco.mju_mat2Quat(q, self.data.site(site).xmat)
+            out[side] = np.concatenate([self.data.site(site).xpos, q])
+        return out
+
+    def visibility(self) -> Visibility:
+        return self.visibility_checker(self.data)
+
+    def close(self) -> None:
+        for r in self._renderers.values():
+            r.close()
+        self._renderers.clear()
