@@ -99,7 +99,7 @@ class RobotSpecInfo:
 
 def _link_radius(name: str) -> float:
     if "gripper" in name:
-        return 0.0
+        return 0.007 if name.endswith(("_L1", "_R1")) else 0.0
     if "arm" in name:
         link = int(name.rsplit("_", 1)[-1]) if name[-1].isdigit() else 7
         return 0.05 if link <= 3 else 0.042 if link <= 5 else 0.036
@@ -113,7 +113,7 @@ def _add_bone_geoms(body: mujoco.MjsBody, node: dict) -> None:
         return
     for child in node["children"]:
         p = np.asarray(child["pos"], float)
-        if np.linalg.norm(p) < 1e-4 or "tool" in child["name"]:
+        if np.linalg.norm(p) < 1e-4:
             continue
         g = body.add_geom()
         g.name = f"{node['name']}_to_{child['name'].removeprefix(PREFIX)}"
@@ -122,6 +122,8 @@ def _add_bone_geoms(body: mujoco.MjsBody, node: dict) -> None:
         g.size[0] = r
         g.rgba = ROBOT_COLOR
         g.contype, g.conaffinity, g.group = ROBOT_CONTYPE, ROBOT_CONAFFINITY, VISUAL_GROUP
+        if "gripper" in node["name"]:  # finger bars: looks only, the pads do the contact
+            g.rgba, g.contype, g.conaffinity = ROBOT_DARK, 0, 0
 
 
 def _add_gripper_geoms(body: mujoco.MjsBody, node: dict, side: str) -> None:
@@ -166,8 +168,9 @@ def _add_fixed_visuals(body: mujoco.MjsBody, name: str) -> None:
         vis(mujoco.mjtGeom.mjGEOM_BOX, (0.005, 0.025, 0.06), (0.101, -0.08, 0.0), rgba=ROBOT_DARK)
     elif short == "chassis_base":
         vis(mujoco.mjtGeom.mjGEOM_CYLINDER, (0.2, 0.05, 0), (0, 0, 0.0), rgba=ROBOT_DARK)
-    elif short in ("torso_link_2", "torso_link_3"):
-        pass
+    elif short.startswith("gripper_") and short.endswith("_base"):
+        g = vis(mujoco.mjtGeom.mjGEOM_CYLINDER, (0.032, 0.03, 0), (0, 0, 0.03), rgba=ROBOT_DARK)
+        g.contype, g.conaffinity = ROBOT_CONTYPE, ROBOT_CONAFFINITY
 
 
 def _add_body(parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing: dict[str, float]) -> mujoco.MjsBody:
@@ -231,8 +234,7 @@ def _add_body(parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing:
 
     if "gripper" in body.name:
         _add_gripper_geoms(body, node, side)
-    else:
-        _add_bone_geoms(body, node)
+    _add_bone_geoms(body, node)
     _add_fixed_visuals(body, body.name)
     for child in node["children"]:
         if child["name"].endswith(("_L2", "_R2")):
@@ -269,7 +271,6 @@ def add_robot(spec: mujoco.MjSpec, base_pos=(0.0, 0.0, 0.0), base_yaw: float = n
             eq.solref = (0.005, 1.0)
     info.actuated_joints = ARM_JOINTS["left"] + ARM_JOINTS["right"] + [TORSO_YAW_JOINT, HEAD_PITCH_JOINT]
     _add_actuators(spec, info)
-    _exclude_self_contacts(spec, info)
     return info
 
 
@@ -298,6 +299,3 @@ def _add_actuators(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
         )
 
 
-def _exclude_self_contacts(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
-    """Robot-robot contacts are already off by collision bits; nothing else to exclude."""
-    return None

@@ -118,12 +118,18 @@ class SceneBuilder:
         return model, self.info
 
 
-def reference_scene(seed: int = 0, n_objects: int = 25) -> SceneBuilder:
-    """Robot + fan table + ``n_objects`` primitives scattered over the fan (benchmarks, demos)."""
+def reference_scene(seed: int = 0, n_objects: int = 25, target: str | None = None) -> SceneBuilder:
+    """Robot + fan table + ``n_objects`` primitives scattered over the fan (benchmarks, demos).
+    With ``target``, a 0.3 kg red can of that name stands in the right arm's reach first."""
     rng = np.random.default_rng(seed)
     builder = SceneBuilder()
     kinds = list(OBJECT_BUILDERS)
     placed: list[np.ndarray] = []
+    reserved: list[np.ndarray] = []
+    if target:
+        r, a = 0.45, 60.0
+        builder.add_object("can", target, r, a, mass=0.3, rgba=(0.8, 0.08, 0.08, 1.0))
+        reserved.append(np.array([r * np.cos(np.radians(a)), r * np.sin(np.radians(a))]))
     lo, hi = builder.workspace.placement_span_deg(0)
     tries = 0
     while len(placed) < n_objects:
@@ -133,7 +139,7 @@ def reference_scene(seed: int = 0, n_objects: int = 25) -> SceneBuilder:
         r = rng.uniform(0.38, 1.0)
         a = rng.uniform(lo, hi)
         xy = np.array([r * np.cos(np.radians(a)), r * np.sin(np.radians(a))])
-        if any(np.linalg.norm(xy - p) < 0.11 for p in placed):
+        if any(np.linalg.norm(xy - p) < 0.11 for p in placed) or any(np.linalg.norm(xy - p) < 0.2 for p in reserved):
             continue
         kind = kinds[len(placed) % len(kinds)]
         rgba = (*rng.uniform(0.1, 0.95, 3), 1.0)
