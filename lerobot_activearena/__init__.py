@@ -1,7 +1,12 @@
-"""ActiveArena for LeRobot: active-perception manipulation benchmark on MuJoCo."""
+"""ActiveArena for LeRobot: active-perception manipulation benchmark on MuJoCo.
+
+Importing the package registers the ``activearena`` env type with LeRobot.
+"""
 
 from .sim.gl_backend import select_gl_backend
 
 select_gl_backend()  # MuJoCo reads MUJOCO_GL once, at its first import
+
+from .envs import configs as _env_configs  # noqa: E402,F401  (registers --env.type=activearena)
 
 __version__ = "0.1.0"

@@ -31,8 +31,10 @@ class SceneInfo:
 class SceneBuilder:
     """Builds one scene. Add objects, then ``compile()`` to an ``MjModel``."""
 
-    def __init__(self, workspace: Workspace | None = None, wrist_cameras: bool = False):
+    def __init__(self, workspace: Workspace | None = None, wrist_cameras: bool = False, shadows: bool = False):
+        """``shadows`` costs ~5x in CPU rendering (llvmpipe), so it is off by default."""
         self.workspace = workspace or fan_workspace()
+        self.shadows = shadows
         self.spec = mujoco.MjSpec()
         self.spec.modelname = "activearena"
         self._set_options()
@@ -58,6 +60,7 @@ class SceneBuilder:
         vis.global_.offwidth, vis.global_.offheight = HEAD_WIDTH, HEAD_HEIGHT
         vis.quality.offsamples = 0  # no multisampling: fast CPU rendering
         vis.quality.shadowsize = 1024
+        vis.quality.numslices = vis.quality.numstacks = 16  # light tessellation of round primitives
         self.spec.stat.extent = 2.0
         self.spec.stat.center = (0.0, 0.4, 0.9)
         vis.map.znear = 0.1 / self.spec.stat.extent  # 0.1 m
@@ -91,7 +94,7 @@ class SceneBuilder:
         light.dir = np.array([-0.2, 0.4, -1.0]) / np.linalg.norm([-0.2, 0.4, -1.0])
         light.diffuse = (0.65, 0.65, 0.62)
         light.specular = (0.05, 0.05, 0.05)
-        light.castshadow = True
+        light.castshadow = self.shadows
 
     def add_object(self, kind: str, name: str, radius: float, angle_deg: float, level: int = 0,
                    yaw: float = 0.0, **params) -> ObjectInfo:

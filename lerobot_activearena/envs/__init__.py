@@ -1,0 +1,1 @@
+"""Gymnasium env and the LeRobot ``activearena`` env config."""
