@@ -243,8 +243,8 @@ def _add_body(parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing:
     return body
 
 
-def add_robot(spec: mujoco.MjSpec, base_pos=(0.0, 0.0, 0.0), base_yaw: float = np.pi / 2) -> RobotSpecInfo:
-    """Add the robot to ``spec`` with its chassis at ``base_pos`` facing ``base_yaw`` (world z)."""
+def add_robot(spec: mujoco.MjSpec, base_pos=(0.0, 0.0, 0.097), base_yaw: float = np.pi / 2) -> RobotSpecInfo:
+    """Add the robot with its chassis at ``base_pos`` (official scene: 0.097 m up) facing ``base_yaw``."""
     kin = load_kinematics()
     info = RobotSpecInfo()
     spec.compiler.degree = False  # joint ranges below are radians

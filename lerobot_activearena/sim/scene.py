@@ -96,14 +96,15 @@ class SceneBuilder:
         light.specular = (0.05, 0.05, 0.05)
         light.castshadow = self.shadows
 
-    def add_object(self, kind: str, name: str, radius: float, angle_deg: float, level: int = 0,
+    def add_object(self, kind: str, name: str, distance: float, angle_deg: float, level: int = 0,
                    yaw: float = 0.0, **params) -> ObjectInfo:
-        """Place an object on the workspace at robot-centric (radius, angle, level)."""
+        """Place an object on the workspace at robot-centric cylindrical coordinates: ``distance``
+        (radius from the robot base, m), ``angle_deg`` and ``level``; ``params`` go to the builder."""
         if kind not in OBJECT_BUILDERS:
             raise ValueError(f"unknown object kind {kind!r}; known kinds: {sorted(OBJECT_BUILDERS)}")
         if any(o.name == name for o in self.info.objects):
             raise ValueError(f"an object named {name!r} is already in the scene; names must be unique")
-        pos = self.workspace.place(radius, angle_deg, level)
+        pos = self.workspace.place(distance, angle_deg, level)
         obj = OBJECT_BUILDERS[kind](self.spec, name, pos + np.array([0, 0, 0.0005]), yaw, **params)
         self.info.objects.append(obj)
         return obj
