@@ -39,3 +39,14 @@ def test_projection_lands_on_rendered_object(sim):
     uv, z = project(center[None], cam["intrinsic_cv"], cam["extrinsic_cv"])
     assert z[0] > 0
     assert abs(uv[0, 0] - xs.mean()) < 3 and abs(uv[0, 1] - ys.mean()) < 3
+
+
+def test_wrist_cameras_off_by_default_and_render_when_on(sim):
+    with pytest.raises(ValueError, match="wrist cameras are off"):
+        sim.render_wrist("left")
+    model, info = SceneBuilder(wrist_cameras=True).compile()
+    wrist = ActiveArenaSim(model, info)
+    assert model.cam_fovy[model.camera("astribot_arm_left_effector").id] == pytest.approx(37.0)
+    img = wrist.render_wrist("right")
+    assert img.shape == (240, 320, 3) and img.std() > 1
+    wrist.close()

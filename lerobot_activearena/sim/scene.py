@@ -42,8 +42,10 @@ class SceneBuilder:
         add_workspace(self.spec, self.workspace)
         robot = embodiment.add_robot(self.spec)
         self.info = SceneInfo(self.workspace, robot, wrist_cameras=wrist_cameras)
-        if not wrist_cameras:
-            for side, cam in embodiment.WRIST_CAMERAS.items():
+        for cam in embodiment.WRIST_CAMERAS.values():
+            if wrist_cameras:
+                self.spec.camera(cam).fovy = WRIST_FOVY  # paper's wrist preset: 320x240, 37 deg
+            else:
                 self.spec.delete(self.spec.camera(cam))
 
     def _set_options(self) -> None:
