@@ -17,6 +17,7 @@ def main() -> None:
     p.add_argument("--steps", type=int, default=150, help="control steps per measurement")
     p.add_argument("--cores", type=int, default=1, help="CPU cores to pin to (llvmpipe threads follow)")
     p.add_argument("--objects", type=int, default=25)
+    p.add_argument("--no-sleep", action="store_true", help="keep every object awake (MuJoCo sleeping off)")
     args = p.parse_args()
     os.sched_setaffinity(0, set(range(args.cores)))
     os.environ.setdefault("LP_NUM_THREADS", "0" if args.cores == 1 else str(args.cores))
@@ -28,7 +29,12 @@ def main() -> None:
     from lerobot_activearena.sim.scene import reference_scene
     from lerobot_activearena.sim.simulator import ActiveArenaSim
 
-    model, info = reference_scene(0, n_objects=args.objects).compile()
+    import mujoco
+
+    builder = reference_scene(0, n_objects=args.objects)
+    if args.no_sleep:
+        builder.spec.option.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_SLEEP)
+    model, info = builder.compile()
     sim = ActiveArenaSim(model, info)
     home = sim.home_action()
 
@@ -65,7 +71,7 @@ def main() -> None:
         sim.end_effector_poses()
     annotated = args.steps / (time.perf_counter() - t)
     print(f"scene: robot + fan table + {len(info.objects)} objects, nbody={model.nbody}, ngeom={model.ngeom}; "
-          f"cores={args.cores}, MUJOCO_GL={os.environ.get('MUJOCO_GL')}")
+          f"cores={args.cores}, MUJOCO_GL={os.environ.get('MUJOCO_GL')}, sleeping={'off' if args.no_sleep else 'on'}")
     print(f"mj_step:                     {phys:8.0f} steps/s  (timestep {model.opt.timestep * 1000:.3f} ms, "
           f"{sim.substeps} per control step)")
     print(f"head RGB render 512x384:     {render:8.1f} frames/s")
