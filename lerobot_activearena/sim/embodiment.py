@@ -46,13 +46,12 @@ TORSO_LIMITS = (2.5, 10.0)
 ARM_GAINS = (2000.0, 200.0)  # stiffness, damping
 TORSO_GAINS = (3000.0, 800.0)
 HEAD_GAINS = (300.0, 30.0)  # not in the paper's table: a light head servo
-# Gripper: the active finger joint closes from 0 (open) to GRIPPER_CLOSED_RAD. The paper's drive is
-# 4000/200 with a 120 N force limit; in MuJoCo we keep the force limit as the pad squeeze force
-# (torque = force x finger lever) and a softer stiffness that is stable at our timestep.
+# Gripper: the active finger joint closes from 0 (open) to GRIPPER_CLOSED_RAD with the paper's drive
+# 4000/200; its 120 N force limit is the pad squeeze force (torque = force x finger lever).
 GRIPPER_CLOSED_RAD = 0.93
 GRIPPER_FINGER_LEVER = 0.055
 GRIPPER_FORCE = 120.0
-GRIPPER_GAINS = (60.0, 2.0)
+GRIPPER_GAINS = (4000.0, 200.0)
 
 # Collision bits: robot geoms collide with the world and objects, never with each other.
 ROBOT_CONTYPE, ROBOT_CONAFFINITY = 2, 1
