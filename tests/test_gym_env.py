@@ -20,3 +20,10 @@ def test_reset_step_observation_contract():
 def test_unknown_task_is_a_clear_error():
     with pytest.raises(ValueError, match="unknown ActiveArena task"):
         ActiveArenaEnv(task="nope")
+
+
+def test_step_before_reset_is_a_clear_error():
+    env = ActiveArenaEnv()
+    with pytest.raises(RuntimeError, match="reset"):
+        env.step(np.zeros(18, np.float32))
+    env.close()

@@ -84,8 +84,8 @@ def run(out: Path, seed: int, n_objects: int) -> dict:
             ann.write(json.dumps(rec) + "\n")
             rgb = sim.render_head()
             visible = [(uv[0], uv[1], n) for n, uv, v in zip(names, rec["object_uv_norm"], rec["visible_object_mask"]) if v]
-            lines = [f"t={frames:3d}  phase={phase}  torso={np.degrees(rec['state'][16]):+.0f}deg  "
-                     f"head={np.degrees(rec['state'][17]):+.0f}deg",
+            lines = [f"t={frames:3d}  phase={phase}  torso={np.degrees(rec['state'][A.TORSO_YAW]):+.0f}deg  "
+                     f"head={np.degrees(rec['state'][A.HEAD_PITCH]):+.0f}deg",
                      f"visible {sum(rec['visible_object_mask'])}/{len(names)}  discovered {int(discovered.sum())}"]
             video.write(draw_annotations(rgb, lines, visible))
             sim.step(action)

@@ -22,14 +22,14 @@ class ActiveArenaEnv(gym.Env):
         self.task_description = self.task.instruction
         self.render_mode = render_mode
         self._max_episode_steps = self.task.max_episode_steps
-        self.sim: ActiveArenaSim | None = None
-        model, info = self.task.build(0)
-        probe = ActiveArenaSim(model, info)  # only for the action limits; renders nothing
+        # A scene of seed 0 until the first reset: it gives the action limits (it renders nothing yet).
+        self.sim: ActiveArenaSim | None = ActiveArenaSim(*self.task.build(0))
+        self._was_reset = False
         self.observation_space = gym.spaces.Dict({
             "pixels": gym.spaces.Dict({"head": gym.spaces.Box(0, 255, (HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)}),
             "agent_pos": gym.spaces.Box(-np.inf, np.inf, (A.ACTION_DIM,), np.float32),
         })
-        self.action_space = gym.spaces.Box(probe.action_low.astype(np.float32), probe.action_high.astype(np.float32),
+        self.action_space = gym.spaces.Box(self.sim.action_low.astype(np.float32), self.sim.action_high.astype(np.float32),
                                            dtype=np.float32)
 
     def _obs(self) -> dict:
@@ -43,10 +43,11 @@ class ActiveArenaEnv(gym.Env):
         model, info = self.task.build(scene_seed)
         self.sim = ActiveArenaSim(model, info)
         self.task.on_reset(self.sim)
+        self._was_reset = True
         return self._obs(), {"is_success": False, "seed": scene_seed}
 
     def step(self, action):
-        if self.sim is None:
+        if not self._was_reset or self.sim is None:
             raise RuntimeError("call reset() before step()")
         clip = self.sim.step(action)
         success = self.task.is_success(self.sim)
@@ -60,3 +61,4 @@ class ActiveArenaEnv(gym.Env):
         if self.sim is not None:
             self.sim.close()
             self.sim = None
+            self._was_reset = False

@@ -6,6 +6,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from ..sim import action as A
 from ..sim.simulator import ActiveArenaSim
 from .ik import ArmIK, grasp_rotation, interpolate_pose
 from .motion import CONTROL_DT, arm_of, interpolate_joints, with_arm
@@ -27,8 +28,7 @@ def pick_and_shake(sim: ActiveArenaSim, ik: ArmIK, obj: str, side: str,
     body = sim.data.body(info.body)
     center = body.xpos + body.xmat.reshape(3, 3) @ np.asarray(info.center_offset)
     action = sim.home_action()
-    action[16] = sim.state()[16]
-    torso = action[16]
+    torso = action[A.TORSO_YAW] = sim.state()[A.TORSO_YAW]
     q = arm_of(action, side)
 
     def goto(phase, pos, rot, gripper, vel=1.0):

@@ -52,6 +52,8 @@ GRIPPER_CLOSED_RAD = 0.93
 GRIPPER_FINGER_LEVER = 0.055
 GRIPPER_FORCE = 120.0
 GRIPPER_GAINS = (4000.0, 200.0)
+# Finger joints that follow the active joint L1 (q = coef * q_L1): the pads stay parallel.
+GRIPPER_COUPLING = (("L11", 1.0), ("R1", 1.0), ("R11", -1.0))
 
 # Collision bits: robot geoms collide with the world and objects, never with each other.
 ROBOT_CONTYPE, ROBOT_CONAFFINITY = 2, 1
@@ -262,7 +264,7 @@ def add_robot(spec: mujoco.MjSpec, base_pos=(0.0, 0.0, 0.097), base_yaw: float =
         prefix = f"{PREFIX}gripper_{side}_joint_"
         active = prefix + "L1"
         info.gripper_joints[side] = active
-        for follower, coef in (("L11", 1.0), ("R1", 1.0), ("R11", -1.0)):
+        for follower, coef in GRIPPER_COUPLING:
             eq = spec.add_equality()
             eq.type = mujoco.mjtEq.mjEQ_JOINT
             eq.name1, eq.name2 = prefix + follower, active

@@ -133,9 +133,8 @@ def reference_scene(seed: int = 0, n_objects: int = 25, target: str | None = Non
     placed: list[np.ndarray] = []
     reserved: list[np.ndarray] = []
     if target:
-        r, a = 0.45, 60.0
-        builder.add_object("can", target, r, a, mass=0.3, rgba=(0.8, 0.08, 0.08, 1.0))
-        reserved.append(np.array([r * np.cos(np.radians(a)), r * np.sin(np.radians(a))]))
+        builder.add_object("can", target, 0.45, 60.0, mass=0.3, rgba=(0.8, 0.08, 0.08, 1.0))
+        reserved.append(builder.workspace.place(0.45, 60.0)[:2])
     lo, hi = builder.workspace.placement_span_deg(0)
     tries = 0
     while len(placed) < n_objects:
@@ -144,7 +143,7 @@ def reference_scene(seed: int = 0, n_objects: int = 25, target: str | None = Non
             raise RuntimeError(f"could not place {n_objects} objects without overlap")
         r = rng.uniform(0.38, 1.0)
         a = rng.uniform(lo, hi)
-        xy = np.array([r * np.cos(np.radians(a)), r * np.sin(np.radians(a))])
+        xy = builder.workspace.place(r, a)[:2]
         if any(np.linalg.norm(xy - p) < 0.11 for p in placed) or any(np.linalg.norm(xy - p) < 0.2 for p in reserved):
             continue
         kind = kinds[len(placed) % len(kinds)]

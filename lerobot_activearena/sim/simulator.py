@@ -28,20 +28,23 @@ class ActiveArenaSim:
         if abs(model.opt.timestep * SUBSTEPS - self.control_dt) > 1e-9:
             raise ValueError("model timestep must be 1/(15*SUBSTEPS) s")
         robot = info.robot
-        self._qadr = np.array([model.joint(j).qposadr[0] for j in robot.actuated_joints])
-        self._dadr = np.array([model.joint(j).dofadr[0] for j in robot.actuated_joints])
+        # Action entries that are joint angles (all but the grippers) and their qpos addresses.
+        self._grip_idx = np.array(A.GRIPPER_INDICES)
+        self._joint_idx = np.array([i for i in range(A.ACTION_DIM) if i not in A.GRIPPER_INDICES])
+        self._joint_qadr = np.array([model.joint(j).qposadr[0] for j in robot.actuated_joints])
+        # Gripper joint addresses per side: the active joint first, then its followers with coefficients.
         self._grip_qadr = np.array([model.joint(robot.gripper_joints[s]).qposadr[0] for s in ("left", "right")])
+        self._finger_qadr = np.array([[model.joint(f"{E.PREFIX}gripper_{s}_joint_{n}").qposadr[0]
+                                       for n, _ in E.GRIPPER_COUPLING] for s in ("left", "right")])
+        self._finger_coef = np.array([c for _, c in E.GRIPPER_COUPLING])
         act = [model.actuator(j).id for j in robot.actuated_joints]
         grip = [model.actuator(f"{E.PREFIX}gripper_{s}").id for s in ("left", "right")]
         # action index -> actuator index
         self._act_of_action = np.array(act[:7] + [grip[0]] + act[7:14] + [grip[1]] + act[14:16])
-        self._joint_of_action = np.array(list(range(7)) + [-1] + list(range(7, 14)) + [-1] + [14, 15])
-        ranges = np.array([model.joint(j).range for j in robot.actuated_joints])
         self.action_low = np.zeros(A.ACTION_DIM)
         self.action_high = np.ones(A.ACTION_DIM)
-        for i, j in enumerate(self._joint_of_action):
-            if j >= 0:
-                self.action_low[i], self.action_high[i] = ranges[j]
+        ranges = np.array([model.joint(j).range for j in robot.actuated_joints])
+        self.action_low[self._joint_idx], self.action_high[self._joint_idx] = ranges[:, 0], ranges[:, 1]
         self.controller = JointTargetController(SUBSTEPS, model.opt.timestep)
         self.head_cam_id = model.camera(E.HEAD_CAMERA).id
         self.head_K = intrinsics(float(model.cam_fovy[self.head_cam_id]), HEAD_WIDTH, HEAD_HEIGHT)
@@ -71,14 +74,10 @@ class ActiveArenaSim:
         mujoco.mj_forward(self.model, self.data)
 
     def _set_joint_state(self, a: np.ndarray) -> None:
-        for i, j in enumerate(self._joint_of_action):
-            if j >= 0:
-                self.data.qpos[self._qadr[j]] = a[i]
-        for k, side in enumerate(("left", "right")):
-            q = self._gripper_to_joint(a[A.GRIPPER_INDICES[k]])
-            prefix = f"{E.PREFIX}gripper_{side}_joint_"
-            for name, coef in (("L1", 1), ("L11", 1), ("R1", 1), ("R11", -1)):
-                self.data.qpos[self.model.joint(prefix + name).qposadr[0]] = coef * q
+        self.data.qpos[self._joint_qadr] = a[self._joint_idx]
+        q = self._gripper_to_joint(a[self._grip_idx])
+        self.data.qpos[self._grip_qadr] = q
+        self.data.qpos[self._finger_qadr] = q[:, None] * self._finger_coef
 
     @staticmethod
     def _gripper_to_joint(g):
@@ -86,19 +85,15 @@ class ActiveArenaSim:
 
     def state(self) -> np.ndarray:
         s = np.zeros(A.ACTION_DIM)
-        for i, j in enumerate(self._joint_of_action):
-            if j >= 0:
-                s[i] = self.data.qpos[self._qadr[j]]
-        g = 1.0 - self.data.qpos[self._grip_qadr] / E.GRIPPER_CLOSED_RAD
-        s[A.LEFT_GRIPPER], s[A.RIGHT_GRIPPER] = np.clip(g, 0.0, 1.0)
+        s[self._joint_idx] = self.data.qpos[self._joint_qadr]
+        s[self._grip_idx] = np.clip(1.0 - self.data.qpos[self._grip_qadr] / E.GRIPPER_CLOSED_RAD, 0.0, 1.0)
         return s
 
     # ---- control -----------------------------------------------------------------------------
     def _ctrl_from_reference(self, ref: np.ndarray) -> np.ndarray:
-        ctrl = np.zeros(self.model.nu)
-        vals = ref.copy()
-        vals[list(A.GRIPPER_INDICES)] = self._gripper_to_joint(ref[list(A.GRIPPER_INDICES)])
-        ctrl[self._act_of_action] = vals
+        ctrl = np.empty(self.model.nu)
+        ctrl[self._act_of_action] = ref
+        ctrl[self._act_of_action[self._grip_idx]] = self._gripper_to_joint(ref[self._grip_idx])
         return ctrl
 
     def step(self, action) -> A.ClipReport:
