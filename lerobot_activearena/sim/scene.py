@@ -8,7 +8,7 @@ import mujoco
 import numpy as np
 
 from . import embodiment
-from .objects import OBJECT_BUILDERS, ObjectInfo
+from .assets import ASSETS, ObjectInfo, build_asset
 from .workspace import Workspace, add_workspace, fan_workspace
 
 CONTROL_HZ = 15
@@ -99,23 +99,18 @@ class SceneBuilder:
         light.castshadow = self.shadows
 
     def add_object(self, kind: str, name: str, distance: float, angle_deg: float, level: int = 0,
-                   yaw: float = 0.0, **params) -> ObjectInfo:
+                   yaw: float = 0.0, rng: np.random.Generator | None = None, **params) -> ObjectInfo:
         """Place an object on the workspace at robot-centric cylindrical coordinates: ``distance``
         (radius from the robot base, m), ``angle_deg`` and ``level``; ``params`` go to the builder."""
-        if kind not in OBJECT_BUILDERS:
-            raise ValueError(f"unknown object kind {kind!r}; known kinds: {sorted(OBJECT_BUILDERS)}")
+        pos = self.workspace.place(distance, angle_deg, level)
+        return self.add_object_at(kind, name, pos + np.array([0, 0, 0.0005]), yaw, rng=rng, **params)
+
+    def add_object_at(self, kind: str, name: str, pos, yaw: float = 0.0, rng: np.random.Generator | None = None,
+                      **params) -> ObjectInfo:
+        """Place an object at a world position (its bottom centre)."""
         if any(o.name == name for o in self.info.objects):
             raise ValueError(f"an object named {name!r} is already in the scene; names must be unique")
-        pos = self.workspace.place(distance, angle_deg, level)
-        obj = OBJECT_BUILDERS[kind](self.spec, name, pos + np.array([0, 0, 0.0005]), yaw, **params)
-        self.info.objects.append(obj)
-        return obj
-
-    def add_object_at(self, kind: str, name: str, pos, yaw: float = 0.0, **params) -> ObjectInfo:
-        """Place an object at a world position (tests, off-table props)."""
-        if kind not in OBJECT_BUILDERS:
-            raise ValueError(f"unknown object kind {kind!r}; known kinds: {sorted(OBJECT_BUILDERS)}")
-        obj = OBJECT_BUILDERS[kind](self.spec, name, np.asarray(pos, float), yaw, **params)
+        obj = build_asset(self.spec, kind, name, pos, yaw, rng=rng, **params)
         self.info.objects.append(obj)
         return obj
 
@@ -129,7 +124,7 @@ def reference_scene(seed: int = 0, n_objects: int = 25, target: str | None = Non
     With ``target``, a 0.3 kg red can of that name stands in the right arm's reach first."""
     rng = np.random.default_rng(seed)
     builder = SceneBuilder()
-    kinds = list(OBJECT_BUILDERS)
+    kinds = ["can", "block", "ball", "bottle"]
     placed: list[np.ndarray] = []
     reserved: list[np.ndarray] = []
     if target:

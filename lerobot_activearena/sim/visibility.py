@@ -14,7 +14,7 @@ import mujoco
 import numpy as np
 
 from .camera import extrinsic_cv, intrinsics, project
-from .objects import ObjectInfo
+from .assets.base import ObjectInfo
 
 VISIBLE_THRESHOLD = 0.4
 SAMPLES_PER_GEOM = 26
