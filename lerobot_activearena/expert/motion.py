@@ -1,6 +1,8 @@
-"""Joint-space motion: turn a goal into a sequence of 15 Hz 18-D actions."""
+"""Time profiles: turn a goal into a sequence of 15 Hz 18-D actions."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -20,6 +22,28 @@ def interpolate_joints(start: np.ndarray, goal: np.ndarray, max_vel: float = 1.0
     return [start + si * (goal - start) for si in s]
 
 
+def trapezoid(distance: float, vmax: float, amax: float, dt: float = CONTROL_DT) -> np.ndarray:
+    """Fractions s_k in (0, 1] of a trapezoidal (or triangular) velocity profile covering
+    ``distance`` with peak speed <= vmax and acceleration <= amax, sampled every ``dt``."""
+    d = abs(distance)
+    if d < 1e-9:
+        return np.array([1.0])
+    t_acc = vmax / amax
+    if amax * t_acc**2 >= d:  # triangular: never reaches vmax
+        t_acc = math.sqrt(d / amax)
+        vpk = amax * t_acc
+        t_total = 2 * t_acc
+    else:
+        vpk = vmax
+        t_total = 2 * t_acc + (d - amax * t_acc**2) / vmax
+    n = max(1, int(math.ceil(t_total / dt)))
+    t = np.linspace(t_total / n, t_total, n)
+    pos = np.where(t < t_acc, 0.5 * amax * t**2,
+                   np.where(t <= t_total - t_acc, 0.5 * amax * t_acc**2 + vpk * (t - t_acc),
+                            d - 0.5 * amax * (t_total - t) ** 2))
+    return np.clip(pos / d, 0.0, 1.0)
+
+
 def with_arm(base: np.ndarray, side: str, arm_q: np.ndarray | None = None, gripper: float | None = None) -> np.ndarray:
     a = np.asarray(base, float).copy()
     sl, g = (A.LEFT_ARM, A.LEFT_GRIPPER) if side == "left" else (A.RIGHT_ARM, A.RIGHT_GRIPPER)
@@ -32,3 +56,7 @@ def with_arm(base: np.ndarray, side: str, arm_q: np.ndarray | None = None, gripp
 
 def arm_of(action: np.ndarray, side: str) -> np.ndarray:
     return np.asarray(action)[A.LEFT_ARM if side == "left" else A.RIGHT_ARM].copy()
+
+
+def gripper_index(side: str) -> int:
+    return A.LEFT_GRIPPER if side == "left" else A.RIGHT_GRIPPER

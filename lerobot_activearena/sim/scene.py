@@ -9,6 +9,8 @@ import numpy as np
 
 from . import embodiment
 from .assets import ASSETS, ObjectInfo, build_asset
+from .appearance import DEFAULT_APPEARANCE, Appearance, table_texture
+from .assets.base import add_texture_material
 from .workspace import Workspace, add_workspace, fan_workspace
 
 CONTROL_HZ = 15
@@ -24,22 +26,26 @@ class SceneInfo:
 
     workspace: Workspace
     robot: embodiment.RobotSpecInfo
-    objects: list[ObjectInfo] = field(default_factory=list)
+    objects: list[ObjectInfo] = field(default_factory=list)  # registered objects (visibility, masks)
     wrist_cameras: bool = False
+    clutter: list[ObjectInfo] = field(default_factory=list)  # unregistered static distractors
 
 
 class SceneBuilder:
     """Builds one scene. Add objects, then ``compile()`` to an ``MjModel``."""
 
-    def __init__(self, workspace: Workspace | None = None, wrist_cameras: bool = False, shadows: bool = False):
+    def __init__(self, workspace: Workspace | None = None, wrist_cameras: bool = False, shadows: bool = False,
+                 appearance: Appearance | None = None):
         """``shadows`` costs ~5x in CPU rendering (llvmpipe), so it is off by default."""
         self.workspace = workspace or fan_workspace()
         self.shadows = shadows
+        self.appearance = appearance or DEFAULT_APPEARANCE
         self.spec = mujoco.MjSpec()
         self.spec.modelname = "activearena"
         self._set_options()
         self._add_environment()
         add_workspace(self.spec, self.workspace)
+        self._style_tabletop()
         robot = embodiment.add_robot(self.spec)
         self.info = SceneInfo(self.workspace, robot, wrist_cameras=wrist_cameras)
         for cam in embodiment.WRIST_CAMERAS.values():
@@ -67,7 +73,8 @@ class SceneBuilder:
         self.spec.stat.center = (0.0, 0.4, 0.9)
         vis.map.znear = 0.1 / self.spec.stat.extent  # 0.1 m
         vis.map.zfar = 100.0 / self.spec.stat.extent  # 100 m
-        vis.headlight.ambient = (0.35, 0.35, 0.35)
+        amb = self.appearance.ambient
+        vis.headlight.ambient = (amb, amb, amb)
         vis.headlight.diffuse = (0.25, 0.25, 0.25)
         vis.headlight.specular = (0.0, 0.0, 0.0)
 
@@ -77,12 +84,13 @@ class SceneBuilder:
         tex.name = "floor_checker"
         tex.type = mujoco.mjtTexture.mjTEXTURE_2D
         tex.builtin = mujoco.mjtBuiltin.mjBUILTIN_CHECKER
-        tex.rgb1, tex.rgb2 = (0.42, 0.44, 0.47), (0.36, 0.38, 0.41)
+        look = self.appearance
+        tex.rgb1, tex.rgb2 = look.floor_rgb1, look.floor_rgb2
         tex.width = tex.height = 256
         mat = spec.add_material()
         mat.name = "floor"
         mat.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = "floor_checker"
-        mat.texrepeat = (8, 8)
+        mat.texrepeat = (look.floor_repeat, look.floor_repeat)
         floor = spec.worldbody.add_geom()
         floor.name = "floor"
         floor.type = mujoco.mjtGeom.mjGEOM_PLANE
@@ -93,25 +101,46 @@ class SceneBuilder:
         light.name = "key_light"
         light.type = mujoco.mjtLightType.mjLIGHT_DIRECTIONAL
         light.pos = (0.5, -1.0, 3.0)
-        light.dir = np.array([-0.2, 0.4, -1.0]) / np.linalg.norm([-0.2, 0.4, -1.0])
-        light.diffuse = (0.65, 0.65, 0.62)
+        light.dir = np.asarray(look.light_dir) / np.linalg.norm(look.light_dir)
+        light.diffuse = (look.light_diffuse, look.light_diffuse, look.light_diffuse * 0.96)
         light.specular = (0.05, 0.05, 0.05)
         light.castshadow = self.shadows
 
+    def _style_tabletop(self) -> None:
+        look = self.appearance
+        material = None
+        if look.table_texture_seed is not None:
+            material = add_texture_material(self.spec, "tabletop_grain",
+                                            table_texture(look.table_texture_seed, look.table_rgba[:3]), texrepeat=(4, 4),
+                                            texuniform=True)
+        for g in self.spec.geoms:
+            if g.material == "tabletop":
+                g.rgba = look.table_rgba if material is None else (1, 1, 1, 1)
+                if material:
+                    g.material = material
+
     def add_object(self, kind: str, name: str, distance: float, angle_deg: float, level: int = 0,
-                   yaw: float = 0.0, rng: np.random.Generator | None = None, **params) -> ObjectInfo:
+                   yaw: float = 0.0, rng: np.random.Generator | None = None, register: bool = True,
+                   static: bool = False, **params) -> ObjectInfo:
         """Place an object on the workspace at robot-centric cylindrical coordinates: ``distance``
         (radius from the robot base, m), ``angle_deg`` and ``level``; ``params`` go to the builder."""
         pos = self.workspace.place(distance, angle_deg, level)
-        return self.add_object_at(kind, name, pos + np.array([0, 0, 0.0005]), yaw, rng=rng, **params)
+        return self.add_object_at(kind, name, pos + np.array([0, 0, 0.0005]), yaw, rng=rng, register=register,
+                                  static=static, **params)
 
     def add_object_at(self, kind: str, name: str, pos, yaw: float = 0.0, rng: np.random.Generator | None = None,
-                      **params) -> ObjectInfo:
-        """Place an object at a world position (its bottom centre)."""
-        if any(o.name == name for o in self.info.objects):
+                      register: bool = True, static: bool = False, **params) -> ObjectInfo:
+        """Place an object at a world position (its bottom centre). ``register=False`` adds it as
+        clutter (no visibility/annotation bookkeeping); ``static=True`` fixes it to the world."""
+        if any(o.name == name for o in self.info.objects + self.info.clutter):
             raise ValueError(f"an object named {name!r} is already in the scene; names must be unique")
         obj = build_asset(self.spec, kind, name, pos, yaw, rng=rng, **params)
-        self.info.objects.append(obj)
+        if static:
+            body = self.spec.body(obj.body)
+            for j in list(body.joints):
+                if j.type == mujoco.mjtJoint.mjJNT_FREE:
+                    self.spec.delete(j)
+        (self.info.objects if register else self.info.clutter).append(obj)
         return obj
 
     def compile(self) -> tuple[mujoco.MjModel, SceneInfo]:

@@ -1,0 +1,1 @@
+"""Online per-frame annotations (paper App. "Per-Frame Data and Online Annotations")."""

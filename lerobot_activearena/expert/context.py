@@ -1,0 +1,67 @@
+"""The expert's working state: the current command, what it declares (intent), and what it has seen."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..annotations.recorder import AnnotationRecorder, Intent
+from ..sim import action as A
+from ..sim.simulator import ActiveArenaSim
+from .gaze import Gaze
+from .ik import ArmIK
+
+
+class ExpertError(RuntimeError):
+    """The scripted expert cannot finish this episode (object not found, grasp lost, IK failure)."""
+
+
+class ExpertContext:
+    """Shared by all primitives of one episode. Search decisions read only ``memory`` (positions of
+    objects the camera has seen); manipulation reads the true pose of an object once it is known."""
+
+    def __init__(self, sim: ActiveArenaSim, objects: list[str], recorder: AnnotationRecorder, ik: ArmIK, gaze: Gaze):
+        self.sim, self.recorder, self.ik, self.gaze = sim, recorder, ik, gaze
+        self.objects = list(objects)
+        self.info = {o.name: o for o in sim.info.objects}
+        self.action = sim.home_action()
+        self.intent = Intent()
+        self.memory: dict[int, np.ndarray] = {}  # object index -> centre when last seen
+        self.explored: set[int] = set()  # sector ids swept so far
+        self.notes: dict = {}  # what the expert inferred (colours, counts), for the sidecar
+
+    # ---- objects -----------------------------------------------------------------------------
+    def idx(self, name: str) -> int:
+        return self.objects.index(name)
+
+    def obj(self, i: int):
+        return self.info[self.objects[i]]
+
+    def pose(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        body = self.sim.data.body(self.obj(i).body)
+        return body.xpos.copy(), body.xmat.reshape(3, 3).copy()
+
+    def center(self, i: int) -> np.ndarray:
+        p, R = self.pose(i)
+        return p + R @ np.asarray(self.obj(i).center_offset)
+
+    def top_z(self, i: int) -> float:
+        return float(self.center(i)[2] + self.obj(i).half_extents[2])
+
+    def bottom_z(self, i: int) -> float:
+        return float(self.center(i)[2] - self.obj(i).half_extents[2])
+
+    def update_memory(self) -> None:
+        for i in np.flatnonzero(self.recorder.visible):
+            self.memory[int(i)] = self.center(int(i))
+
+    # ---- command -----------------------------------------------------------------------------
+    @property
+    def yaw(self) -> float:
+        return float(self.action[A.TORSO_YAW])
+
+    @property
+    def pitch(self) -> float:
+        return float(self.action[A.HEAD_PITCH])
+
+    def emit(self) -> np.ndarray:
+        return self.action.copy()

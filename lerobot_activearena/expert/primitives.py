@@ -1,0 +1,281 @@
+"""Expert primitives (paper App. "New Action Primitives"). Each is a generator of 18-D actions;
+head/torso moves and arm/gripper moves are separate primitives and never share a step.
+
+Camera: ``move_head_torso_to`` (trapezoidal profiles under the joint limits), ``look_at``,
+``face_for_arm`` (torso turns so the object sits in front of the chosen arm) and ``search`` (discrete
+sector sweep with memory of explored sectors; stops when the target appears, then centres it).
+Arm: ``move_arm_joint``, ``arm_line`` (straight TCP line, IK every step), ``pick``, ``place``,
+``press``, ``rotate_carried``, ``retreat``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+
+import numpy as np
+
+from ..annotations.schema import (CAMERA_CENTER, CAMERA_HOLD, CAMERA_SEARCH, STAGE_ACTION, STAGE_ANCHOR,
+                                  STAGE_SEARCH)
+from ..sim import action as A
+from ..sim import embodiment as E
+from .context import ExpertContext, ExpertError
+from .gaze import heading_deg
+from .ik import IKFailed, grasp_rotation, interpolate_pose
+from .motion import CONTROL_DT, arm_of, gripper_index, interpolate_joints, trapezoid, with_arm
+
+Actions = Iterator[np.ndarray]
+
+SECTOR_YAWS = (0.0, -0.95, 0.95)  # torso yaw of each search sector (heading 90, 36, 144 deg)
+SEARCH_PITCH = 1.0
+ARM_TORSO_OFFSET_DEG = 15.0  # torso turns this far past the object so it sits in front of the arm
+TORSO_VMAX, TORSO_AMAX = 0.8, 3.0  # below the joint's 2.5 rad/s, 10 rad/s^2
+HEAD_VMAX, HEAD_AMAX = 1.2, 5.0  # below the joint's 10 rad/s, 25 rad/s^2
+FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
+GRASP_Z_MIN_ABOVE_BOTTOM = 0.033  # open pads reach 0.028 m past the TCP: keep them off the table
+
+
+# ---- camera -------------------------------------------------------------------------------------
+def move_head_torso_to(ctx: ExpertContext, yaw: float, pitch: float, mode: int,
+                       stop_when: Callable[[], bool] | None = None) -> Iterator[np.ndarray]:
+    """Turn torso and head together to (yaw, pitch); returns True if ``stop_when`` fired."""
+    y0, p0 = ctx.yaw, ctx.pitch
+    yaw = float(np.clip(yaw, -1.2, 1.2))
+    pitch = float(np.clip(pitch, -1.22, 1.22))
+    sy = trapezoid(yaw - y0, TORSO_VMAX, TORSO_AMAX)
+    sp = trapezoid(pitch - p0, HEAD_VMAX, HEAD_AMAX)
+    s = sy if len(sy) >= len(sp) else sp
+    ctx.intent.camera_mode = mode
+    ctx.intent.camera_target_theta = 90.0 + math.degrees(yaw)
+    fired = False
+    for sk in s:
+        ctx.action[A.TORSO_YAW] = y0 + sk * (yaw - y0)
+        ctx.action[A.HEAD_PITCH] = p0 + sk * (pitch - p0)
+        yield ctx.emit()
+        if stop_when is not None and stop_when():
+            fired = True
+            break
+    ctx.intent.camera_mode = CAMERA_HOLD
+    ctx.intent.camera_target_theta = math.nan
+    return fired
+
+
+def look_at(ctx: ExpertContext, point, mode: int = CAMERA_CENTER) -> Actions:
+    yaw, pitch = ctx.gaze.aim(point, ctx.yaw, ctx.pitch)
+    yield from move_head_torso_to(ctx, yaw, pitch, mode)
+
+
+def face_for_arm(ctx: ExpertContext, point, side: str) -> Actions:
+    """Torso turns so ``point`` is in front of ``side``'s arm; the head pitches to keep it in view."""
+    offset = -ARM_TORSO_OFFSET_DEG if side == "left" else ARM_TORSO_OFFSET_DEG
+    yaw = math.radians(heading_deg(point) - 90.0 + offset)
+    yaw = float(np.clip(yaw, -1.2, 1.2))
+    _, pitch = ctx.gaze.aim(point, yaw, ctx.pitch, fix_yaw=True)
+    yield from move_head_torso_to(ctx, yaw, pitch, CAMERA_CENTER)
+
+
+def hold(ctx: ExpertContext, steps: int) -> Actions:
+    for _ in range(steps):
+        yield ctx.emit()
+
+
+def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
+    """Find object ``i``: if it was seen before, turn to where it was; else sweep unexplored sectors
+    nearest-first (explored ones last), stop as soon as it is visible, then centre it."""
+    it = ctx.intent
+    it.focus, it.stage, it.info_complete = i, STAGE_SEARCH, False
+    it.search_targets = it.search_targets | {i}
+    if i not in ctx.memory:
+        order = sorted(range(len(SECTOR_YAWS)), key=lambda s: (s in ctx.explored, abs(SECTOR_YAWS[s] - ctx.yaw)))
+        for s in order:
+            yield from move_head_torso_to(ctx, SECTOR_YAWS[s], SEARCH_PITCH, CAMERA_SEARCH,
+                                          stop_when=lambda: bool(ctx.recorder.visible[i]))
+            if ctx.recorder.visible[i]:
+                break
+            yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
+            ctx.explored.add(s)
+            if ctx.recorder.visible[i]:
+                break
+        else:
+            raise ExpertError(f"{ctx.objects[i]} not found in any search sector")
+    it.stage = STAGE_ANCHOR
+    it.info_complete = True
+    if center:
+        yield from look_at(ctx, ctx.memory[i])
+
+
+def sweep_all(ctx: ExpertContext, targets: list[int]) -> Actions:
+    """Visit every sector (nearest first) so all of ``targets`` that exist get observed."""
+    it = ctx.intent
+    it.stage, it.info_complete = STAGE_SEARCH, False
+    it.search_targets = it.search_targets | set(targets)
+    order = sorted(range(len(SECTOR_YAWS)), key=lambda s: abs(SECTOR_YAWS[s] - ctx.yaw))
+    # Sweep to the nearer end first, then across to the other end.
+    ends = sorted([s for s in order if SECTOR_YAWS[s] != 0.0], key=lambda s: abs(SECTOR_YAWS[s] - ctx.yaw))
+    for s in [*ends, 0] if ctx.yaw != 0.0 else ends:
+        yield from move_head_torso_to(ctx, SECTOR_YAWS[s], SEARCH_PITCH, CAMERA_SEARCH)
+        yield from hold(ctx, 3)
+        ctx.explored.add(s)
+    ctx.explored.add(0)
+    it.info_complete = True
+
+
+# ---- arm ----------------------------------------------------------------------------------------
+def _solve(ctx: ExpertContext, side: str, q_seed, pos, rot) -> np.ndarray:
+    """IK from ``q_seed``; on failure, once more from the home configuration with more iterations."""
+    try:
+        return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot)
+    except IKFailed:
+        pass
+    try:
+        return ctx.ik.solve(side, E.HOME_ARM[side], ctx.yaw, pos, rot, max_iters=800)
+    except IKFailed as exc:
+        raise ExpertError(str(exc)) from exc
+
+
+def tcp_pose(ctx: ExpertContext, side: str) -> tuple[np.ndarray, np.ndarray]:
+    return ctx.ik.tcp_pose(side, arm_of(ctx.action, side), ctx.yaw)
+
+
+def move_arm_joint(ctx: ExpertContext, side: str, q_goal, gripper: float | None = None, max_vel: float = 1.0) -> Actions:
+    """The paper's move_joint: linear joint path at <= max_vel rad/s with a smooth time scaling."""
+    ctx.intent.camera_mode = CAMERA_HOLD
+    q0 = arm_of(ctx.action, side)
+    for q in interpolate_joints(q0, np.asarray(q_goal, float), max_vel=max_vel):
+        ctx.action = with_arm(ctx.action, side, q, gripper)
+        yield ctx.emit()
+
+
+def arm_goto(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, max_vel: float = 1.0) -> Actions:
+    q_goal = _solve(ctx, side, arm_of(ctx.action, side), pos, rot)
+    yield from move_arm_joint(ctx, side, q_goal, gripper, max_vel)
+
+
+def arm_line(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, speed: float = 0.15) -> Actions:
+    """Straight TCP segment with a smooth (cosine) speed profile peaking at ``speed`` m/s."""
+    ctx.intent.camera_mode = CAMERA_HOLD
+    p0, R0 = tcp_pose(ctx, side)
+    dist = float(np.linalg.norm(np.asarray(pos) - p0))
+    n = max(3, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))))
+    q = arm_of(ctx.action, side)
+    for k in range(1, n + 1):
+        s = 0.5 - 0.5 * math.cos(math.pi * k / n)
+        pk, Rk = interpolate_pose(p0, R0, pos, rot, s)
+        q = _solve(ctx, side, q, pk, Rk)
+        ctx.action = with_arm(ctx.action, side, q, gripper)
+        yield ctx.emit()
+
+
+def set_gripper(ctx: ExpertContext, side: str, value: float, steps: int) -> Actions:
+    g = gripper_index(side)
+    v0 = ctx.action[g]
+    for k in range(1, steps + 1):
+        ctx.action[g] = v0 + (value - v0) * min(1.0, k / max(1, steps // 2))
+        yield ctx.emit()
+
+
+def top_down_rotation(ctx: ExpertContext, side: str, closing, *positions) -> np.ndarray:
+    """Gripper pointing down with fingers closing along +/-``closing``: the sign nearest the current
+    wrist with which IK reaches every one of ``positions``."""
+    _, R_now = tcp_pose(ctx, side)
+    c = np.array([closing[0], closing[1], 0.0])
+    c /= np.linalg.norm(c)
+    cands = sorted([grasp_rotation([0, 0, -1], c), grasp_rotation([0, 0, -1], -c)],
+                   key=lambda R: -np.trace(R_now.T @ R))
+    for R in cands:
+        try:
+            for pos in positions:
+                _solve(ctx, side, arm_of(ctx.action, side), pos, R)
+            return R
+        except ExpertError:
+            continue
+    raise ExpertError(f"{side} arm cannot reach top-down poses at {np.round(positions, 3).tolist()}")
+
+
+def box_closing_axis(ctx: ExpertContext, i: int, prefer_y: bool = False) -> np.ndarray:
+    """Finger-closing axis for a box-like object: the body axis nearest the tangential direction
+    (or its body y axis with ``prefer_y``, which keeps the +x face free)."""
+    p, R = ctx.pose(i)
+    if prefer_y:
+        return R[:, 1]
+    radial = np.array([p[0], p[1], 0.0]) / np.linalg.norm(p[:2])
+    tangential = np.array([-radial[1], radial[0], 0.0])
+    return max((R[:, 0], R[:, 1]), key=lambda ax: abs(ax @ tangential))
+
+
+def start_action(ctx: ExpertContext, targets: set[int]) -> None:
+    ctx.intent.stage = STAGE_ACTION
+    ctx.intent.action_targets = set(targets)
+    ctx.intent.camera_mode = CAMERA_HOLD
+
+
+def pick(ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15) -> Actions:
+    """Top-down grasp of object ``i`` and lift; raises ExpertError if it did not come up."""
+    start_action(ctx, {i})
+    c = ctx.center(i)
+    closing = box_closing_axis(ctx, i) if closing is None else closing
+    z = max(c[2], ctx.bottom_z(i) + GRASP_Z_MIN_ABOVE_BOTTOM)
+    grasp = np.array([c[0], c[1], z])
+    R = top_down_rotation(ctx, side, closing, grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift])
+    z0 = ctx.bottom_z(i)
+    yield from arm_goto(ctx, side, grasp + [0, 0, 0.12], R, gripper=1.0)
+    yield from arm_line(ctx, side, grasp, R, 1.0, speed=0.12)
+    yield from set_gripper(ctx, side, 0.0, 12)
+    ctx.intent.carried = {i}
+    yield from arm_line(ctx, side, grasp + [0, 0, lift], R, 0.0, speed=0.15)
+    if ctx.bottom_z(i) - z0 < 0.5 * lift:
+        raise ExpertError(f"grasp of {ctx.objects[i]} failed: it rose {100 * (ctx.bottom_z(i) - z0):.1f} cm")
+
+
+def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, clearance: float = 0.006) -> Actions:
+    """Carry object ``i`` over ``target_xy``, lower its bottom to ``surface_z + clearance``, release, rise."""
+    p, R = tcp_pose(ctx, side)
+    c = ctx.center(i)
+    offset_xy = p[:2] - c[:2]
+    tcp_above_bottom = p[2] - ctx.bottom_z(i)
+    down = np.array([*(np.asarray(target_xy) + offset_xy), surface_z + clearance + tcp_above_bottom])
+    above = down + [0, 0, 0.10]
+    above[2] = max(above[2], p[2])
+    yield from arm_line(ctx, side, above, R, 0.0, speed=0.2)
+    yield from arm_line(ctx, side, down, R, 0.0, speed=0.08)
+    yield from set_gripper(ctx, side, 1.0, 8)
+    ctx.intent.carried = set()
+    yield from arm_line(ctx, side, down + [0, 0, 0.12], R, 1.0, speed=0.15)
+
+
+def press(ctx: ExpertContext, side: str, point, depth: float, targets: set[int]) -> Actions:
+    """Closed fingertips pressed ``depth`` m into ``point`` from above, then released."""
+    start_action(ctx, targets)
+    radial = np.array([point[0], point[1], 0.0]) / np.linalg.norm(point[:2])
+    touch = np.asarray(point, float) + [0, 0, FINGERTIP_CLOSED]
+    R = top_down_rotation(ctx, side, [-radial[1], radial[0], 0.0], touch + [0, 0, 0.08], touch - [0, 0, depth])
+    yield from set_gripper(ctx, side, 0.0, 6)
+    yield from arm_goto(ctx, side, touch + [0, 0, 0.08], R, gripper=0.0)
+    yield from arm_line(ctx, side, touch - [0, 0, depth], R, 0.0, speed=0.06)
+    yield from hold(ctx, 4)
+    yield from arm_line(ctx, side, touch + [0, 0, 0.08], R, 0.0, speed=0.1)
+
+
+def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: int = 12) -> Actions:
+    """Turn the gripper (and what it holds) about the vertical by ``angle`` rad, in IK steps."""
+    p, R = tcp_pose(ctx, side)
+    n = max(4, int(abs(angle) * steps_per_rad))
+    q = arm_of(ctx.action, side)
+    for k in range(1, n + 1):
+        s = 0.5 - 0.5 * math.cos(math.pi * k / n)
+        th = s * angle
+        Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
+        q = _solve(ctx, side, q, p, Rz @ R)
+        ctx.action = with_arm(ctx.action, side, q)
+        yield ctx.emit()
+
+
+def retreat(ctx: ExpertContext, side: str) -> Actions:
+    """Lift clear and return the arm to its home configuration, gripper open."""
+    ctx.intent.camera_mode = CAMERA_HOLD
+    yield from move_arm_joint(ctx, side, E.HOME_ARM[side], gripper=1.0, max_vel=1.2)
+
+
+def arm_for(point) -> str:
+    """Left arm for objects on the robot's left half of the fan, right arm otherwise."""
+    return "left" if heading_deg(point) >= 90.0 else "right"

@@ -1,0 +1,150 @@
+"""Run the scripted expert on one (task, seed, split): actions, per-frame annotations, sidecar,
+success, and physics health. The single entry point for videos, datasets and expert evaluation."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import mujoco
+import numpy as np
+
+from ..annotations.recorder import AnnotationRecorder
+from ..expert.context import ExpertContext, ExpertError
+from ..expert.gaze import Gaze
+from ..expert.ik import ArmIK
+from ..sim.simulator import ActiveArenaSim
+from .base import TaskScene
+from .registry import get_task
+from .sampling import sample_scene
+
+PENETRATION_LIMIT = 0.01  # m
+WORLD_RADIUS = 2.5  # m; free objects beyond this (or below z = 0.3) have left the world
+
+
+@dataclass
+class EpisodeResult:
+    task: str
+    seed: int
+    split: str
+    success: bool
+    failure: str | None
+    actions: np.ndarray  # (T, 18) commanded joint targets
+    states: np.ndarray  # (T, 18) observed joint state at each frame
+    frames: list[dict]  # per-frame annotations (paper schema)
+    sidecar: dict
+    health: dict = field(default_factory=dict)
+    seconds: float = 0.0
+
+    @property
+    def length(self) -> int:
+        return len(self.frames)
+
+
+@lru_cache(maxsize=1)
+def _kinematics() -> tuple[ArmIK, Gaze]:
+    ik = ArmIK()
+    return ik, Gaze(ik.model)
+
+
+class PhysicsHealth:
+    """NaNs, objects leaving the world, deepest penetration."""
+
+    def __init__(self, sim: ActiveArenaSim):
+        self.sim = sim
+        m = sim.model
+        self.free_qadr = [m.jnt_qposadr[j] for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+        self.max_penetration = 0.0
+        self.problem: str | None = None
+
+    def check(self) -> str | None:
+        d = self.sim.data
+        if not (np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()):
+            self.problem = "NaN in the simulation state"
+        for a in self.free_qadr:
+            p = d.qpos[a:a + 3]
+            if p[2] < 0.3 or np.hypot(p[0], p[1]) > WORLD_RADIUS:
+                self.problem = f"an object left the world (at {np.round(p, 2).tolist()})"
+        if d.ncon:
+            self.max_penetration = max(self.max_penetration, float(-d.contact.dist[: d.ncon].min()))
+        if self.max_penetration > PENETRATION_LIMIT:
+            self.problem = f"penetration {self.max_penetration * 1000:.1f} mm"
+        return self.problem
+
+
+def make_sidecar(task, scene: TaskScene, recorder: AnnotationRecorder, ctx: ExpertContext, success: bool,
+                 failure: str | None) -> dict:
+    return {
+        "task": task.name,
+        "category": task.category,
+        "instruction": scene.instruction,
+        "seed": scene.seed,
+        "split": scene.split,
+        "scene_attempt": scene.attempt,
+        "objects": [{"index": i, "key": n, "name": lbl, "category": scene.info.objects[i].category}
+                    for i, (n, lbl) in enumerate(zip(scene.objects, scene.labels))],
+        "subtasks": [{"id": s.id, "name": s.name, "text": s.text, "instruction_idx": s.instruction_idx}
+                     for s in task.subtasks],
+        "search_targets": list(scene.search_targets),
+        "params": {k: v for k, v in scene.params.items() if k != "rejected_attempts"},
+        "transitions": recorder.transitions,
+        "final_discovered": {scene.objects[i]: bool(d) for i, d in enumerate(recorder.discovered)},
+        "expert_notes": ctx.notes,
+        "success": success,
+        "failure": failure,
+    }
+
+
+def run_expert_episode(task_name: str, seed: int, split: str = "id",
+                       on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None) -> EpisodeResult:
+    """Sample the scene, run the expert until it finishes (or the step limit), return everything.
+    ``on_frame(t, sim, annotation, action)`` runs before each step (e.g. to render video)."""
+    t0 = time.perf_counter()
+    task = get_task(task_name)
+    scene = sample_scene(task, seed, split)
+    sim = ActiveArenaSim(scene.model, scene.info)
+    ik, gaze = _kinematics()
+    recorder = AnnotationRecorder(sim, len(scene.objects))
+    ctx = ExpertContext(sim, scene.objects, recorder, ik, gaze)
+    monitor = task.monitor(sim, scene)
+    health = PhysicsHealth(sim)
+    script = task.expert(ctx, scene)
+    recorder.observe()
+    ctx.update_memory()
+    frames, actions, states = [], [], []
+    failure = None
+    try:
+        for t in range(task.max_episode_steps + 1):
+            try:
+                action = next(script)
+            except StopIteration:
+                break
+            if t == task.max_episode_steps:
+                failure = f"timeout: the expert needed more than {task.max_episode_steps} steps"
+                break
+            sub = task.subtask(ctx.intent.subtask)
+            frame = recorder.frame(t, ctx.intent, sub.instruction_idx)
+            states.append(sim.state())
+            frames.append(frame)
+            actions.append(action)
+            if on_frame is not None:
+                on_frame(t, sim, frame, action)
+            sim.step(action)
+            monitor.update()
+            if health.check():
+                failure = f"physics: {health.problem}"
+                break
+            recorder.observe()
+            ctx.update_memory()
+    except ExpertError as exc:
+        failure = f"expert: {exc}"
+    success = bool(monitor.success) and failure is None
+    if failure is None and not success:
+        failure = "task not accomplished at the end of the expert script"
+    sidecar = make_sidecar(task, scene, recorder, ctx, success, failure)
+    sim.close()
+    return EpisodeResult(task.name, seed, split, success, failure, np.array(actions), np.array(states), frames, sidecar,
+                         {"max_penetration_m": health.max_penetration, "problem": health.problem},
+                         time.perf_counter() - t0)
