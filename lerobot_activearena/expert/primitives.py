@@ -57,7 +57,18 @@ def move_head_torso_to(ctx: ExpertContext, yaw: float, pitch: float, mode: int,
             break
     ctx.intent.camera_mode = CAMERA_HOLD
     ctx.intent.camera_target_theta = math.nan
+    if not fired:
+        yield from settle(ctx)
     return fired
+
+
+def settle(ctx: ExpertContext, tol: float = 0.01, max_steps: int = 15) -> Actions:
+    """Hold the command until torso and head have caught up with it (the drives lag the profile)."""
+    for _ in range(max_steps):
+        err = np.abs(ctx.sim.state()[[A.TORSO_YAW, A.HEAD_PITCH]] - ctx.action[[A.TORSO_YAW, A.HEAD_PITCH]])
+        if err.max() < tol:
+            return
+        yield ctx.emit()
 
 
 def look_at(ctx: ExpertContext, point, mode: int = CAMERA_CENTER) -> Actions:
@@ -129,6 +140,10 @@ def _solve(ctx: ExpertContext, side: str, q_seed, pos, rot) -> np.ndarray:
         pass
     try:
         return ctx.ik.solve(side, E.HOME_ARM[side], ctx.yaw, pos, rot, max_iters=800)
+    except IKFailed:
+        pass
+    try:  # near-converged (a few mm) is fine along a path; endpoints are re-checked by physics
+        return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot, max_iters=400, pos_tol=4e-3, rot_tol=3e-2)
     except IKFailed as exc:
         raise ExpertError(str(exc)) from exc
 
@@ -192,6 +207,12 @@ def top_down_rotation(ctx: ExpertContext, side: str, closing, *positions) -> np.
     raise ExpertError(f"{side} arm cannot reach top-down poses at {np.round(positions, 3).tolist()}")
 
 
+def radial_tangent(point) -> np.ndarray:
+    """Horizontal direction perpendicular to the robot-to-point ray (fingers close sideways)."""
+    radial = np.array([point[0], point[1], 0.0]) / np.linalg.norm(point[:2])
+    return np.array([-radial[1], radial[0], 0.0])
+
+
 def box_closing_axis(ctx: ExpertContext, i: int, prefer_y: bool = False) -> np.ndarray:
     """Finger-closing axis for a box-like object: the body axis nearest the tangential direction
     (or its body y axis with ``prefer_y``, which keeps the +x face free)."""
@@ -227,20 +248,50 @@ def pick(ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15
         raise ExpertError(f"grasp of {ctx.objects[i]} failed: it rose {100 * (ctx.bottom_z(i) - z0):.1f} cm")
 
 
-def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, clearance: float = 0.006) -> Actions:
+def _feasible_rotation(ctx: ExpertContext, side: str, R: np.ndarray, positions, yaw_free: bool) -> np.ndarray:
+    """``R``, or (when the carried object is symmetric enough, ``yaw_free``) R turned about the
+    vertical by 90/-90/180 deg: the first with which IK reaches all ``positions``."""
+    turns = (0.0, math.pi / 2, -math.pi / 2, math.pi) if yaw_free else (0.0,)
+    for th in turns:
+        Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
+        try:
+            for pos in positions:
+                _solve(ctx, side, arm_of(ctx.action, side), pos, Rz @ R)
+            return Rz @ R
+        except ExpertError:
+            continue
+    raise ExpertError(f"{side} arm cannot reach the placement poses {np.round(positions, 3).tolist()}")
+
+
+def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, clearance: float = 0.006,
+          yaw_free: bool = True) -> Actions:
     """Carry object ``i`` over ``target_xy``, lower its bottom to ``surface_z + clearance``, release, rise."""
     p, R = tcp_pose(ctx, side)
     c = ctx.center(i)
-    offset_xy = p[:2] - c[:2]
+    offset = R.T @ np.array([*(p[:2] - c[:2]), 0.0])  # TCP offset from the object centre, gripper frame
     tcp_above_bottom = p[2] - ctx.bottom_z(i)
-    down = np.array([*(np.asarray(target_xy) + offset_xy), surface_z + clearance + tcp_above_bottom])
-    above = down + [0, 0, 0.10]
-    above[2] = max(above[2], p[2])
-    yield from arm_line(ctx, side, above, R, 0.0, speed=0.2)
-    yield from arm_line(ctx, side, down, R, 0.0, speed=0.08)
+
+    def tcp_for(Rg, z):
+        off = Rg @ offset
+        return np.array([target_xy[0] + off[0], target_xy[1] + off[1], z])
+
+    z_down = surface_z + clearance + tcp_above_bottom
+    z_above = max(z_down + 0.10, p[2])
+    Rg = R
+    for Rc in [R] + ([_feasible_rotation(ctx, side, R, [tcp_for(R, z_above), tcp_for(R, z_down)], yaw_free)]
+                     if yaw_free else []):
+        Rg = Rc
+        try:
+            for z in (z_above, z_down):
+                _solve(ctx, side, arm_of(ctx.action, side), tcp_for(Rg, z), Rg)
+            break
+        except ExpertError:
+            continue
+    yield from arm_line(ctx, side, tcp_for(Rg, z_above), Rg, 0.0, speed=0.2)
+    yield from arm_line(ctx, side, tcp_for(Rg, z_down), Rg, 0.0, speed=0.08)
     yield from set_gripper(ctx, side, 1.0, 8)
     ctx.intent.carried = set()
-    yield from arm_line(ctx, side, down + [0, 0, 0.12], R, 1.0, speed=0.15)
+    yield from arm_line(ctx, side, tcp_for(Rg, z_down + 0.12), Rg, 1.0, speed=0.15)
 
 
 def press(ctx: ExpertContext, side: str, point, depth: float, targets: set[int]) -> Actions:

@@ -7,6 +7,7 @@ import numpy as np
 from ..expert import primitives as P
 from ..sim.assets.task_props import BELL_PRESSED
 from .base import SuccessMonitor, Subtask, Task, register_task
+from .sampling import HIDDEN_REACH
 from .checks import joint_pos
 
 
@@ -28,7 +29,7 @@ class ClickBellRotateView(Task):
     max_episode_steps = 300
 
     def layout(self, draft):
-        draft.place("bell", "bell", "bell", angle=draft.hidden_angle(), yaw=float(draft.rng.uniform(-np.pi, np.pi)))
+        draft.place("bell", "bell", "bell", angle=HIDDEN_REACH, yaw=float(draft.rng.uniform(-np.pi, np.pi)))
 
     def is_success(self, sim, scene):
         return joint_pos(sim, "bell_plunger_joint") < BELL_PRESSED
