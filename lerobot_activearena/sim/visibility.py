@@ -147,3 +147,22 @@ class VisibilityChecker:
         cuv, cz = project(centers, self.K, E)
         uv_norm = np.where(visible[:, None] & (cz[:, None] > near), cuv / np.array([W, H]), -1.0)
         return Visibility(visible, frac, in_image, unocc, uv_norm)
+
+
+def surface_point_visible(model: mujoco.MjModel, data: mujoco.MjData, cam_id: int, point, normal, geom: int,
+                          width: int, height: int, exclude_body: int = -1, min_cos: float = 0.25) -> bool:
+    """Whether a small surface patch (``point`` with outward ``normal``, on ``geom``) is seen by the
+    camera: in the image, facing it (cos >= ``min_cos``), and the first thing a ray from the camera hits."""
+    point, normal = np.asarray(point, float), np.asarray(normal, float)
+    cam = data.cam_xpos[cam_id].copy()
+    to_cam = cam - point
+    dist = float(np.linalg.norm(to_cam))
+    if normal @ to_cam < min_cos * dist:
+        return False
+    K = intrinsics(float(model.cam_fovy[cam_id]), width, height)
+    uv, z = project(point[None], K, extrinsic_cv(data, cam_id))
+    if z[0] <= 0.1 or not (0 <= uv[0, 0] < width and 0 <= uv[0, 1] < height):
+        return False
+    geomid = np.array([-1], np.int32)
+    mujoco.mj_ray(model, data, cam, -to_cam / dist, _RENDERED_GROUPS, 1, exclude_body, geomid)
+    return int(geomid[0]) == geom

@@ -81,6 +81,11 @@ class Task:
         """Objects whose observation the task needs (design-principle checks, DM/CO/CR)."""
         return list(range(len(scene.objects)))
 
+    def information_hidden_at_start(self, scene: TaskScene) -> bool:
+        """True when the deciding information is hidden at reset by construction (e.g. a colour on
+        an object's back face); then principle (1) does not need an unseen object."""
+        return False
+
     def is_success(self, sim: ActiveArenaSim, scene: TaskScene) -> bool:
         raise NotImplementedError
 

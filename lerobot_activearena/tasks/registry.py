@@ -8,6 +8,7 @@ from .base import CATEGORIES, TASKS, Task
 def _load() -> None:
     from . import (  # noqa: F401  (each module registers its task)
         blocks_ranking_rgb_rotate_view,
+        check_block_color,
         click_bell_rotate_view,
         count_target_press_button,
         place_empty_cup_rotate_view,

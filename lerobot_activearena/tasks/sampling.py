@@ -131,7 +131,7 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
     targets = scene.search_targets
     vis = sector_visibility(scene.model, scene.info)[:, targets]
     problems = []
-    if vis[0].all():
+    if vis[0].all() and not task.information_hidden_at_start(scene):
         problems.append("initial view already shows every task-relevant object")
     missing = [scene.objects[t] for t, seen in zip(targets, vis.any(axis=0)) if not seen]
     if missing:

@@ -1,0 +1,135 @@
+"""IA: a gray block hides a coloured patch on its back face (facing away from the robot). Pick it
+up, turn it in the hand until the head camera sees the patch, turn it back, then find the pad of
+that colour and place the block on it."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+
+from ..annotations.schema import CAMERA_INSPECT, STAGE_ANCHOR, STAGE_SEARCH
+from ..expert import primitives as P
+from ..expert.context import ExpertError
+from ..sim import embodiment as E
+from ..sim.visibility import surface_point_visible
+from .base import Subtask, Task, register_task
+from .checks import body_touches_robot
+from .sampling import HIDDEN_REACH
+
+PAD_COLORS = ("red", "green", "blue")
+
+
+def patch_visible(model, data, info) -> bool:
+    """Whether the head camera sees the block's back patch right now."""
+    body = data.body(info.body)
+    R = body.xmat.reshape(3, 3)
+    point = body.xpos + R @ np.asarray(info.extra["patch_center_body"])
+    normal = R @ np.asarray(info.extra["patch_normal_body"])
+    cam = model.camera(E.HEAD_CAMERA).id
+    return surface_point_visible(model, data, cam, point, normal, model.geom(info.extra["patch_geom"]).id, 512, 384,
+                                 exclude_body=model.body(f"{E.PREFIX}head_link_2").id)
+
+
+@register_task
+class CheckBlockColor(Task):
+    name = "check_block_color"
+    category = "IA"
+    instruction = "Inspect the gray block's hidden color and place it on the matching pad."
+    subtasks = (
+        Subtask(1, "pick_target_block", "locate and pick up the gray target block", 0),
+        Subtask(2, "inspect_target_block_backside", "reveal and identify the block's backside color", 1),
+        Subtask(3, "restore_target_block_pose", "restore the block to a placement-ready pose", 2),
+        Subtask(4, "place_target_block_on_matching_pad", "localize the matching pad and place the block on it", 3),
+    )
+    max_episode_steps = 650
+
+    def layout(self, draft):
+        rng = draft.rng
+        colors = list(rng.permutation(PAD_COLORS))
+        # One pad at the hidden right edge, two elsewhere in reach; the block anywhere in reach.
+        draft.place("color_pad", f"{colors[0]}_pad", f"{colors[0]} pad", angle=HIDDEN_REACH, color=colors[0], margin=0.03)
+        for c in colors[1:]:
+            draft.place("color_pad", f"{c}_pad", f"{c} pad", angle=(45.0, 140.0), color=c, margin=0.03)
+        patch = PAD_COLORS[int(rng.integers(0, 3))]
+        draft.place("patch_block", "gray_block", "gray block", angle=(45.0, 140.0), patch_color=patch, margin=0.04)
+        draft.params["patch_color"] = patch
+
+    def search_targets(self, scene):
+        return [scene.objects.index("gray_block"), scene.objects.index(f"{scene.params['patch_color']}_pad")]
+
+    def information_hidden_at_start(self, scene):
+        data = mujoco.MjData(scene.model)
+        mujoco.mj_forward(scene.model, data)
+        info = scene.info.objects[scene.objects.index("gray_block")]
+        return not patch_visible(scene.model, data, info)
+
+    def is_success(self, sim, scene):
+        block = sim.data.body("gray_block")
+        pad_name = f"{scene.params['patch_color']}_pad"
+        pad = sim.data.body(pad_name)
+        half = sim.info.objects[scene.objects.index(pad_name)].half_extents[0]
+        local = pad.xmat.reshape(3, 3).T @ (block.xpos - pad.xpos)
+        on_pad = abs(local[0]) < half - 0.01 and abs(local[1]) < half - 0.01 and abs(local[2] - 0.004) < 0.01
+        return bool(on_pad and not body_touches_robot(sim, "gray_block"))
+
+    def expert(self, ctx, scene):
+        block = ctx.idx("gray_block")
+        ctx.intent.subtask = 1
+        yield from P.search(ctx, block)
+        side = P.arm_for(ctx.memory[block])
+        yield from P.face_for_arm(ctx, ctx.memory[block], side)
+        _, R = ctx.pose(block)
+        yield from P.pick(ctx, side, block, closing=R[:, 1], lift=0.16)  # fingers on the faces beside the patch
+
+        ctx.intent.subtask = 2
+        ctx.intent.stage, ctx.intent.info_complete, ctx.intent.focus = STAGE_SEARCH, False, block
+        angle = self._turn_angle(ctx, side)
+        yield from P.rotate_carried(ctx, side, angle)
+        ctx.intent.stage = STAGE_ANCHOR
+        yaw, pitch = ctx.gaze.aim(ctx.center(block), ctx.yaw, ctx.pitch, fix_yaw=True)
+        yield from P.move_head_torso_to(ctx, yaw, pitch, CAMERA_INSPECT)
+        info = ctx.obj(block)
+        for _ in range(6):
+            if patch_visible(ctx.sim.model, ctx.sim.data, info):
+                break
+            yield from P.hold(ctx, 1)
+        else:
+            raise ExpertError("the back patch never came into view")
+        color = info.extra["patch_color"]  # read off the visible patch
+        ctx.notes["observed_color"] = color
+        ctx.intent.info_complete = True
+        yield from P.hold(ctx, 3)
+
+        ctx.intent.subtask = 3
+        P.start_action(ctx, {block})
+        ctx.intent.carried = {block}
+        yield from P.rotate_carried(ctx, side, -angle)
+
+        ctx.intent.subtask = 4
+        pad = ctx.idx(f"{color}_pad")
+        yield from P.search(ctx, pad)
+        yield from P.face_for_arm(ctx, ctx.memory[pad], side)
+        P.start_action(ctx, {block, pad})
+        ctx.intent.carried = {block}
+        yield from P.place(ctx, side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True)
+        yield from P.retreat(ctx, side)
+        yield from P.hold(ctx, 3)
+
+    @staticmethod
+    def _turn_angle(ctx, side: str) -> float:
+        """Half a turn about the vertical, in the direction this arm's wrist can follow."""
+        p, R = P.tcp_pose(ctx, side)
+        first = -math.pi if side == "left" else math.pi
+        for angle in (first, -first):
+            try:
+                q = P.arm_of(ctx.action, side)
+                for frac in (0.5, 1.0):
+                    th = frac * angle
+                    Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
+                    q = P._solve(ctx, side, q, p, Rz @ R)
+                return angle
+            except ExpertError:
+                continue
+        raise ExpertError(f"the {side} wrist cannot turn the block half a turn here")
