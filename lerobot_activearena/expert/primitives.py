@@ -230,14 +230,18 @@ def start_action(ctx: ExpertContext, targets: set[int]) -> None:
     ctx.intent.camera_mode = CAMERA_HOLD
 
 
-def pick(ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15) -> Actions:
-    """Top-down grasp of object ``i`` and lift; raises ExpertError if it did not come up."""
+def pick(ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15, flip_ok: bool = True) -> Actions:
+    """Top-down grasp of object ``i`` and lift; raises ExpertError if it did not come up.
+    ``flip_ok=False`` keeps the finger order given by ``closing`` (no 180 deg wrist flip)."""
     start_action(ctx, {i})
     c = ctx.center(i)
     closing = box_closing_axis(ctx, i) if closing is None else closing
     z = max(c[2], ctx.bottom_z(i) + GRASP_Z_MIN_ABOVE_BOTTOM)
     grasp = np.array([c[0], c[1], z])
-    R = top_down_rotation(ctx, side, closing, grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift])
+    if flip_ok:
+        R = top_down_rotation(ctx, side, closing, grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift])
+    else:
+        R = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
     z0 = ctx.bottom_z(i)
     yield from arm_goto(ctx, side, grasp + [0, 0, 0.12], R, gripper=1.0)
     yield from arm_line(ctx, side, grasp, R, 1.0, speed=0.12)

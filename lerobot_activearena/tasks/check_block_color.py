@@ -12,6 +12,7 @@ import numpy as np
 from ..annotations.schema import CAMERA_INSPECT, STAGE_ANCHOR, STAGE_SEARCH
 from ..expert import primitives as P
 from ..expert.context import ExpertError
+from ..expert.ik import grasp_rotation
 from ..sim import embodiment as E
 from ..sim.visibility import surface_point_visible
 from .base import Subtask, Task, register_task
@@ -19,6 +20,7 @@ from .checks import body_touches_robot
 from .sampling import HIDDEN_REACH
 
 PAD_COLORS = ("red", "green", "blue")
+LIFT = 0.16
 
 
 def patch_visible(model, data, info) -> bool:
@@ -80,12 +82,16 @@ class CheckBlockColor(Task):
         yield from P.search(ctx, block)
         side = P.arm_for(ctx.memory[block])
         yield from P.face_for_arm(ctx, ctx.memory[block], side)
-        _, R = ctx.pose(block)
-        yield from P.pick(ctx, side, block, closing=R[:, 1], lift=0.16)  # fingers on the faces beside the patch
+        # Fingers on the faces beside the patch, with the finger order that lets the wrist turn later.
+        inspect = self._inspect_point(ctx, side)
+        closing, angle = self._grasp_for_turn(ctx, side, block, inspect)
+        yield from P.pick(ctx, side, block, closing=closing, lift=LIFT, flip_ok=False)
 
         ctx.intent.subtask = 2
         ctx.intent.stage, ctx.intent.info_complete, ctx.intent.focus = STAGE_SEARCH, False, block
-        angle = self._turn_angle(ctx, side)
+        # Bring the block in front of the shoulder (where the wrist can turn it), then turn it.
+        _, R = P.tcp_pose(ctx, side)
+        yield from P.arm_line(ctx, side, inspect, R, 0.0, speed=0.2)
         yield from P.rotate_carried(ctx, side, angle)
         ctx.intent.stage = STAGE_ANCHOR
         yaw, pitch = ctx.gaze.aim(ctx.center(block), ctx.yaw, ctx.pitch, fix_yaw=True)
@@ -118,18 +124,34 @@ class CheckBlockColor(Task):
         yield from P.hold(ctx, 3)
 
     @staticmethod
-    def _turn_angle(ctx, side: str) -> float:
-        """Half a turn about the vertical, in the direction this arm's wrist can follow."""
-        p, R = P.tcp_pose(ctx, side)
-        first = -math.pi if side == "left" else math.pi
-        for angle in (first, -first):
-            try:
-                q = P.arm_of(ctx.action, side)
-                for frac in (0.5, 1.0):
-                    th = frac * angle
-                    Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
-                    q = P._solve(ctx, side, q, p, Rz @ R)
-                return angle
-            except ExpertError:
-                continue
-        raise ExpertError(f"the {side} wrist cannot turn the block half a turn here")
+    def _inspect_point(ctx, side: str) -> np.ndarray:
+        """In front of the arm's shoulder, below the head: the wrist can turn there and the camera sees it."""
+        lateral = -0.24 if side == "left" else 0.14  # the head camera sits 8 cm left of centre
+        c, s = math.cos(ctx.yaw), math.sin(ctx.yaw)
+        return np.array([c * lateral - s * 0.38, s * lateral + c * 0.38, 0.87])
+
+    @staticmethod
+    def _grasp_for_turn(ctx, side: str, block: int, inspect) -> tuple[np.ndarray, float]:
+        """Finger-closing axis (+/- the block's y) and turn angle: the first pair whose whole turn
+        at ``inspect`` IK can follow (a half turn, or 3/4 / 2/3 of one: the patch is then seen obliquely)."""
+        _, Rb = ctx.pose(block)
+        c = ctx.center(block)
+        grasp = np.array([c[0], c[1], max(c[2], ctx.bottom_z(block) + P.GRASP_Z_MIN_ABOVE_BOTTOM)])
+        path = [grasp + [0, 0, 0.12], grasp, grasp + [0, 0, LIFT]]
+        first = -1.0 if side == "left" else 1.0
+        angles = [f * a for a in (math.pi, 0.75 * math.pi, 2 * math.pi / 3) for f in (first, -first)]
+        for angle in angles:
+            for sign in (1.0, -1.0):
+                R = grasp_rotation([0, 0, -1], sign * Rb[:, 1])
+                try:
+                    q = P.arm_of(ctx.action, side)
+                    for pos in path:
+                        q = P._solve(ctx, side, q, pos, R)
+                    for frac in np.linspace(0.0, 1.0, 9):
+                        th = frac * angle
+                        Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
+                        q = P._solve(ctx, side, q, inspect, Rz @ R)
+                    return sign * Rb[:, 1], angle
+                except ExpertError:
+                    continue
+        raise ExpertError(f"the {side} wrist cannot turn the block to show its back")

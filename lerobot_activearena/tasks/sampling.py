@@ -131,12 +131,15 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
     targets = scene.search_targets
     vis = sector_visibility(scene.model, scene.info)[:, targets]
     problems = []
-    if vis[0].all() and not task.information_hidden_at_start(scene):
+    # With the deciding information hidden by construction (a back-face colour), (1) and (3) hold
+    # through it: it is unseen at reset and must be remembered once the face is turned away again.
+    hidden_info = task.information_hidden_at_start(scene)
+    if vis[0].all() and not hidden_info:
         problems.append("initial view already shows every task-relevant object")
     missing = [scene.objects[t] for t, seen in zip(targets, vis.any(axis=0)) if not seen]
     if missing:
         problems.append(f"never visible from any search view: {missing}")
-    if len(targets) > 1 and vis.all(axis=1).any():
+    if len(targets) > 1 and vis.all(axis=1).any() and not hidden_info:
         problems.append("one search view shows every task-relevant object")
     return problems
 
