@@ -28,7 +28,7 @@ class Visibility:
     visible_fraction: np.ndarray  # (N,) in [0, 1]
     in_image_fraction: np.ndarray
     unoccluded_fraction: np.ndarray
-    uv_norm: np.ndarray  # (N, 2), bbox centre / (W, H); (-1, -1) when not visible
+    uv_norm: np.ndarray  # (N, 2), centre of the in-image part of the projected bbox / (W, H); (-1, -1) when not visible
 
 
 def _fibonacci_sphere(n: int) -> np.ndarray:
@@ -144,8 +144,8 @@ class VisibilityChecker:
                 unocc = np.divide(vis, tot, out=np.zeros(n), where=tot > 0)
         frac = in_image * unocc
         visible = frac >= VISIBLE_THRESHOLD
-        cuv, cz = project(centers, self.K, E)
-        uv_norm = np.where(visible[:, None] & (cz[:, None] > near), cuv / np.array([W, H]), -1.0)
+        # Target point: centre of the in-image part of the projected box (always inside the image).
+        uv_norm = np.where(visible[:, None], 0.5 * (clo + chi) / np.array([W, H]), -1.0)
         return Visibility(visible, frac, in_image, unocc, uv_norm)
 
 

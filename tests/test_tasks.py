@@ -1,0 +1,136 @@
+"""Task registry, scene sampling (ID/OOD, determinism, design principles) and success checks."""
+
+import math
+
+import numpy as np
+import pytest
+
+from lerobot_activearena.sim.assets import ASSETS
+from lerobot_activearena.tasks import TASKS, get_task, task_names
+from lerobot_activearena.tasks.sampling import SceneDraft, derived_rng, principle_violations, sample_scene
+from lerobot_activearena.tasks.base import TaskScene
+
+FIRST_FIVE = {
+    "click_bell_rotate_view": ("SS", "Press the bell's top center using the left arm."),
+    "place_empty_cup_rotate_view": ("SL", "Place the empty cup on the coaster."),
+    "blocks_ranking_rgb_rotate_view": ("ML", "Arrange the red, green, and blue blocks from left to right."),
+    "count_target_press_button": ("MD", "Count the target blocks and press the matching button."),
+    "check_block_color": ("IA", "Inspect the gray block's hidden color and place it on the matching pad."),
+}
+
+
+def test_registry_has_the_paper_tasks_with_categories_and_instructions():
+    task_names()  # loads the task modules
+    for name, (cat, instr) in FIRST_FIVE.items():
+        t = get_task(name)
+        assert (t.category, t.instruction) == (cat, instr)
+        assert [s.id for s in t.subtasks] == list(range(1, len(t.subtasks) + 1))
+        assert t.max_episode_steps > 100
+
+
+def test_task_selectors():
+    assert task_names("SS") == ["click_bell_rotate_view"]
+    assert set(task_names("all")) == set(TASKS)
+    assert task_names("IA,click_bell_rotate_view") == ["check_block_color", "click_bell_rotate_view"]
+    with pytest.raises(ValueError, match="unknown task selector 'nope'"):
+        task_names("nope")
+    with pytest.raises(ValueError, match="unknown ActiveArena task"):
+        get_task("click_bell")
+
+
+def _layout(scene):
+    return {o.name: np.round(np.asarray(scene.model.body(o.body).pos), 6).tolist()
+            for o in scene.info.objects + scene.info.clutter}
+
+
+def test_same_seed_same_scene_and_different_seed_different_scene():
+    task = get_task("place_empty_cup_rotate_view")
+    a, b, c = sample_scene(task, 5, "id"), sample_scene(task, 5, "id"), sample_scene(task, 6, "id")
+    assert _layout(a) == _layout(b) and a.params == b.params and a.attempt == b.attempt
+    assert _layout(a) != _layout(c)
+
+
+def test_id_clutter_uses_only_distractors_and_ood_changes_the_look_and_density():
+    task = get_task("click_bell_rotate_view")
+    n_id, n_ood, looks_id, looks_ood = [], [], [], []
+    for seed in range(6):
+        sid, sood = sample_scene(task, seed, "id"), sample_scene(task, seed, "ood")
+        assert all(ASSETS[o.category].role == "distractor" for o in sid.info.clutter)
+        families = [ASSETS[o.category].family for o in sood.info.clutter + sood.info.objects]
+        assert len(families) == len(set(families)), "OOD clutter repeats a family already in the scene"
+        n_id.append(len(sid.info.clutter))
+        n_ood.append(len(sood.info.clutter))
+        looks_id.append(_look(sid))
+        looks_ood.append(_look(sood))
+    assert np.mean(n_ood) > np.mean(n_id)
+    assert all(np.allclose(looks_id[0], lk) for lk in looks_id), "ID scenes must keep the default look"
+    assert len({tuple(np.round(lk, 4)) for lk in looks_ood}) == len(looks_ood), "OOD looks must vary per seed"
+
+
+def _look(scene):
+    """Light intensity/direction, floor pattern colours and tabletop colour of a compiled scene."""
+    m = scene.model
+    light = m.light("key_light")
+    floor = np.ravel(m.mat_texrepeat[int(np.ravel(m.geom("floor").matid)[0])])
+    table = m.geom_rgba[np.flatnonzero(m.geom_bodyid == m.body("fan_level_0").id)[0]]
+    tex = m.tex_data[m.tex_adr[m.tex("floor_checker").id]: m.tex_adr[m.tex("floor_checker").id] + 6].astype(float)
+    return np.concatenate([np.ravel(light.diffuse), np.ravel(light.dir), floor, np.ravel(table), tex])
+
+
+def test_sampled_scenes_satisfy_the_design_principles():
+    for name in FIRST_FIVE:
+        task = get_task(name)
+        for split in ("id", "ood"):
+            scene = sample_scene(task, 1, split)
+            assert principle_violations(task, scene) == []
+            assert scene.search_targets and all(0 <= i < len(scene.objects) for i in scene.search_targets)
+
+
+def test_principle_check_rejects_a_bell_in_plain_view():
+    task = get_task("click_bell_rotate_view")
+    draft = SceneDraft("id", derived_rng(task.name, 0, "id", 0))
+    draft.place("bell", "bell", "bell", r=0.5, angle=90.0)
+    model, info = draft.builder.compile()
+    scene = TaskScene(task.name, 0, "id", 0, model, info, ["bell"], ["bell"], search_targets=[0])
+    assert principle_violations(task, scene) == ["initial view already shows every task-relevant object"]
+
+
+def test_count_task_success_needs_the_right_button_first():
+    from lerobot_activearena.sim.simulator import ActiveArenaSim
+
+    task = get_task("count_target_press_button")
+    scene = sample_scene(task, 3, "id")
+    sim = ActiveArenaSim(scene.model, scene.info)
+    mon = task.monitor(sim, scene)
+    assert not mon.update()
+    right = scene.params["count"]
+    wrong = 1 if right != 1 else 2
+    sim.data.joint(f"button_{wrong}_joint").qpos[0] = -0.008
+    mon.update()
+    sim.data.joint(f"button_{wrong}_joint").qpos[0] = 0.0
+    sim.data.joint(f"button_{right}_joint").qpos[0] = -0.008
+    assert not mon.update(), "pressing a wrong button first must fail the episode"
+
+
+def test_placement_tasks_are_not_successful_at_reset():
+    from lerobot_activearena.sim.simulator import ActiveArenaSim
+
+    for name in ("place_empty_cup_rotate_view", "blocks_ranking_rgb_rotate_view", "check_block_color"):
+        task = get_task(name)
+        scene = sample_scene(task, 2, "id")
+        sim = ActiveArenaSim(scene.model, scene.info)
+        sim.step(sim.home_action())
+        assert not task.is_success(sim, scene), name
+
+
+def test_check_block_color_patch_faces_away_at_reset():
+    task = get_task("check_block_color")
+    for seed in range(3):
+        scene = sample_scene(task, seed, "id")
+        assert task.information_hidden_at_start(scene)
+        info = scene.info.objects[scene.objects.index("gray_block")]
+        yaw = math.atan2(*np.asarray(scene.model.body("gray_block").quat)[[3, 0]]) * 2
+        pos = scene.model.body("gray_block").pos
+        outward = math.atan2(pos[1], pos[0])
+        assert abs((yaw - outward + math.pi) % (2 * math.pi) - math.pi) < 0.3
+        assert info.extra["patch_color"] == scene.params["patch_color"]
