@@ -16,7 +16,7 @@ from tqdm import tqdm
 from ..annotations.schema import CAMERA_MODE_NAMES, STAGE_NAMES
 from ..sim.scene import CONTROL_HZ
 from ..sim.video import Mp4Writer, draw_annotations
-from ..tasks import get_task
+from ..tasks import get_task, task_names
 from ..tasks.episode import run_expert_episode
 
 
@@ -34,8 +34,6 @@ def render_episode(task: str, seed: int, split: str, out: Path) -> dict:
         def on_frame(t, sim, frame, action):
             if not labels:
                 labels.extend(o.name for o in sim.info.objects)
-            vis = sim.visibility_checker
-            del vis
             sub = spec.subtask(int(frame["subtask"]))
             theta = float(frame["camera_target_theta"])
             lines = [
@@ -66,17 +64,30 @@ def render_episode(task: str, seed: int, split: str, out: Path) -> dict:
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--task", required=True, help="task name (see `activearena-tasks`)")
+    p.add_argument("--task", default="all",
+                   help="task name, category (SS/SL/ML/MD/IA), 'all', or a comma list (default: all)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--split", choices=("id", "ood"), default="id")
-    p.add_argument("--out", type=Path, default=None, help="output folder (default outputs/expert/<task>_<split>_<seed>)")
+    p.add_argument("--out", type=Path, default=Path("outputs/expert"),
+                   help="output root; each episode goes to <out>/<task>_<split>_<seed>/")
+    p.add_argument("--list", action="store_true", help="list the registered tasks and exit")
     args = p.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
-    out = args.out or Path("outputs/expert") / f"{args.task}_{args.split}_{args.seed}"
-    s = render_episode(args.task, args.seed, args.split, out)
-    status = "success" if s["success"] else f"FAILED ({s['failure']})"
-    print(f"{args.task} seed {args.seed} ({args.split}): {status}; {s['frames']} frames at {s['frames_per_s']} frames/s; "
-          f"wrote {out / 'head.mp4'}, annotations.jsonl, episode.json")
+    if args.list:
+        for name in task_names("all"):
+            t = get_task(name)
+            print(f"{name:40s} {t.category}  {t.instruction}")
+        return
+    failed = 0
+    for name in task_names(args.task):
+        out = args.out / f"{name}_{args.split}_{args.seed}"
+        s = render_episode(name, args.seed, args.split, out)
+        failed += not s["success"]
+        status = "success" if s["success"] else f"FAILED ({s['failure']})"
+        print(f"{name} seed {args.seed} ({args.split}): {status}; {s['frames']} frames at {s['frames_per_s']} "
+              f"frames/s incl. rendering and video; wrote {out}/head.mp4, annotations.jsonl, episode.json")
+    if failed:
+        raise SystemExit(f"{failed} expert episode(s) failed")
 
 
 if __name__ == "__main__":

@@ -143,7 +143,7 @@ def _solve(ctx: ExpertContext, side: str, q_seed, pos, rot) -> np.ndarray:
     except IKFailed:
         pass
     try:  # near-converged (a few mm) is fine along a path; endpoints are re-checked by physics
-        return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot, max_iters=400, pos_tol=4e-3, rot_tol=3e-2)
+        return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot, max_iters=400, pos_tol=8e-3, rot_tol=5e-2)
     except IKFailed as exc:
         raise ExpertError(str(exc)) from exc
 
@@ -298,17 +298,29 @@ def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, cl
     yield from arm_line(ctx, side, tcp_for(Rg, z_down + 0.12), Rg, 1.0, speed=0.15)
 
 
-def press(ctx: ExpertContext, side: str, point, depth: float, targets: set[int]) -> Actions:
-    """Closed fingertips pressed ``depth`` m into ``point`` from above, then released."""
+def press(ctx: ExpertContext, side: str, point, depth: float, targets: set[int], approach: float = 0.07) -> Actions:
+    """Closed fingertips pressed ``depth`` m into ``point`` from above, then released. The wrist's
+    rotation about the vertical is free: the first one IK reaches along the whole stroke is used."""
     start_action(ctx, targets)
     radial = np.array([point[0], point[1], 0.0]) / np.linalg.norm(point[:2])
     touch = np.asarray(point, float) + [0, 0, FINGERTIP_CLOSED]
-    R = top_down_rotation(ctx, side, [-radial[1], radial[0], 0.0], touch + [0, 0, 0.08], touch - [0, 0, depth])
+    stroke = (touch + [0, 0, approach], touch - [0, 0, depth])
+    R = None
+    for turn in np.radians([0.0, 30.0, -30.0, 60.0, -60.0, 90.0]):
+        c, s = math.cos(turn), math.sin(turn)
+        closing = [-radial[1] * c - radial[0] * s, radial[0] * c - radial[1] * s, 0.0]
+        try:
+            R = top_down_rotation(ctx, side, closing, *stroke)
+            break
+        except ExpertError:
+            continue
+    if R is None:
+        raise ExpertError(f"{side} arm cannot press at {np.round(point, 3).tolist()}")
     yield from set_gripper(ctx, side, 0.0, 6)
-    yield from arm_goto(ctx, side, touch + [0, 0, 0.08], R, gripper=0.0)
-    yield from arm_line(ctx, side, touch - [0, 0, depth], R, 0.0, speed=0.06)
+    yield from arm_goto(ctx, side, stroke[0], R, gripper=0.0)
+    yield from arm_line(ctx, side, stroke[1], R, 0.0, speed=0.06)
     yield from hold(ctx, 4)
-    yield from arm_line(ctx, side, touch + [0, 0, 0.08], R, 0.0, speed=0.1)
+    yield from arm_line(ctx, side, stroke[0], R, 0.0, speed=0.1)
 
 
 def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: int = 12) -> Actions:
@@ -331,6 +343,10 @@ def retreat(ctx: ExpertContext, side: str) -> Actions:
     yield from move_arm_joint(ctx, side, E.HOME_ARM[side], gripper=1.0, max_vel=1.2)
 
 
-def arm_for(point) -> str:
-    """Left arm for objects on the robot's left half of the fan, right arm otherwise."""
-    return "left" if heading_deg(point) >= 90.0 else "right"
+def arm_for(point, then=None) -> str:
+    """Left arm for objects on the robot's left half of the fan, right arm otherwise; with a known
+    destination ``then``, the side of the midpoint heading of the two."""
+    h = heading_deg(point)
+    if then is not None:
+        h = 0.5 * (h + heading_deg(then))
+    return "left" if h >= 90.0 else "right"

@@ -75,7 +75,8 @@ class BlocksRankingRgbRotateView(Task):
         for sid, (block, ref) in enumerate(((green, red), (blue, green))):
             ctx.intent.subtask = 2 * sid + 1
             yield from P.search(ctx, block)
-            side = P.arm_for(ctx.memory[block])
+            dest = ctx.memory.get(ref)  # where it will go, if the reference was already seen
+            side = P.arm_for(ctx.memory[block], None if dest is None else right_of(dest))
             yield from P.face_for_arm(ctx, ctx.memory[block], side)
             yield from P.pick(ctx, side, block, lift=0.10)
             ctx.intent.subtask = 2 * sid + 2

@@ -91,6 +91,6 @@ class CountTargetPressButton(Task):
         yield from P.face_for_arm(ctx, ctx.memory[button], side)
         pos, R = ctx.pose(button)
         top = pos + R @ np.asarray(ctx.obj(button).extra["press_point"])
-        yield from P.press(ctx, side, top, depth=0.011, targets={button})
+        yield from P.press(ctx, side, top, depth=0.012, targets={button})
         yield from P.retreat(ctx, side)
         yield from P.hold(ctx, 3)

@@ -17,7 +17,7 @@ BLOCK_COLORS = {  # named colours shared by blocks, patches and pads
 }
 GRAY = (0.55, 0.55, 0.56, 1)
 # Paper (App. "Button asset"): pressed below -0.005 m, reset above -0.001 m.
-BUTTON_PRESSED, BUTTON_RESET, BUTTON_TRAVEL = -0.005, -0.001, 0.010
+BUTTON_PRESSED, BUTTON_RESET, BUTTON_TRAVEL = -0.005, -0.001, 0.012
 BELL_PRESSED = -0.004
 
 
