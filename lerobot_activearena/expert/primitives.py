@@ -62,7 +62,7 @@ def move_head_torso_to(ctx: ExpertContext, yaw: float, pitch: float, mode: int,
     return fired
 
 
-def settle(ctx: ExpertContext, tol: float = 0.01, max_steps: int = 15) -> Actions:
+def settle(ctx: ExpertContext, tol: float = 0.015, max_steps: int = 12) -> Actions:
     """Hold the command until torso and head have caught up with it (the drives lag the profile)."""
     for _ in range(max_steps):
         err = np.abs(ctx.sim.state()[[A.TORSO_YAW, A.HEAD_PITCH]] - ctx.action[[A.TORSO_YAW, A.HEAD_PITCH]])
@@ -161,7 +161,7 @@ def move_arm_joint(ctx: ExpertContext, side: str, q_goal, gripper: float | None 
         yield ctx.emit()
 
 
-def arm_goto(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, max_vel: float = 1.0) -> Actions:
+def arm_goto(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, max_vel: float = 1.5) -> Actions:
     q_goal = _solve(ctx, side, arm_of(ctx.action, side), pos, rot)
     yield from move_arm_joint(ctx, side, q_goal, gripper, max_vel)
 
@@ -244,10 +244,10 @@ def pick(ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15
         R = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
     z0 = ctx.bottom_z(i)
     yield from arm_goto(ctx, side, grasp + [0, 0, 0.12], R, gripper=1.0)
-    yield from arm_line(ctx, side, grasp, R, 1.0, speed=0.12)
-    yield from set_gripper(ctx, side, 0.0, 12)
+    yield from arm_line(ctx, side, grasp, R, 1.0, speed=0.18)
+    yield from set_gripper(ctx, side, 0.0, 10)
     ctx.intent.carried = {i}
-    yield from arm_line(ctx, side, grasp + [0, 0, lift], R, 0.0, speed=0.15)
+    yield from arm_line(ctx, side, grasp + [0, 0, lift], R, 0.0, speed=0.2)
     if ctx.bottom_z(i) - z0 < 0.5 * lift:
         raise ExpertError(f"grasp of {ctx.objects[i]} failed: it rose {100 * (ctx.bottom_z(i) - z0):.1f} cm")
 
@@ -291,11 +291,11 @@ def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, cl
             break
         except ExpertError:
             continue
-    yield from arm_line(ctx, side, tcp_for(Rg, z_above), Rg, 0.0, speed=0.2)
-    yield from arm_line(ctx, side, tcp_for(Rg, z_down), Rg, 0.0, speed=0.08)
-    yield from set_gripper(ctx, side, 1.0, 8)
+    yield from arm_line(ctx, side, tcp_for(Rg, z_above), Rg, 0.0, speed=0.25)
+    yield from arm_line(ctx, side, tcp_for(Rg, z_down), Rg, 0.0, speed=0.12)
+    yield from set_gripper(ctx, side, 1.0, 6)
     ctx.intent.carried = set()
-    yield from arm_line(ctx, side, tcp_for(Rg, z_down + 0.12), Rg, 1.0, speed=0.15)
+    yield from arm_line(ctx, side, tcp_for(Rg, z_down + 0.10), Rg, 1.0, speed=0.2)
 
 
 def press(ctx: ExpertContext, side: str, point, depth: float, targets: set[int], approach: float = 0.07) -> Actions:
@@ -340,7 +340,7 @@ def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: i
 def retreat(ctx: ExpertContext, side: str) -> Actions:
     """Lift clear and return the arm to its home configuration, gripper open."""
     ctx.intent.camera_mode = CAMERA_HOLD
-    yield from move_arm_joint(ctx, side, E.HOME_ARM[side], gripper=1.0, max_vel=1.2)
+    yield from move_arm_joint(ctx, side, E.HOME_ARM[side], gripper=1.0, max_vel=1.6)
 
 
 def arm_for(point, then=None) -> str:

@@ -74,13 +74,13 @@ class BlocksRankingRgbRotateView(Task):
         anchor = red
         for sid, (block, ref) in enumerate(((green, red), (blue, green))):
             ctx.intent.subtask = 2 * sid + 1
-            yield from P.search(ctx, block)
+            yield from P.search(ctx, block, center=False)
             dest = ctx.memory.get(ref)  # where it will go, if the reference was already seen
             side = P.arm_for(ctx.memory[block], None if dest is None else right_of(dest))
             yield from P.face_for_arm(ctx, ctx.memory[block], side)
             yield from P.pick(ctx, side, block, lift=0.10)
             ctx.intent.subtask = 2 * sid + 2
-            yield from P.search(ctx, ref)
+            yield from P.search(ctx, ref, center=False)
             target = right_of(ctx.memory[ref])
             yield from P.face_for_arm(ctx, np.array([*target, ctx.memory[ref][2]]), side)
             P.start_action(ctx, {block, ref})

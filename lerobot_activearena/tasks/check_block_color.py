@@ -79,7 +79,7 @@ class CheckBlockColor(Task):
     def expert(self, ctx, scene):
         block = ctx.idx("gray_block")
         ctx.intent.subtask = 1
-        yield from P.search(ctx, block)
+        yield from P.search(ctx, block, center=False)
         side = P.arm_for(ctx.memory[block])
         yield from P.face_for_arm(ctx, ctx.memory[block], side)
         # Fingers on the faces beside the patch, with the finger order that lets the wrist turn later.
@@ -115,7 +115,7 @@ class CheckBlockColor(Task):
 
         ctx.intent.subtask = 4
         pad = ctx.idx(f"{color}_pad")
-        yield from P.search(ctx, pad)
+        yield from P.search(ctx, pad, center=False)
         yield from P.face_for_arm(ctx, ctx.memory[pad], side)
         P.start_action(ctx, {block, pad})
         ctx.intent.carried = {block}

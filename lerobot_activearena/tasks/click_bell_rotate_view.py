@@ -39,7 +39,7 @@ class ClickBellRotateView(Task):
 
     def expert(self, ctx, scene):
         bell = ctx.idx("bell")
-        yield from P.search(ctx, bell)
+        yield from P.search(ctx, bell, center=False)
         yield from P.face_for_arm(ctx, ctx.memory[bell], "left")
         pos, R = ctx.pose(bell)
         top = pos + R @ np.asarray(ctx.obj(bell).extra["press_point"])

@@ -86,7 +86,7 @@ class CountTargetPressButton(Task):
         ctx.intent.subtask = 2
         button = ctx.idx(f"button_{count}")
         ctx.intent.search_targets = {button}
-        yield from P.search(ctx, button)
+        yield from P.search(ctx, button, center=False)
         side = P.arm_for(ctx.memory[button])
         yield from P.face_for_arm(ctx, ctx.memory[button], side)
         pos, R = ctx.pose(button)

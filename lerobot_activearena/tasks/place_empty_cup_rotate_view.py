@@ -39,12 +39,12 @@ class PlaceEmptyCupRotateView(Task):
     def expert(self, ctx, scene):
         cup, coaster = ctx.idx("cup"), ctx.idx("coaster")
         ctx.intent.subtask = 1
-        yield from P.search(ctx, cup)
+        yield from P.search(ctx, cup, center=False)
         side = P.arm_for(ctx.memory[cup])
         yield from P.face_for_arm(ctx, ctx.memory[cup], side)
         yield from P.pick(ctx, side, cup, closing=P.radial_tangent(ctx.center(cup)), lift=0.12)
         ctx.intent.subtask = 2
-        yield from P.search(ctx, coaster)
+        yield from P.search(ctx, coaster, center=False)
         yield from P.face_for_arm(ctx, ctx.memory[coaster], side)
         P.start_action(ctx, {cup, coaster})
         target = ctx.center(coaster)

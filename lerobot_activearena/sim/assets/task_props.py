@@ -29,8 +29,9 @@ def _spring_slide(body, name: str, travel: float, stiffness: float, damping: flo
     j.range = (-travel, 0.0)
     j.limited = mujoco.mjtLimited.mjLIMITED_TRUE
     j.stiffness[0] = stiffness
-    j.springref = 0.0
+    j.springref = 0.003  # preloaded against the upper limit: rests at exactly 0
     j.damping[0] = damping
+    body.gravcomp = 1.0
     return j
 
 
@@ -92,7 +93,9 @@ def add_button(spec, name, pos, yaw=0.0, number: int = 1, cap_rgba=(0.85, 0.15, 
     cap.name = f"{name}_cap"
     cap.pos = (0.022, 0, 0.024)
     _spring_slide(cap, f"{name}_joint", BUTTON_TRAVEL, 80.0, 2.0)
-    add_geom(cap, G.mjGEOM_CYLINDER, (0.021, 0.007, 0), (0, 0, 0.007), cap_rgba, 0.01, f"{name}_cap_geom")
+    g = add_geom(cap, G.mjGEOM_CYLINDER, (0.021, 0.007, 0), (0, 0, 0.007), cap_rgba, 0.01, f"{name}_cap_geom")
+    # The base is welded to the world, so parent filtering does not apply: the cap touches only the robot.
+    g.contype, g.conaffinity = 0, 2
     mat = add_texture_material(spec, f"{name}_digit", digit_image(str(number)))
     # Number label on the base's top, on the robot's side of the cap (-x: the sampler yaws +x outward).
     add_geom(b, G.mjGEOM_BOX, (0.018, 0.018, 0.0005), (-0.031, 0.0, 0.0245), (1, 1, 1, 1), name=f"{name}_label",
