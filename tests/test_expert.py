@@ -136,3 +136,27 @@ def test_same_seed_same_actions_and_annotations_across_processes():
         assert p.returncode == 0, p.stderr[-2000:]
         outs.append(p.stdout.strip().splitlines()[-1])
     assert outs[0] == outs[1] and outs[0].startswith("True")
+
+
+def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
+    from lerobot_activearena.annotations.recorder import AnnotationRecorder
+    from lerobot_activearena.expert import primitives as P
+    from lerobot_activearena.expert.context import ExpertContext, ExpertError
+    from lerobot_activearena.tasks.episode import _kinematics
+    from lerobot_activearena.sim.scene import SceneBuilder
+    from lerobot_activearena.sim.simulator import ActiveArenaSim
+
+    model, info = SceneBuilder().compile()
+    sim = ActiveArenaSim(model, info)
+    ik, gaze = _kinematics()
+    ctx = ExpertContext(sim, [], AnnotationRecorder(sim, 0), ik, gaze)
+    acts = np.array(list(P.move_torso_to(ctx, 1.1)) + list(P.move_head(ctx, -0.5)) + list(P.move_torso(ctx, -2.0)))
+    dt = 1 / 15
+    v = np.abs(np.diff(acts[:, 16:18], axis=0)) / dt
+    assert v[:, 0].max() <= 2.5 and v[:, 1].max() <= 10.0  # torso / head velocity limits
+    assert np.abs(np.diff(acts[:, 16:18], n=2, axis=0)).max() / dt**2 <= 25.0
+    assert acts[:, 16].min() >= -1.2 - 1e-9, "torso targets are clipped to the joint range"
+    np.testing.assert_allclose(acts[:, :16], acts[:1, :16].repeat(len(acts), 0))
+    with pytest.raises(ExpertError, match="has not been seen"):
+        ctx.objects = ["ghost"]
+        list(P.look_at_object(ctx, 0))

@@ -1,7 +1,8 @@
 """Expert primitives (paper App. "New Action Primitives"). Each is a generator of 18-D actions;
 head/torso moves and arm/gripper moves are separate primitives and never share a step.
 
-Camera: ``move_head_torso_to`` (trapezoidal profiles under the joint limits), ``look_at``,
+Camera: ``move_head[_to]``, ``move_torso[_to]``, ``move_head_torso_to`` (trapezoidal profiles under
+the joint limits), ``look_at`` (a world point) and ``look_at_object`` (where it was last seen),
 ``face_for_arm`` (torso turns so the object sits in front of the chosen arm) and ``search`` (discrete
 sector sweep with memory of explored sectors; stops when the target appears, then centres it).
 Arm: ``move_arm_joint``, ``arm_line`` (straight TCP line, IK every step), ``pick``, ``place``,
@@ -69,6 +70,33 @@ def settle(ctx: ExpertContext, tol: float = 0.015, max_steps: int = 12) -> Actio
         if err.max() < tol:
             return
         yield ctx.emit()
+
+
+def move_head_to(ctx: ExpertContext, pitch: float, mode: int = CAMERA_CENTER) -> Actions:
+    """Absolute head pitch (torso holds)."""
+    yield from move_head_torso_to(ctx, ctx.yaw, pitch, mode)
+
+
+def move_head(ctx: ExpertContext, delta: float, mode: int = CAMERA_CENTER) -> Actions:
+    """Relative head pitch."""
+    yield from move_head_torso_to(ctx, ctx.yaw, ctx.pitch + delta, mode)
+
+
+def move_torso_to(ctx: ExpertContext, yaw: float, mode: int = CAMERA_CENTER) -> Actions:
+    """Absolute torso yaw (head holds)."""
+    yield from move_head_torso_to(ctx, yaw, ctx.pitch, mode)
+
+
+def move_torso(ctx: ExpertContext, delta: float, mode: int = CAMERA_CENTER) -> Actions:
+    """Relative torso yaw."""
+    yield from move_head_torso_to(ctx, ctx.yaw + delta, ctx.pitch, mode)
+
+
+def look_at_object(ctx: ExpertContext, i: int, mode: int = CAMERA_CENTER) -> Actions:
+    """Centre object ``i`` where the expert last saw it (never where it is unseen)."""
+    if i not in ctx.memory:
+        raise ExpertError(f"{ctx.objects[i]} has not been seen yet; search for it first")
+    yield from look_at(ctx, ctx.memory[i], mode)
 
 
 def look_at(ctx: ExpertContext, point, mode: int = CAMERA_CENTER) -> Actions:
