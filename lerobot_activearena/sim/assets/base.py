@@ -36,7 +36,9 @@ def add_geom(body, gtype, size, pos=(0, 0, 0), rgba=(0.5, 0.5, 0.5, 1), mass=Non
     if name:
         g.name = name
     g.type = gtype
-    g.size = np.asarray(size, float)
+    sz = np.zeros(3)
+    sz[: len(size)] = size
+    g.size = sz
     g.pos = np.asarray(pos, float)
     if quat is not None:
         g.quat = np.asarray(quat, float)
