@@ -134,3 +134,12 @@ def test_check_block_color_patch_faces_away_at_reset():
         outward = math.atan2(pos[1], pos[0])
         assert abs((yaw - outward + math.pi) % (2 * math.pi) - math.pi) < 0.3
         assert info.extra["patch_color"] == scene.params["patch_color"]
+
+
+def test_principle_check_rejects_an_object_out_of_reach():
+    task = get_task("click_bell_rotate_view")
+    draft = SceneDraft("id", derived_rng(task.name, 0, "id", 0))
+    draft.place("bell", "bell", "bell", r=0.95, angle=30.0)  # hidden, but far beyond the left arm
+    model, info = draft.builder.compile()
+    scene = TaskScene(task.name, 0, "id", 0, model, info, ["bell"], ["bell"], search_targets=[0])
+    assert principle_violations(task, scene) == ["bell is out of reach of the left arm"]

@@ -23,13 +23,13 @@ from ..sim import embodiment as E
 from .context import ExpertContext, ExpertError
 from .gaze import heading_deg
 from .ik import IKFailed, grasp_rotation, interpolate_pose
+from .kinematics import torso_yaw_for_arm
 from .motion import CONTROL_DT, arm_of, gripper_index, interpolate_joints, trapezoid, with_arm
 
 Actions = Iterator[np.ndarray]
 
 SECTOR_YAWS = (0.0, -0.95, 0.95)  # torso yaw of each search sector (heading 90, 36, 144 deg)
 SEARCH_PITCH = 1.0
-ARM_TORSO_OFFSET_DEG = 15.0  # torso turns this far past the object so it sits in front of the arm
 TORSO_VMAX, TORSO_AMAX = 0.8, 3.0  # below the joint's 2.5 rad/s, 10 rad/s^2
 HEAD_VMAX, HEAD_AMAX = 1.2, 5.0  # below the joint's 10 rad/s, 25 rad/s^2
 FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
@@ -106,9 +106,7 @@ def look_at(ctx: ExpertContext, point, mode: int = CAMERA_CENTER) -> Actions:
 
 def face_for_arm(ctx: ExpertContext, point, side: str) -> Actions:
     """Torso turns so ``point`` is in front of ``side``'s arm; the head pitches to keep it in view."""
-    offset = -ARM_TORSO_OFFSET_DEG if side == "left" else ARM_TORSO_OFFSET_DEG
-    yaw = math.radians(heading_deg(point) - 90.0 + offset)
-    yaw = float(np.clip(yaw, -1.2, 1.2))
+    yaw = torso_yaw_for_arm(point, side)
     _, pitch = ctx.gaze.aim(point, yaw, ctx.pitch, fix_yaw=True)
     yield from move_head_torso_to(ctx, yaw, pitch, CAMERA_CENTER)
 

@@ -81,6 +81,10 @@ class Task:
         """Objects whose observation the task needs (design-principle checks, DM/CO/CR)."""
         return list(range(len(scene.objects)))
 
+    def reach_targets(self, scene: TaskScene) -> dict[int, tuple[str, ...]]:
+        """Objects the arms must touch, with the arms allowed to (principle check: reachable)."""
+        return {}
+
     def information_hidden_at_start(self, scene: TaskScene) -> bool:
         """True when the deciding information is hidden at reset by construction (e.g. a colour on
         an object's back face); then principle (1) does not need an unseen object."""

@@ -54,6 +54,9 @@ class BlocksRankingRgbRotateView(Task):
                         yaw=float(rng.uniform(-np.pi, np.pi)), rgba=BLOCK_COLORS[color], half=(HALF,) * 3)
         draft.params["red_polar"] = (round(r_red, 4), round(a_red, 2))
 
+    def reach_targets(self, scene):
+        return {i: ("left", "right") for i in range(len(scene.objects))}
+
     def is_success(self, sim, scene):
         pts = {}
         for c in ("red", "green", "blue"):

@@ -67,6 +67,9 @@ class CheckBlockColor(Task):
         info = scene.info.objects[scene.objects.index("gray_block")]
         return not patch_visible(scene.model, data, info)
 
+    def reach_targets(self, scene):
+        return {i: ("left", "right") for i in range(len(scene.objects))}
+
     def is_success(self, sim, scene):
         block = sim.data.body("gray_block")
         pad_name = f"{scene.params['patch_color']}_pad"

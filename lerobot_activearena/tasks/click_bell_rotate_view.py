@@ -31,6 +31,9 @@ class ClickBellRotateView(Task):
     def layout(self, draft):
         draft.place("bell", "bell", "bell", angle=HIDDEN_REACH, yaw=float(draft.rng.uniform(-np.pi, np.pi)))
 
+    def reach_targets(self, scene):
+        return {scene.objects.index("bell"): ("left",)}
+
     def is_success(self, sim, scene):
         return joint_pos(sim, "bell_plunger_joint") < BELL_PRESSED
 

@@ -71,6 +71,9 @@ class CountTargetPressButton(Task):
         greens = [i for i, n in enumerate(scene.objects) if n.startswith("green_block")]
         return greens + [scene.objects.index(f"button_{scene.params['count']}")]
 
+    def reach_targets(self, scene):
+        return {i: ("left", "right") for i, n in enumerate(scene.objects) if n.startswith("button")}
+
     def is_success(self, sim, scene):  # state form (the monitor latches presses)
         return joint_pos(sim, f"button_{scene.params['count']}_joint") < BUTTON_PRESSED
 

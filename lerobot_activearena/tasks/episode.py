@@ -6,7 +6,6 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from functools import lru_cache
 
 import mujoco
 import numpy as np
@@ -15,6 +14,7 @@ from ..annotations.recorder import AnnotationRecorder
 from ..expert.context import ExpertContext, ExpertError
 from ..expert.gaze import Gaze
 from ..expert.ik import ArmIK
+from ..expert.kinematics import shared_kinematics
 from ..sim.simulator import ActiveArenaSim
 from .base import TaskScene
 from .registry import get_task
@@ -43,10 +43,8 @@ class EpisodeResult:
         return len(self.frames)
 
 
-@lru_cache(maxsize=1)
 def _kinematics() -> tuple[ArmIK, Gaze]:
-    ik = ArmIK()
-    return ik, Gaze(ik.model)
+    return shared_kinematics()
 
 
 class PhysicsHealth:

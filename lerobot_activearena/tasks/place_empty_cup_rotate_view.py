@@ -29,6 +29,9 @@ class PlaceEmptyCupRotateView(Task):
                     yaw=float(draft.rng.uniform(-np.pi, np.pi)))
         draft.place("coaster", "coaster", "coaster", angle=other if cup_hidden else HIDDEN_REACH)
 
+    def reach_targets(self, scene):
+        return {i: ("left", "right") for i in range(len(scene.objects))}
+
     def is_success(self, sim, scene):
         cup, coaster = sim.data.body("cup"), sim.data.body("coaster")
         radius = sim.info.objects[scene.objects.index("coaster")].half_extents[0]

@@ -13,6 +13,7 @@ import zlib
 import mujoco
 import numpy as np
 
+from ..expert.kinematics import top_down_reachable
 from ..sim import embodiment as E
 from ..sim.appearance import random_appearance
 from ..sim.assets import ASSETS, categories
@@ -126,8 +127,9 @@ def sector_visibility(model: mujoco.MjModel, info, views=SECTOR_VIEWS) -> np.nda
 
 def principle_violations(task: Task, scene: TaskScene) -> list[str]:
     """The checkable design principles (paper App. "Task Design Principles"): (1) the initial view
-    does not show every task-relevant object; (2) each of them is visible from some search view;
-    (3) with several, no single view shows them all (evidence must be remembered)."""
+    does not show every task-relevant object; (2) each of them is visible from some search view and
+    every object the arms must touch is reachable by an allowed arm; (3) with several, no single
+    view shows them all (evidence must be remembered)."""
     targets = scene.search_targets
     vis = sector_visibility(scene.model, scene.info)[:, targets]
     problems = []
@@ -141,6 +143,14 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
         problems.append(f"never visible from any search view: {missing}")
     if len(targets) > 1 and vis.all(axis=1).any() and not hidden_info:
         problems.append("one search view shows every task-relevant object")
+    data = mujoco.MjData(scene.model)
+    mujoco.mj_kinematics(scene.model, data)
+    for i, arms in task.reach_targets(scene).items():
+        obj = scene.info.objects[i]
+        body = data.body(obj.body)
+        top = body.xpos + body.xmat.reshape(3, 3) @ np.asarray(obj.center_offset) + [0, 0, obj.half_extents[2]]
+        if not any(top_down_reachable(top, side) for side in arms):
+            problems.append(f"{scene.objects[i]} is out of reach of the {'/'.join(arms)} arm")
     return problems
 
 
