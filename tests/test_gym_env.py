@@ -1,29 +1,94 @@
+"""The gym env over the task registry: observation contract, manifests, fixed view, failure states,
+and the LeRobot EnvConfig's task suites."""
+
 import numpy as np
 import pytest
 
-from lerobot_activearena.envs.gym_env import ActiveArenaEnv
+from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
+from lerobot_activearena.envs.gym_env import ActiveArenaEnv, failure_state
+from lerobot_activearena.envs.manifests import PROTOCOL_EPISODES, load_manifest
 
 
 def test_reset_step_observation_contract():
-    env = ActiveArenaEnv()
+    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False)
     obs, info = env.reset(seed=1)
+    assert info["scene_seed"] == 1
     assert obs["pixels"]["head"].shape == (384, 512, 3) and obs["pixels"]["head"].dtype == np.uint8
     assert obs["agent_pos"].shape == (18,) and obs["agent_pos"].dtype == np.float32
     assert env.observation_space.contains(obs)
-    assert env.metadata["render_fps"] == 15 and env.task_description == "pick up the red can"
+    assert env.metadata["render_fps"] == 15
+    assert env.task_description == "Press the bell's top center using the left arm."
+    assert env.task == "click_bell_rotate_view" and env._max_episode_steps == 300
     obs2, reward, terminated, truncated, info = env.step(obs["agent_pos"])
-    assert info["is_success"] is False and reward == 0.0 and not terminated
+    assert info["is_success"] is False and reward == 0.0 and not terminated and not truncated
     np.testing.assert_allclose(obs2["agent_pos"], obs["agent_pos"], atol=2e-3)
     env.close()
 
 
-def test_unknown_task_is_a_clear_error():
+def test_unknown_task_and_step_before_reset_are_clear_errors():
     with pytest.raises(ValueError, match="unknown ActiveArena task"):
         ActiveArenaEnv(task="nope")
-
-
-def test_step_before_reset_is_a_clear_error():
     env = ActiveArenaEnv()
     with pytest.raises(RuntimeError, match="reset"):
         env.step(np.zeros(18, np.float32))
+    with pytest.raises(ValueError, match="--env.split"):
+        ActiveArenaEnvConfig(split="test")
+
+
+def test_manifest_seeds_are_played_in_order():
+    env = ActiveArenaEnv("count_target_press_button", split="ood")
+    seeds = load_manifest("count_target_press_button", "ood")
+    assert len(seeds) == 100 and len(set(seeds)) == 100 and PROTOCOL_EPISODES == 50
+    for k in (0, 7):
+        _, info = env.reset(seed=1000 + k)
+        assert info["scene_seed"] == seeds[k]
+    with pytest.raises(IndexError, match="outside the 100-seed manifest"):
+        env.reset(seed=1000 + 100)
     env.close()
+
+
+def test_fixed_view_holds_head_and_torso_at_home():
+    for fixed, moved in ((True, False), (False, True)):
+        env = ActiveArenaEnv("click_bell_rotate_view", fixed_view=fixed, use_manifest=False)
+        obs, _ = env.reset(seed=2)
+        a = obs["agent_pos"].copy()
+        a[16], a[17] = 0.6, 0.5
+        for _ in range(10):
+            obs, *_ = env.step(a)
+        turned = abs(obs["agent_pos"][16]) > 0.3 and abs(obs["agent_pos"][17] - 1.0) > 0.3
+        assert turned == moved
+        env.close()
+
+
+def test_failure_states():
+    yes, no = np.array([1, 1], bool), np.array([1, 0], bool)
+    assert failure_state(True, no, no) == ""
+    assert failure_state(False, no, no) == "DM"
+    assert failure_state(False, yes, no) == "CO"
+    assert failure_state(False, yes, yes) == "CR"
+
+
+def test_idle_episode_ends_as_dm_when_the_target_was_never_seen():
+    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False)
+    env._max_episode_steps = 3
+    obs, _ = env.reset(seed=4)
+    for _ in range(3):
+        obs, _, terminated, truncated, info = env.step(obs["agent_pos"])
+    assert truncated and not terminated and info["failure_state"] == "DM"
+    env.close()
+
+
+def test_config_builds_category_suites_of_task_envs():
+    cfg = ActiveArenaEnvConfig(task="MD,SS", split="ood")
+    suites = cfg.create_envs(n_envs=2)
+    assert set(suites) == {"MD", "SS"}
+    assert list(suites["SS"]) == ["click_bell_rotate_view"] and list(suites["MD"]) == ["count_target_press_button"]
+    vec = suites["SS"]["click_bell_rotate_view"]
+    assert vec.num_envs == 2
+    assert vec.call("split") == ("ood", "ood")
+    for group in suites.values():
+        for v in group.values():
+            v.close()
+    lazy = ActiveArenaEnvConfig(task="SS").create_envs(n_envs=2, use_async_envs=True)["SS"]["click_bell_rotate_view"]
+    assert lazy._env is None, "async workers start only when the suite is evaluated"
+    lazy.close()

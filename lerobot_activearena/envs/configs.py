@@ -7,18 +7,31 @@ from dataclasses import dataclass, field
 import gymnasium as gym
 from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.envs.configs import EnvConfig
-from lerobot.utils.constants import ACTION, OBS_IMAGES, OBS_STATE
+from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 from ..sim.action import ACTION_DIM
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
+
+SPLITS = ("id", "ood")
 
 
 @EnvConfig.register_subclass("activearena")
 @dataclass
 class ActiveArenaEnvConfig(EnvConfig):
-    task: str | None = "reference_pick_can"
+    """``task``: a task name, a category (SS/SL/ML/MD/IA), ``all``, or a comma list of those.
+    ``split``: ``id`` or ``ood``. ``fixed_view``: hold head pitch and torso yaw at home (the
+    ActiveArena-Fixed ablation). Episodes play the task's seed manifest in order: episode k of
+    lerobot-eval (seed ``seed_base + k``) uses manifest seed k; keep ``seed_base`` equal to
+    lerobot-eval's ``--seed`` (both default to 1000)."""
+
+    task: str = "all"
+    split: str = "id"
+    fixed_view: bool = False
+    use_manifest: bool = True
+    seed_base: int = 1000
+    expert_channel: bool = False  # privileged: the scripted expert's next action for `activearena_expert`
     fps: int = CONTROL_HZ
-    episode_length: int | None = None  # None: the task's own step limit
+    episode_length: int | None = None  # None: each task's own step limit
     features: dict[str, PolicyFeature] = field(default_factory=lambda: {
         ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(ACTION_DIM,)),
         "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(ACTION_DIM,)),
@@ -30,22 +43,42 @@ class ActiveArenaEnvConfig(EnvConfig):
         "pixels/head": f"{OBS_IMAGES}.head",
     })
 
+    def __post_init__(self):
+        if self.split not in SPLITS:
+            raise ValueError(f"--env.split must be one of {SPLITS}, got {self.split!r}")
+        if self.expert_channel:
+            self.features["environment_state"] = PolicyFeature(type=FeatureType.ENV, shape=(ACTION_DIM,))
+            self.features_map["environment_state"] = OBS_ENV_STATE
+
     @property
     def gym_kwargs(self) -> dict:
-        return {"task": self.task}
+        return {"split": self.split, "fixed_view": self.fixed_view, "use_manifest": self.use_manifest,
+                "seed_base": self.seed_base, "expert_channel": self.expert_channel}
 
-    def create_envs(self, n_envs: int, use_async_envs: bool = False) -> dict[str, dict[int, gym.vector.VectorEnv]]:
+    def create_envs(self, n_envs: int, use_async_envs: bool = False) -> dict[str, dict[str, gym.vector.VectorEnv]]:
+        """``{category: {task: VectorEnv}}``: lerobot-eval reports per task and per category."""
+        from ..tasks import get_task, task_names
         from .gym_env import ActiveArenaEnv
 
-        task = self.task
+        if n_envs < 1:
+            raise ValueError(f"n_envs must be >= 1, got {n_envs}")
+        suites: dict[str, dict[str, gym.vector.VectorEnv]] = {}
+        for name in task_names(self.task):
+            kwargs = dict(self.gym_kwargs, task=name)
+            limit = self.episode_length
 
-        def make():
-            env = ActiveArenaEnv(task=task)
-            limit = self.episode_length or env._max_episode_steps
-            env._max_episode_steps = limit
-            return gym.wrappers.TimeLimit(env, max_episode_steps=limit)
+            def make(kwargs=kwargs, limit=limit):
+                env = ActiveArenaEnv(**kwargs)
+                if limit is not None:
+                    env._max_episode_steps = limit
+                return env
 
-        cls = gym.vector.AsyncVectorEnv if (use_async_envs and n_envs > 1) else gym.vector.SyncVectorEnv
-        kwargs = {"context": "forkserver"} if cls is gym.vector.AsyncVectorEnv else {}
-        vec = cls([make for _ in range(n_envs)], **kwargs)
-        return {"activearena": {0: vec}}
+            fns = [make for _ in range(n_envs)]
+            if use_async_envs and n_envs > 1:
+                from lerobot.envs.utils import _LazyAsyncVectorEnv  # workers (and GL contexts) start on first use
+
+                vec = _LazyAsyncVectorEnv(fns)
+            else:
+                vec = gym.vector.SyncVectorEnv(fns)
+            suites.setdefault(get_task(name).category, {})[name] = vec
+        return suites

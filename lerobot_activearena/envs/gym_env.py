@@ -1,58 +1,110 @@
-"""Gymnasium environment over the simulator: head-camera pixels + 18-D state in, 18-D joint
-targets out, ``info["is_success"]`` every step."""
+"""Gymnasium environment of one ActiveArena task: head-camera pixels + 18-D state in, 18-D absolute
+joint targets out, ``info["is_success"]`` every step, and the failure state (DM / CO / CR) when a
+failed episode ends."""
 
 from __future__ import annotations
 
 import gymnasium as gym
 import numpy as np
 
+from ..annotations.recorder import AnnotationRecorder
 from ..sim import action as A
+from ..sim import embodiment as E
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
-from .reference_task import TASKS
+from ..tasks import get_task
+from ..tasks.sampling import sample_scene
+from .manifests import manifest_seed
+
+DEFAULT_SEED_BASE = 1000  # lerobot-eval's default --seed
+
+
+def failure_state(success: bool, ever_seen: np.ndarray, visible_now: np.ndarray) -> str:
+    """'' on success; DM: some task-relevant object never observed; CO: all observed but the final
+    view does not cover them all; CR: the final view covers all and the task still failed."""
+    if success:
+        return ""
+    if not ever_seen.all():
+        return "DM"
+    if not visible_now.all():
+        return "CO"
+    return "CR"
 
 
 class ActiveArenaEnv(gym.Env):
     metadata = {"render_modes": ["rgb_array"], "render_fps": CONTROL_HZ}
 
-    def __init__(self, task: str = "reference_pick_can", render_mode: str = "rgb_array"):
-        if task not in TASKS:
-            raise ValueError(f"unknown ActiveArena task {task!r}; available: {sorted(TASKS)}")
-        self.task = TASKS[task]()
-        self.task_description = self.task.instruction
+    def __init__(self, task: str = "click_bell_rotate_view", split: str = "id", fixed_view: bool = False,
+                 use_manifest: bool = True, seed_base: int = DEFAULT_SEED_BASE, expert_channel: bool = False,
+                 render_mode: str = "rgb_array"):
+        """``use_manifest``: reset(seed=s) plays the (s - seed_base)-th seed of the task's evaluation
+        manifest (so lerobot-eval's seeds seed_base, seed_base+1, ... give the protocol's episodes in
+        order whatever the batch size); otherwise ``s`` is the scene seed itself.
+        ``expert_channel`` (privileged, off by default): the scripted expert runs alongside the
+        episode and its next action is exposed as ``environment_state`` for the
+        ``activearena_expert`` policy. Never enable it for learned policies or dataset recording."""
+        self.spec_task = get_task(task)
+        self.task = task
+        self.task_description = self.spec_task.instruction
+        self.split, self.fixed_view, self.expert_channel = split, fixed_view, expert_channel
+        self.use_manifest, self.seed_base = use_manifest, seed_base
         self.render_mode = render_mode
-        self._max_episode_steps = self.task.max_episode_steps
-        # A scene of seed 0 until the first reset: it gives the action limits (it renders nothing yet).
-        self.sim: ActiveArenaSim | None = ActiveArenaSim(*self.task.build(0))
-        self._was_reset = False
-        self.observation_space = gym.spaces.Dict({
+        self._max_episode_steps = self.spec_task.max_episode_steps
+        self.sim: ActiveArenaSim | None = None
+        self.scene = None
+        spaces = {
             "pixels": gym.spaces.Dict({"head": gym.spaces.Box(0, 255, (HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)}),
             "agent_pos": gym.spaces.Box(-np.inf, np.inf, (A.ACTION_DIM,), np.float32),
-        })
-        self.action_space = gym.spaces.Box(self.sim.action_low.astype(np.float32), self.sim.action_high.astype(np.float32),
-                                           dtype=np.float32)
+        }
+        if expert_channel:
+            spaces["environment_state"] = gym.spaces.Box(-np.inf, np.inf, (A.ACTION_DIM,), np.float32)
+        self.observation_space = gym.spaces.Dict(spaces)
+        low, high = joint_limits()
+        self.action_space = gym.spaces.Box(low.astype(np.float32), high.astype(np.float32), dtype=np.float32)
+        self._home = None
 
-    def _obs(self) -> dict:
-        return {"pixels": {"head": self.sim.render_head()}, "agent_pos": self.sim.state().astype(np.float32)}
-
+    # ---- gym API -------------------------------------------------------------------------------
     def reset(self, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
-        scene_seed = int(self.np_random.integers(0, 2**31 - 1)) if seed is None else int(seed)
+        if seed is None:
+            scene_seed = int(self.np_random.integers(0, 2**31 - 1))
+        elif self.use_manifest:
+            scene_seed = manifest_seed(self.task, self.split, int(seed) - self.seed_base)
+        else:
+            scene_seed = int(seed)
         if self.sim is not None:
             self.sim.close()
-        model, info = self.task.build(scene_seed)
-        self.sim = ActiveArenaSim(model, info)
-        self.task.on_reset(self.sim)
-        self._was_reset = True
-        return self._obs(), {"is_success": False, "seed": scene_seed}
+        self.scene = sample_scene(self.spec_task, scene_seed, self.split)
+        self.task_description = self.scene.instruction
+        self.sim = ActiveArenaSim(self.scene.model, self.scene.info)
+        self._home = self.sim.home_action()
+        self.monitor = self.spec_task.monitor(self.sim, self.scene)
+        self.recorder = AnnotationRecorder(self.sim, len(self.scene.objects))
+        self.recorder.observe()
+        self._steps = 0
+        if self.expert_channel:
+            self._start_expert()
+        return self._obs(), {"is_success": False, "scene_seed": scene_seed}
 
     def step(self, action):
-        if not self._was_reset or self.sim is None:
+        if self.sim is None:
             raise RuntimeError("call reset() before step()")
+        action = A.validate_action(action)
+        if self.fixed_view:  # ActiveArena-Fixed: head and torso stay at home whatever the policy says
+            action = action.copy()
+            action[A.TORSO_YAW], action[A.HEAD_PITCH] = E.HOME_TORSO_YAW, E.HOME_HEAD_PITCH
         clip = self.sim.step(action)
-        success = self.task.is_success(self.sim)
+        self._steps += 1
+        success = bool(self.monitor.update())
+        self.recorder.observe()
+        if self.expert_channel:
+            self._advance_expert()
+        truncated = self._steps >= self._max_episode_steps and not success
         info = {"is_success": success, "clipped_action": clip.as_dict()}
-        return self._obs(), float(success), success, False, info
+        if success or truncated:
+            t = self.scene.search_targets
+            info["failure_state"] = failure_state(success, self.recorder.discovered[t], self.recorder.visible[t])
+        return self._obs(), float(success), success, truncated, info
 
     def render(self):
         return self.sim.render_head() if self.sim is not None else None
@@ -61,4 +113,49 @@ class ActiveArenaEnv(gym.Env):
         if self.sim is not None:
             self.sim.close()
             self.sim = None
-            self._was_reset = False
+
+    def _obs(self) -> dict:
+        obs = {"pixels": {"head": self.sim.render_head()}, "agent_pos": self.sim.state().astype(np.float32)}
+        if self.expert_channel:
+            obs["environment_state"] = self._expert_action.astype(np.float32)
+        return obs
+
+    # ---- privileged expert channel -------------------------------------------------------------
+    def _start_expert(self) -> None:
+        from ..expert.context import ExpertContext
+        from ..expert.kinematics import shared_kinematics
+
+        ik, gaze = shared_kinematics()
+        self._ctx = ExpertContext(self.sim, self.scene.objects, self.recorder, ik, gaze)
+        self._script = self.spec_task.expert(self._ctx, self.scene)
+        self._expert_action = self._ctx.emit()
+        self._advance_expert()
+
+    def _advance_expert(self) -> None:
+        """The expert's next action from the current state; once its script ends (or it gives
+        up), it holds its last command."""
+        from ..expert.context import ExpertError
+
+        self._ctx.update_memory()
+        if self._script is None:
+            return
+        try:
+            self._expert_action = next(self._script)
+        except (StopIteration, ExpertError):
+            self._script = None
+
+
+_LIMITS: tuple[np.ndarray, np.ndarray] | None = None
+
+
+def joint_limits() -> tuple[np.ndarray, np.ndarray]:
+    """18-D action bounds (joint limits; grippers 0..1) from an empty scene, computed once."""
+    global _LIMITS
+    if _LIMITS is None:
+        from ..sim.scene import SceneBuilder
+
+        model, info = SceneBuilder().compile()
+        sim = ActiveArenaSim(model, info)
+        _LIMITS = (sim.action_low.copy(), sim.action_high.copy())
+        sim.close()
+    return _LIMITS

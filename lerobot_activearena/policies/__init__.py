@@ -1,0 +1,1 @@
+"""LeRobot policy types shipped by the plugin (config / modeling / processor per policy)."""

@@ -1,0 +1,57 @@
+"""The `activearena_expert` oracle policy: the env's opt-in privileged channel and a real
+lerobot-eval run."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lerobot_activearena.envs.gym_env import ActiveArenaEnv
+
+
+@pytest.mark.parametrize("task,seed", [("click_bell_rotate_view", 3), ("check_block_color", 5)])
+def test_expert_channel_played_through_the_env_succeeds(task, seed):
+    env = ActiveArenaEnv(task, split="ood", use_manifest=False, expert_channel=True)
+    obs, _ = env.reset(seed=seed)
+    for _ in range(env._max_episode_steps):
+        obs, _, terminated, truncated, info = env.step(obs["environment_state"])
+        if terminated or truncated:
+            break
+    assert info["is_success"] and info["failure_state"] == ""
+    env.close()
+
+
+def test_privileged_channel_is_off_by_default():
+    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False)
+    obs, _ = env.reset(seed=0)
+    assert "environment_state" not in obs and "environment_state" not in env.observation_space.spaces
+    env.close()
+
+
+def test_policy_refuses_to_run_without_the_channel():
+    from lerobot.configs.types import FeatureType, PolicyFeature
+
+    from lerobot_activearena.policies.activearena_expert import ActiveArenaExpertConfig
+
+    cfg = ActiveArenaExpertConfig()
+    cfg.input_features = {"observation.state": PolicyFeature(type=FeatureType.STATE, shape=(18,))}
+    with pytest.raises(ValueError, match="--env.expert_channel=true"):
+        cfg.validate_features()
+
+
+def test_lerobot_eval_runs_the_oracle_on_manifest_seeds(tmp_path):
+    exe = shutil.which("lerobot-eval", path=str(Path(sys.executable).parent)) or shutil.which("lerobot-eval")
+    out = subprocess.run([exe, "--policy.type=activearena_expert", "--env.type=activearena", "--env.task=SS",
+                          "--env.expert_channel=true", "--eval.n_episodes=2", "--eval.batch_size=2",
+                          "--policy.device=cpu", f"--output_dir={tmp_path / 'eval'}"],
+                         capture_output=True, text=True, timeout=900)
+    assert out.returncode == 0, out.stderr[-3000:]
+    info = json.loads((tmp_path / "eval" / "eval_info.json").read_text())
+    assert info["overall"]["pc_success"] == 100.0 and info["overall"]["n_episodes"] == 2
+    assert "SS" in info["per_group"]
+    assert info["per_task"][0]["task_id"] == "click_bell_rotate_view"
+    assert all(Path(p).exists() for p in info["overall"]["video_paths"])
