@@ -68,14 +68,20 @@ def test_failure_states():
     assert failure_state(False, yes, yes) == "CR"
 
 
-def test_idle_episode_ends_as_dm_when_the_target_was_never_seen():
-    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False)
+def test_idle_episode_ends_as_dm_when_the_target_was_never_seen(tmp_path):
+    import json
+
+    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False, episode_log_dir=str(tmp_path))
     env._max_episode_steps = 3
-    obs, _ = env.reset(seed=4)
+    obs, _ = env.reset(seed=1004)
     for _ in range(3):
         obs, _, terminated, truncated, info = env.step(obs["agent_pos"])
     assert truncated and not terminated and info["failure_state"] == "DM"
     env.close()
+    (log,) = tmp_path.glob("click_bell_rotate_view_id_*.jsonl")
+    rec = json.loads(log.read_text())
+    assert rec["episode"] == 4 and rec["scene_seed"] == 1004 and rec["failure_state"] == "DM"
+    assert rec["steps"] == 3 and len(rec["view_targets"]) == 3 and not rec["success"]
 
 
 def test_config_builds_category_suites_of_task_envs():

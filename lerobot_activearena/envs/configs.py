@@ -30,6 +30,7 @@ class ActiveArenaEnvConfig(EnvConfig):
     use_manifest: bool = True
     seed_base: int = 1000
     expert_channel: bool = False  # privileged: the scripted expert's next action for `activearena_expert`
+    episode_log_dir: str | None = None  # one JSON line per finished episode (failure states, view targets)
     fps: int = CONTROL_HZ
     episode_length: int | None = None  # None: each task's own step limit
     features: dict[str, PolicyFeature] = field(default_factory=lambda: {
@@ -53,7 +54,8 @@ class ActiveArenaEnvConfig(EnvConfig):
     @property
     def gym_kwargs(self) -> dict:
         return {"split": self.split, "fixed_view": self.fixed_view, "use_manifest": self.use_manifest,
-                "seed_base": self.seed_base, "expert_channel": self.expert_channel}
+                "seed_base": self.seed_base, "expert_channel": self.expert_channel,
+                "episode_log_dir": self.episode_log_dir}
 
     def create_envs(self, n_envs: int, use_async_envs: bool = False) -> dict[str, dict[str, gym.vector.VectorEnv]]:
         """``{category: {task: VectorEnv}}``: lerobot-eval reports per task and per category."""

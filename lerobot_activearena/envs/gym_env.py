@@ -36,17 +36,20 @@ class ActiveArenaEnv(gym.Env):
 
     def __init__(self, task: str = "click_bell_rotate_view", split: str = "id", fixed_view: bool = False,
                  use_manifest: bool = True, seed_base: int = DEFAULT_SEED_BASE, expert_channel: bool = False,
-                 render_mode: str = "rgb_array"):
+                 episode_log_dir: str | None = None, render_mode: str = "rgb_array"):
         """``use_manifest``: reset(seed=s) plays the (s - seed_base)-th seed of the task's evaluation
         manifest (so lerobot-eval's seeds seed_base, seed_base+1, ... give the protocol's episodes in
         order whatever the batch size); otherwise ``s`` is the scene seed itself.
         ``expert_channel`` (privileged, off by default): the scripted expert runs alongside the
         episode and its next action is exposed as ``environment_state`` for the
-        ``activearena_expert`` policy. Never enable it for learned policies or dataset recording."""
+        ``activearena_expert`` policy. Never enable it for learned policies or dataset recording.
+        ``episode_log_dir``: append one JSON line per finished episode (seed, success, failure state,
+        commanded torso/head targets) to ``<dir>/<task>_<split>_<pid>.jsonl`` for the report."""
         self.spec_task = get_task(task)
         self.task = task
         self.task_description = self.spec_task.instruction
         self.split, self.fixed_view, self.expert_channel = split, fixed_view, expert_channel
+        self.episode_log_dir = episode_log_dir
         self.use_manifest, self.seed_base = use_manifest, seed_base
         self.render_mode = render_mode
         self._max_episode_steps = self.spec_task.max_episode_steps
@@ -82,6 +85,9 @@ class ActiveArenaEnv(gym.Env):
         self.recorder = AnnotationRecorder(self.sim, len(self.scene.objects))
         self.recorder.observe()
         self._steps = 0
+        self._episode = None if seed is None else int(seed) - self.seed_base
+        self._scene_seed = scene_seed
+        self._view_targets: list[list[float]] = []
         if self.expert_channel:
             self._start_expert()
         return self._obs(), {"is_success": False, "scene_seed": scene_seed}
@@ -95,6 +101,7 @@ class ActiveArenaEnv(gym.Env):
             action[A.TORSO_YAW], action[A.HEAD_PITCH] = E.HOME_TORSO_YAW, E.HOME_HEAD_PITCH
         clip = self.sim.step(action)
         self._steps += 1
+        self._view_targets.append([float(action[A.TORSO_YAW]), float(action[A.HEAD_PITCH])])
         success = bool(self.monitor.update())
         self.recorder.observe()
         if self.expert_channel:
@@ -104,7 +111,23 @@ class ActiveArenaEnv(gym.Env):
         if success or truncated:
             t = self.scene.search_targets
             info["failure_state"] = failure_state(success, self.recorder.discovered[t], self.recorder.visible[t])
+            if self.episode_log_dir:
+                self._log_episode(success, info["failure_state"])
         return self._obs(), float(success), success, truncated, info
+
+    def _log_episode(self, success: bool, failure: str) -> None:
+        import json
+        import os
+        from pathlib import Path
+
+        d = Path(self.episode_log_dir)
+        d.mkdir(parents=True, exist_ok=True)
+        rec = {"task": self.task, "category": self.spec_task.category, "split": self.split,
+               "fixed_view": self.fixed_view, "episode": self._episode, "scene_seed": self._scene_seed,
+               "success": success, "failure_state": failure, "steps": self._steps,
+               "view_targets": self._view_targets}
+        with open(d / f"{self.task}_{self.split}_{os.getpid()}.jsonl", "a") as f:
+            f.write(json.dumps(rec) + "\n")
 
     def render(self):
         return self.sim.render_head() if self.sim is not None else None
