@@ -1,0 +1,25 @@
+"""`activearena-report`: leaderboard, failure-state decomposition, per-task tables, chunk-boundary
+metric (Markdown, CSV, PNG) from one or more lerobot-eval output folders.
+
+    activearena-report expert:id=outputs/eval/expert_id expert:ood=outputs/eval/expert_ood --out outputs/report
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from ..eval.report import build_report
+
+
+def main(argv: list[str] | None = None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("runs", nargs="+", help="[label[:split]=]path of a lerobot-eval output folder")
+    p.add_argument("--out", type=Path, default=Path("outputs/report"))
+    args = p.parse_args(argv)
+    build_report(args.runs, args.out)
+    print(f"wrote {args.out}/report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,1 @@
+"""Leaderboard report from lerobot-eval runs: tables, failure decomposition, plots."""

@@ -1,0 +1,194 @@
+"""Build the ActiveArena leaderboard from lerobot-eval runs.
+
+A run is a lerobot-eval output folder (``eval_info.json``, ``videos/``) whose env wrote episode logs
+with ``--env.episode_log_dir=<run>/episodes`` (split, failure state, view targets per episode).
+Success per task comes from ``eval_info.json``; failure states and the chunk-boundary metric from
+the episode logs.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from collections import defaultdict
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..tasks.base import CATEGORIES
+
+CHUNK = 16
+
+
+@dataclass
+class Run:
+    label: str
+    split: str
+    path: Path
+    task_success: dict[str, list[bool]] = field(default_factory=dict)  # task -> per-episode success
+    task_category: dict[str, str] = field(default_factory=dict)
+    videos: dict[str, list[str]] = field(default_factory=dict)
+    episodes: list[dict] = field(default_factory=list)
+
+
+def chunk_jump_deg(view_targets, chunk: int = CHUNK) -> float:
+    """Episode-level median jump (degrees) of the commanded torso/head targets across chunk
+    boundaries: max over the two joints of |target[t] - target[t-1]| at t = chunk, 2*chunk, ..."""
+    v = np.asarray(view_targets, float)
+    ts = np.arange(chunk, len(v), chunk)
+    if len(ts) == 0:
+        return float("nan")
+    jumps = np.abs(v[ts] - v[ts - 1]).max(axis=1)
+    return float(np.degrees(np.median(jumps)))
+
+
+def load_run(spec: str) -> Run:
+    """``spec``: ``[label[:split]=]path``; the split defaults to the one in the episode logs."""
+    label, split, path = None, None, spec
+    if "=" in spec:
+        head, path = spec.split("=", 1)
+        label, _, split = head.partition(":")
+        split = split or None
+    path = Path(path)
+    info_path = path / "eval_info.json" if path.is_dir() else path
+    run_dir = info_path.parent
+    if not info_path.exists():
+        raise FileNotFoundError(f"{info_path} not found: pass lerobot-eval output folders (with eval_info.json)")
+    info = json.loads(info_path.read_text())
+    episodes = [json.loads(line) for f in sorted((run_dir / "episodes").glob("*.jsonl")) for line in f.read_text().splitlines()
+                if line.strip()]
+    splits = {e["split"] for e in episodes}
+    if split is None:
+        if len(splits) != 1:
+            raise ValueError(f"{run_dir}: cannot tell the split ({sorted(splits) or 'no episode logs'}); "
+                             f"pass it as label:split={run_dir} or run lerobot-eval with "
+                             f"--env.episode_log_dir={run_dir}/episodes")
+        split = splits.pop()
+    run = Run(label or run_dir.name, split, run_dir, episodes=episodes)
+    for entry in info.get("per_task", []):
+        task = entry["task_id"]
+        run.task_success[task] = [bool(s) for s in entry["metrics"]["successes"]]
+        run.task_category[task] = entry["task_group"]
+        run.videos[task] = list(entry["metrics"].get("video_paths", []))
+    if not run.task_success:
+        raise ValueError(f"{info_path} has no per_task results (is it an activearena lerobot-eval run?)")
+    return run
+
+
+def _rate(xs) -> float:
+    return 100.0 * float(np.mean(xs)) if len(xs) else float("nan")
+
+
+def leaderboard(runs: list[Run]) -> tuple[list[str], list[list]]:
+    cats = list(CATEGORIES)
+    header = ["policy"] + [f"{c} {s}" for c in cats for s in ("ID", "OOD")] + ["Avg ID", "Avg OOD"]
+    by_label: dict[str, dict[str, Run]] = defaultdict(dict)
+    for r in runs:
+        by_label[r.label][r.split] = r
+    rows = []
+    for label, splits in by_label.items():
+        row = [label]
+        cells = {}
+        for c in cats:
+            for s in ("id", "ood"):
+                r = splits.get(s)
+                rates = [_rate(v) for t, v in (r.task_success.items() if r else []) if r.task_category[t] == c]
+                cells[(c, s)] = float(np.mean(rates)) if rates else float("nan")
+        for c in cats:
+            row += [cells[(c, "id")], cells[(c, "ood")]]
+        for s in ("id", "ood"):
+            r = splits.get(s)
+            rates = [_rate(v) for v in r.task_success.values()] if r else []
+            row.append(float(np.mean(rates)) if rates else float("nan"))  # task-macro mean
+        rows.append(row)
+    return header, rows
+
+
+def failure_table(runs: list[Run]) -> tuple[list[str], list[list]]:
+    header = ["policy", "split", "failures", "DM %", "CO %", "CR %", "chunk jump median (deg)"]
+    rows = []
+    for r in runs:
+        fails = [e["failure_state"] for e in r.episodes if not e["success"]]
+        n = len(fails)
+        pct = [100.0 * fails.count(k) / n if n else float("nan") for k in ("DM", "CO", "CR")]
+        jumps = [chunk_jump_deg(e["view_targets"]) for e in r.episodes]
+        jumps = [j for j in jumps if not math.isnan(j)]
+        rows.append([r.label, r.split.upper(), n, *pct, float(np.median(jumps)) if jumps else float("nan")])
+    return header, rows
+
+
+def per_task_table(runs: list[Run]) -> tuple[list[str], list[list]]:
+    header = ["policy", "split", "category", "task", "episodes", "success %"]
+    rows = []
+    for r in runs:
+        for t in sorted(r.task_success, key=lambda t: (r.task_category[t], t)):
+            rows.append([r.label, r.split.upper(), r.task_category[t], t, len(r.task_success[t]),
+                         _rate(r.task_success[t])])
+    return header, rows
+
+
+def _fmt(x) -> str:
+    if isinstance(x, float):
+        return "-" if math.isnan(x) else f"{x:.1f}"
+    return str(x)
+
+
+def markdown(header, rows) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(_fmt(x) for x in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def write_csv(path: Path, header, rows) -> None:
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        w.writerows([[("" if isinstance(x, float) and math.isnan(x) else x) for x in row] for row in rows])
+
+
+def bar_chart(path: Path, header, rows) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cols = header[1:]
+    x = np.arange(len(cols))
+    width = 0.8 / max(1, len(rows))
+    fig, ax = plt.subplots(figsize=(max(8, len(cols) * 0.8), 4))
+    for k, row in enumerate(rows):
+        vals = [0.0 if (isinstance(v, float) and math.isnan(v)) else v for v in row[1:]]
+        ax.bar(x + k * width - 0.4 + width / 2, vals, width, label=row[0])
+    ax.set_xticks(x, cols, rotation=45, ha="right")
+    ax.set_ylabel("success %")
+    ax.set_ylim(0, 100)
+    ax.set_title("ActiveArena success by category (task-macro)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def build_report(run_specs: list[str], out: Path) -> dict:
+    runs = [load_run(s) for s in run_specs]
+    out.mkdir(parents=True, exist_ok=True)
+    lb, fl, pt = leaderboard(runs), failure_table(runs), per_task_table(runs)
+    write_csv(out / "leaderboard.csv", *lb)
+    write_csv(out / "failures.csv", *fl)
+    write_csv(out / "per_task.csv", *pt)
+    bar_chart(out / "leaderboard.png", *lb)
+    videos = []
+    for r in runs:
+        for t, paths in sorted(r.videos.items()):
+            videos += [f"- {r.label} {r.split.upper()} `{t}`: " + ", ".join(f"[{Path(p).name}]({p})" for p in paths)]
+    md = ["# ActiveArena leaderboard", "", "Success rate (%) per category, ID and OOD; Avg = task-macro mean over tasks.",
+          "", markdown(*lb), "", "![leaderboard](leaderboard.png)", "",
+          "## Failure states among failed episodes", "",
+          "DM: a task-relevant object was never observed; CO: all observed, the final view misses some; "
+          "CR: the final view covers all, the task still failed. Chunk jump: episode-level median jump of "
+          f"the torso/head targets at {CHUNK}-step chunk boundaries.", "", markdown(*fl), "",
+          "## Per task", "", markdown(*pt), "", "## Rollout videos", "", *(videos or ["(none saved)"]), ""]
+    (out / "report.md").write_text("\n".join(md))
+    return {"leaderboard": lb, "failures": fl, "per_task": pt}

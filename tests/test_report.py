@@ -1,0 +1,69 @@
+"""`activearena-report` on hand-made lerobot-eval outputs with known answers."""
+
+import json
+
+import numpy as np
+import pytest
+
+from lerobot_activearena.cli.report import main
+from lerobot_activearena.eval.report import chunk_jump_deg
+
+
+def _run(root, split, results, failures):
+    """results: {(category, task): [success, ...]}; failures: failure states of failed episodes in order."""
+    root.mkdir(parents=True)
+    per_task = [{"task_group": c, "task_id": t, "metrics": {"successes": s, "video_paths": [f"videos/{t}_0.mp4"]}}
+                for (c, t), s in results.items()]
+    (root / "eval_info.json").write_text(json.dumps({"per_task": per_task, "overall": {}}))
+    (root / "episodes").mkdir()
+    fails = iter(failures)
+    lines = []
+    for (c, t), succ in results.items():
+        for k, s in enumerate(succ):
+            # the torso target steps by 2 deg at both chunk boundaries (t = 16, 32)
+            targets = [[float(np.radians(2.0 * (t >= 16) + 2.0 * (t >= 32))), 1.0] for t in range(40)]
+            lines.append(json.dumps({"task": t, "category": c, "split": split, "episode": k, "success": s,
+                                     "failure_state": "" if s else next(fails), "view_targets": targets}))
+    (root / "episodes" / "log.jsonl").write_text("\n".join(lines))
+    return root
+
+
+def test_chunk_jump_is_the_median_boundary_jump_in_degrees():
+    v = np.zeros((49, 2))
+    v[16:, 0] = np.radians(3.0)  # jump of 3 deg at t=16, none at t=32 or t=48
+    assert chunk_jump_deg(v) == pytest.approx(0.0)
+    v[32:, 1] += np.radians(5.0)
+    v[48:, 0] += np.radians(4.0)
+    assert chunk_jump_deg(v) == pytest.approx(4.0)
+
+
+def test_report_tables_match_hand_computed_values(tmp_path):
+    res_id = {("SS", "click_bell_rotate_view"): [True, True, False, True],
+              ("MD", "count_target_press_button"): [True, False, False, False]}
+    res_ood = {("SS", "click_bell_rotate_view"): [True, False, False, False],
+               ("MD", "count_target_press_button"): [False, False, False, False]}
+    a = _run(tmp_path / "a", "id", res_id, ["DM", "CO", "DM", "CR"])
+    b = _run(tmp_path / "b", "ood", res_ood, ["DM"] * 3 + ["CO"] * 4)
+    main([f"oracle={a}", f"oracle={b}", "--out", str(tmp_path / "rep")])
+    rows = (tmp_path / "rep" / "leaderboard.csv").read_text().splitlines()
+    header, row = rows[0].split(","), rows[1].split(",")
+    got = dict(zip(header, row))
+    assert float(got["SS ID"]) == 75.0 and float(got["MD ID"]) == 25.0 and float(got["Avg ID"]) == 50.0
+    assert float(got["SS OOD"]) == 25.0 and float(got["Avg OOD"]) == 12.5 and got["ML ID"] == ""
+    fails = (tmp_path / "rep" / "failures.csv").read_text().splitlines()
+    id_row = dict(zip(fails[0].split(","), fails[1].split(",")))
+    assert id_row["failures"] == "4" and float(id_row["DM %"]) == 50.0 and float(id_row["CR %"]) == 25.0
+    assert float(id_row["chunk jump median (deg)"]) == pytest.approx(2.0)
+    md = (tmp_path / "rep" / "report.md").read_text()
+    assert "| oracle |" in md and "leaderboard.png" in md and "click_bell_rotate_view_0.mp4" in md
+    assert (tmp_path / "rep" / "leaderboard.png").stat().st_size > 1000
+
+
+def test_report_needs_a_split_it_can_tell(tmp_path):
+    a = _run(tmp_path / "a", "id", {("SS", "click_bell_rotate_view"): [True]}, [])
+    for f in (a / "episodes").glob("*"):
+        f.unlink()
+    with pytest.raises(ValueError, match="cannot tell the split"):
+        main([str(a), "--out", str(tmp_path / "rep")])
+    main([f"oracle:id={a}", "--out", str(tmp_path / "rep")])
+    assert "oracle" in (tmp_path / "rep" / "leaderboard.csv").read_text()
