@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
+from lerobot_activearena.envs.manifests import load_manifest
 
 
 @pytest.mark.parametrize("task,seed", [("click_bell_rotate_view", 3), ("check_block_color", 5)])
@@ -46,12 +47,18 @@ def test_policy_refuses_to_run_without_the_channel():
 def test_lerobot_eval_runs_the_oracle_on_manifest_seeds(tmp_path):
     exe = shutil.which("lerobot-eval", path=str(Path(sys.executable).parent)) or shutil.which("lerobot-eval")
     out = subprocess.run([exe, "--policy.type=activearena_expert", "--env.type=activearena", "--env.task=SS",
-                          "--env.expert_channel=true", "--eval.n_episodes=2", "--eval.batch_size=2",
+                          "--env.expert_channel=true", "--eval.n_episodes=3", "--eval.batch_size=2",
+                          f"--env.episode_log_dir={tmp_path / 'eval' / 'episodes'}",
                           "--policy.device=cpu", f"--output_dir={tmp_path / 'eval'}"],
                          capture_output=True, text=True, timeout=900)
     assert out.returncode == 0, out.stderr[-3000:]
     info = json.loads((tmp_path / "eval" / "eval_info.json").read_text())
-    assert info["overall"]["pc_success"] == 100.0 and info["overall"]["n_episodes"] == 2
+    assert info["overall"]["pc_success"] == 100.0 and info["overall"]["n_episodes"] == 3
     assert "SS" in info["per_group"]
     assert info["per_task"][0]["task_id"] == "click_bell_rotate_view"
     assert all(Path(p).exists() for p in info["overall"]["video_paths"])
+    # Episodes 0, 1, 2 played manifest seeds 0, 1, 2 although they ran in batches of 2.
+    logs = [json.loads(line) for f in (tmp_path / "eval" / "episodes").glob("*.jsonl") for line in f.read_text().splitlines()]
+    played = sorted((e["episode"], e["scene_seed"]) for e in logs)
+    manifest = load_manifest("click_bell_rotate_view", "id")
+    assert [s for _, s in played][:3] == manifest[:3] and [k for k, _ in played][:3] == [0, 1, 2]
