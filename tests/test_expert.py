@@ -96,7 +96,7 @@ def test_search_never_finds_an_object_outside_every_view():
     from lerobot_activearena.annotations.recorder import AnnotationRecorder
     from lerobot_activearena.expert import primitives as P
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
-    from lerobot_activearena.tasks.episode import _kinematics
+    from lerobot_activearena.expert.kinematics import shared_kinematics
     from lerobot_activearena.sim.scene import SceneBuilder
     from lerobot_activearena.sim.simulator import ActiveArenaSim
 
@@ -105,7 +105,7 @@ def test_search_never_finds_an_object_outside_every_view():
     model, info = b.compile()
     sim = ActiveArenaSim(model, info)
     rec = AnnotationRecorder(sim, 1)
-    ik, gaze = _kinematics()
+    ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, ["hidden_block"], rec, ik, gaze)
     rec.observe()
     gen = P.search(ctx, 0)
@@ -142,13 +142,13 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
     from lerobot_activearena.annotations.recorder import AnnotationRecorder
     from lerobot_activearena.expert import primitives as P
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
-    from lerobot_activearena.tasks.episode import _kinematics
+    from lerobot_activearena.expert.kinematics import shared_kinematics
     from lerobot_activearena.sim.scene import SceneBuilder
     from lerobot_activearena.sim.simulator import ActiveArenaSim
 
     model, info = SceneBuilder().compile()
     sim = ActiveArenaSim(model, info)
-    ik, gaze = _kinematics()
+    ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, [], AnnotationRecorder(sim, 0), ik, gaze)
     acts = np.array(list(P.move_torso_to(ctx, 1.1)) + list(P.move_head(ctx, -0.5)) + list(P.move_torso(ctx, -2.0)))
     dt = 1 / 15

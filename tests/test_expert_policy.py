@@ -7,7 +7,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv

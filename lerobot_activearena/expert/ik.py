@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import mink
 import mujoco
 import numpy as np
@@ -79,6 +81,12 @@ class ArmIK:
         self.configuration.update(q)
         site = self.configuration.data.site(E.TCP_SITES[side])
         return site.xpos.copy(), site.xmat.reshape(3, 3).copy()
+
+
+def rot_z(angle: float) -> np.ndarray:
+    """Rotation by ``angle`` rad about the world vertical."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], float)
 
 
 def interpolate_pose(p0, R0, p1, R1, s: float) -> tuple[np.ndarray, np.ndarray]:

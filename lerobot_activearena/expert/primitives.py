@@ -22,7 +22,7 @@ from ..sim import action as A
 from ..sim import embodiment as E
 from .context import ExpertContext, ExpertError
 from .gaze import heading_deg
-from .ik import IKFailed, grasp_rotation, interpolate_pose
+from .ik import IKFailed, grasp_rotation, interpolate_pose, rot_z
 from .kinematics import torso_yaw_for_arm
 from .motion import CONTROL_DT, arm_of, gripper_index, interpolate_joints, trapezoid, with_arm
 
@@ -283,7 +283,7 @@ def _feasible_rotation(ctx: ExpertContext, side: str, R: np.ndarray, positions, 
     vertical by 90/-90/180 deg: the first with which IK reaches all ``positions``."""
     turns = (0.0, math.pi / 2, -math.pi / 2, math.pi) if yaw_free else (0.0,)
     for th in turns:
-        Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
+        Rz = rot_z(th)
         try:
             for pos in positions:
                 _solve(ctx, side, arm_of(ctx.action, side), pos, Rz @ R)
@@ -307,16 +307,7 @@ def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, cl
 
     z_down = surface_z + clearance + tcp_above_bottom
     z_above = max(z_down + 0.10, p[2])
-    Rg = R
-    for Rc in [R] + ([_feasible_rotation(ctx, side, R, [tcp_for(R, z_above), tcp_for(R, z_down)], yaw_free)]
-                     if yaw_free else []):
-        Rg = Rc
-        try:
-            for z in (z_above, z_down):
-                _solve(ctx, side, arm_of(ctx.action, side), tcp_for(Rg, z), Rg)
-            break
-        except ExpertError:
-            continue
+    Rg = _feasible_rotation(ctx, side, R, [tcp_for(R, z_above), tcp_for(R, z_down)], yaw_free)
     yield from arm_line(ctx, side, tcp_for(Rg, z_above), Rg, 0.0, speed=0.25)
     yield from arm_line(ctx, side, tcp_for(Rg, z_down), Rg, 0.0, speed=0.12)
     yield from set_gripper(ctx, side, 1.0, 6)
@@ -357,8 +348,7 @@ def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: i
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
         th = s * angle
-        Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
-        q = _solve(ctx, side, q, p, Rz @ R)
+        q = _solve(ctx, side, q, p, rot_z(th) @ R)
         ctx.action = with_arm(ctx.action, side, q)
         yield ctx.emit()
 

@@ -8,7 +8,7 @@ import mujoco
 import numpy as np
 
 from . import embodiment
-from .assets import ASSETS, ObjectInfo, build_asset
+from .assets import ObjectInfo, build_asset
 from .appearance import DEFAULT_APPEARANCE, Appearance, table_texture
 from .assets.base import add_texture_material
 from .workspace import Workspace, add_workspace, fan_workspace

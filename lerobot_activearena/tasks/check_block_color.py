@@ -12,7 +12,7 @@ import numpy as np
 from ..annotations.schema import CAMERA_INSPECT, STAGE_ANCHOR, STAGE_SEARCH
 from ..expert import primitives as P
 from ..expert.context import ExpertError
-from ..expert.ik import grasp_rotation
+from ..expert.ik import grasp_rotation, rot_z
 from ..sim import embodiment as E
 from ..sim.visibility import surface_point_visible
 from .base import Subtask, Task, register_task
@@ -152,8 +152,7 @@ class CheckBlockColor(Task):
                         q = P._solve(ctx, side, q, pos, R)
                     for frac in np.linspace(0.0, 1.0, 9):
                         th = frac * angle
-                        Rz = np.array([[math.cos(th), -math.sin(th), 0], [math.sin(th), math.cos(th), 0], [0, 0, 1]])
-                        q = P._solve(ctx, side, q, inspect, Rz @ R)
+                        q = P._solve(ctx, side, q, inspect, rot_z(th) @ R)
                     return sign * Rb[:, 1], angle
                 except ExpertError:
                     continue

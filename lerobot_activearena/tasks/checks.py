@@ -12,7 +12,6 @@ from ..sim.simulator import ActiveArenaSim
 def body_touches_robot(sim: ActiveArenaSim, body: str) -> bool:
     m, d = sim.model, sim.data
     bid = m.body(body).id
-    robot_root = sim.info.robot.root if hasattr(sim.info.robot, "root") else None
     for c in d.contact[: d.ncon]:
         b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
         if bid in (b1, b2):

@@ -12,8 +12,6 @@ import numpy as np
 
 from ..annotations.recorder import AnnotationRecorder
 from ..expert.context import ExpertContext, ExpertError
-from ..expert.gaze import Gaze
-from ..expert.ik import ArmIK
 from ..expert.kinematics import shared_kinematics
 from ..sim.simulator import ActiveArenaSim
 from .base import TaskScene
@@ -41,10 +39,6 @@ class EpisodeResult:
     @property
     def length(self) -> int:
         return len(self.frames)
-
-
-def _kinematics() -> tuple[ArmIK, Gaze]:
-    return shared_kinematics()
 
 
 class PhysicsHealth:
@@ -103,7 +97,7 @@ def run_expert_episode(task_name: str, seed: int, split: str = "id",
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
     sim = ActiveArenaSim(scene.model, scene.info)
-    ik, gaze = _kinematics()
+    ik, gaze = shared_kinematics()
     recorder = AnnotationRecorder(sim, len(scene.objects))
     ctx = ExpertContext(sim, scene.objects, recorder, ik, gaze)
     monitor = task.monitor(sim, scene)

@@ -66,10 +66,7 @@ def yaw_quat(yaw: float) -> np.ndarray:
 
 def free_body(spec: mujoco.MjSpec, name: str, pos, yaw: float) -> mujoco.MjsBody:
     """A body with a free joint whose origin (bottom centre) is at ``pos``."""
-    body = spec.worldbody.add_body()
-    body.name = name
-    body.pos = np.asarray(pos, float)
-    body.quat = yaw_quat(yaw)
+    body = static_body(spec, name, pos, yaw)
     j = body.add_joint()
     j.name = f"{name}_free"
     j.type = mujoco.mjtJoint.mjJNT_FREE

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 
 import mujoco
-import numpy as np
 
 from .base import ObjectInfo, add_geom as _geom, free_body as _free_body
 from .registry import register_asset
