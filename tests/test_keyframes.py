@@ -3,8 +3,10 @@
 import numpy as np
 import pytest
 
-from lerobot_activearena.annotations.keyframes import (chunk_keyframes, memory_view, retrieval_positions,
-                                                       stride_sequence, subtask_keyframes)
+from lerobot_activearena.annotations.keyframes import (chunk_keyframes, dedup, eef_events, gripper_events,
+                                                       memory_view, motion_keyframes, retrieval_positions,
+                                                       rotation_events, stride_sequence, subtask_keyframes)
+from lerobot_activearena.sim.action import ACTION_NAMES
 
 
 def test_chunk_keyframes_every_16_frames():
@@ -33,3 +35,77 @@ def test_planner_stride_sequence_and_retrieval_match_the_papers_example():
     assert retrieval_positions(frames, [0, 45]) == [0, 3]
     assert stride_sequence(300, history=12)[0] == 300 - 12 * 16 and len(stride_sequence(300, history=12)) == 13
     assert stride_sequence(5) == [5]
+
+
+def test_gripper_events_need_two_frames_in_a_stable_state():
+    #            O  O  O  B    B    C    C    C    B    O    O
+    g = np.array([1, 1, 1, 0.5, 0.5, 0.1, 0.1, 0.1, 0.5, 0.9, 0.9])
+    # leaves "open" (confirmed at 4), enters "closed" (6), enters "open" again (10): the single
+    # "between" frame at 8 is never confirmed.
+    assert gripper_events(g) == [4, 6, 10]
+    assert gripper_events(np.full(20, 0.45)) == []  # holding an object half-closed: no event
+    assert gripper_events([1.0, 0.1, 1.0, 0.1]) == []  # flicker never persists
+
+
+def test_rotation_onset_after_four_frames_and_end_after_a_gap_of_six():
+    q = np.zeros(40)
+    q[10:18] = 0.01 * np.arange(1, 9)  # rotating at frames 10..17
+    q[18:] = q[17]
+    assert rotation_events(q) == [13, 23]  # onset confirmed at the 4th moving frame; end at the 6th still
+    # a 3-frame pause is merged into one rotation
+    q2 = np.concatenate([np.zeros(5), 0.01 * np.arange(1, 7), np.full(3, 0.06), 0.06 + 0.01 * np.arange(1, 7),
+                         np.full(10, 0.12)])
+    assert rotation_events(q2) == [8, 25]
+    jitter = np.zeros(20)
+    jitter[5:8] = [0.01, 0.02, 0.03]  # 3 moving frames (then it holds): too short to be an onset
+    jitter[8:] = 0.03
+    assert rotation_events(jitter) == []
+    assert rotation_events(np.cumsum(np.full(30, 0.004))) == []  # below 0.005 rad per frame
+
+
+def test_eef_turn_and_stop_events():
+    dt = 1 / 15
+    x_leg = [[0.01 * i, 0, 0] for i in range(6)]  # moving along +x, frames 0..5
+    y_leg = [[0.05, 0.01 * i, 0] for i in range(1, 5)]  # then along +y, frames 6..9
+    still = [[0.05, 0.04, 0]] * 4  # stops: frames 10..13
+    p = np.array(x_leg + y_leg + still)
+    assert eef_events(p) == [6, 10]  # 90 deg turn at 6, stop at 10
+    assert np.linalg.norm(p[1] - p[0]) / dt > 0.001
+
+
+def test_dedup_keeps_frames_at_least_delta_apart():
+    assert dedup([0, 3, 4, 10, 12, 20, 20]) == [0, 10, 20]
+    assert dedup([7, 2, 2]) == [2, 7]
+
+
+def test_motion_keyframes_union_of_state_events_deduplicated():
+    T = 60
+    x = np.zeros((T, len(ACTION_NAMES)))
+    col = {n: i for i, n in enumerate(ACTION_NAMES)}
+    x[:, col["left_gripper"]] = 1.0
+    x[30:, col["left_gripper"]] = 0.1  # closes at 30 -> leave-open confirmed at 31
+    x[10:18, col["torso_yaw"]] = 0.02 * np.arange(1, 9)
+    x[18:, col["torso_yaw"]] = 0.16  # onset 13, end 23
+    x[40:48, col["head_pitch"]] = 0.01 * np.arange(1, 9)
+    x[48:, col["head_pitch"]] = 0.08  # onset 43 (2 frames after nothing else), end 53
+    k = motion_keyframes(x)
+    assert k.dtype == np.int8 and len(k) == T
+    assert list(np.flatnonzero(k)) == [0, 13, 23, 31, 43, 53]
+    # adding an end-effector stop 2 frames after the gripper event: de-duplicated away
+    p = np.zeros((T, 3))
+    p[:34, 0] = 0.01 * np.arange(34)
+    p[34:, 0] = p[33, 0]
+    assert list(np.flatnonzero(motion_keyframes(x, {"left": p}))) == [0, 13, 23, 31, 43, 53]
+    p[34:, 0] = p[33, 0]
+    p[:40, 0] = 0.01 * np.arange(40)
+    p[40:, 0] = p[39, 0]  # stop at 40 is 9 frames after 31 but 3 before 43: kept, 43 dropped
+    assert list(np.flatnonzero(motion_keyframes(x, {"left": p}))) == [0, 13, 23, 31, 40, 53]
+
+
+def test_motion_keyframes_are_causal():
+    rng = np.random.default_rng(0)
+    x = np.cumsum(rng.normal(0, 0.01, (80, len(ACTION_NAMES))), axis=0)
+    x[:, [7, 15]] = rng.uniform(0, 1, (80, 2))
+    full = motion_keyframes(x)
+    for t in (10, 37, 79):
+        assert (motion_keyframes(x[: t + 1]) == full[: t + 1]).all()
