@@ -15,6 +15,7 @@ from importlib import resources
 import mujoco
 import numpy as np
 
+ROBOT_TYPE = "astribot_s1"  # LeRobot robot_type of datasets recorded on this embodiment
 PREFIX = "astribot_"
 ARM_JOINTS = {side: [f"{PREFIX}arm_{side}_joint_{i}" for i in range(1, 8)] for side in ("left", "right")}
 TORSO_YAW_JOINT = f"{PREFIX}torso_joint_4"

@@ -1,0 +1,155 @@
+"""Run a build: one datatrove task per shard (local processes or Slurm array jobs; datatrove skips
+ranks it already completed, so re-running resumes), then merge, then optionally push to the Hub."""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import shutil
+import threading
+from pathlib import Path
+
+from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
+from datatrove.pipeline.base import PipelineStep
+from tqdm import tqdm
+
+from .merge import merge_shards, read_build
+from .plan import BuildPlan
+from .shard import build_shard, is_complete, shard_dir
+
+log = logging.getLogger(__name__)
+
+
+class BuildShardStep(PipelineStep):
+    """datatrove step: rank r builds shard r of the plan."""
+
+    name = "ActiveArena expert shard"
+    type = "SIM"
+
+    def __init__(self, plan: BuildPlan, work_dir: str, encoder_threads: int | None = 1):
+        super().__init__()
+        self.plan, self.work_dir, self.encoder_threads = plan, work_dir, encoder_threads
+
+    def run(self, data=None, rank: int = 0, world_size: int = 1):
+        spec = self.plan.shards[rank]
+        work = Path(self.work_dir)
+        (work / "progress").mkdir(parents=True, exist_ok=True)
+        summary = build_shard(spec, self.plan.split, self.plan.repo_id, work, self.plan.max_objects,
+                              self.encoder_threads, progress=work / "progress" / f"{spec.name}.json")
+        self.stat_update("episodes_kept", value=len(summary["kept"]))
+        self.stat_update("episodes_skipped", value=len(summary["skipped"]))
+        return iter(())
+
+
+class MergeStep(PipelineStep):
+    """datatrove step (one task) that merges the shards: the Slurm job that depends on the shard jobs."""
+
+    name = "ActiveArena merge"
+    type = "MERGE"
+
+    def __init__(self, plan: BuildPlan, work_dir: str, root: str):
+        super().__init__()
+        self.plan, self.work_dir, self.root = plan, work_dir, root
+
+    def run(self, data=None, rank: int = 0, world_size: int = 1):
+        merge_shards(self.plan, Path(self.work_dir), Path(self.root))
+        return iter(())
+
+
+class _Progress(threading.Thread):
+    """Episode and shard progress bars fed by the workers' progress files."""
+
+    def __init__(self, plan: BuildPlan, work_dir: Path):
+        super().__init__(daemon=True)
+        self.plan, self.work_dir, self.stop = plan, work_dir, threading.Event()
+
+    def run(self):
+        total = sum(s.quota for s in self.plan.shards)
+        with tqdm(total=len(self.plan.shards), desc="shards", unit="shard", position=0) as shards, \
+                tqdm(total=total, desc="episodes", unit="ep", position=1) as eps:
+            while True:
+                done = sum(is_complete(shard_dir(self.work_dir, s)) for s in self.plan.shards)
+                kept = 0
+                for s in self.plan.shards:
+                    p = self.work_dir / "progress" / f"{s.name}.json"
+                    try:
+                        kept += json.loads(p.read_text())["kept"] if p.is_file() else 0
+                    except (OSError, ValueError):  # being rewritten
+                        pass
+                shards.update(done - shards.n)
+                eps.update(kept - eps.n)
+                if self.stop.is_set():
+                    return
+                self.stop.wait(1.0)
+
+
+def _prepare(plan: BuildPlan, root: Path, work_dir: Path, overwrite: bool) -> bool:
+    """Returns True when ``root`` already holds this exact build."""
+    built = read_build(root)
+    if built is not None and built["plan"] == json.loads(json.dumps(plan.to_json())) and not overwrite:
+        return True
+    if root.exists() and not overwrite:
+        raise FileExistsError(f"{root} already exists and is not this build; choose another --root or pass "
+                              "--overwrite to replace it")
+    plan_file = work_dir / "plan.json"
+    if overwrite:
+        shutil.rmtree(work_dir, ignore_errors=True)
+    elif plan_file.is_file() and not plan.same_as(plan_file):
+        raise FileExistsError(f"{work_dir} holds an unfinished build with different arguments; re-run it with "
+                              "the same arguments to resume, or pass --overwrite (or another --work-dir)")
+    work_dir.mkdir(parents=True, exist_ok=True)
+    plan.save(plan_file)
+    return False
+
+
+def build_dataset(plan: BuildPlan, root: Path, work_dir: Path | None = None, workers: int | None = None,
+                  executor: str = "local", slurm: dict | None = None, overwrite: bool = False,
+                  keep_shards: bool = False, push_to_hub: bool = False, private: bool = False,
+                  progress: bool = True) -> dict | None:
+    """Build (or resume) the dataset at ``root``. Returns the build summary; with the Slurm executor
+    the jobs are submitted and None is returned (the merge job writes ``root``)."""
+    root = Path(root).resolve()
+    work_dir = Path(work_dir).resolve() if work_dir else root.with_name(root.name + ".work")
+    if _prepare(plan, root, work_dir, overwrite):
+        log.info("%s already holds this build; nothing to do", root)
+        summary = read_build(root)
+    else:
+        workers = max(1, min(workers or os.cpu_count() or 1, len(plan.shards)))
+        threads = 1 if workers > 1 else None
+        step = BuildShardStep(plan, str(work_dir), encoder_threads=threads)
+        if executor == "slurm":
+            opts = dict(slurm or {})
+            shards = SlurmPipelineExecutor(pipeline=[step], tasks=len(plan.shards), logging_dir=str(work_dir / "logs"),
+                                           job_name="activearena-shards", **opts)
+            merge = SlurmPipelineExecutor(pipeline=[MergeStep(plan, str(work_dir), str(root))], tasks=1,
+                                          logging_dir=str(work_dir / "logs-merge"), job_name="activearena-merge",
+                                          depends=shards, **{k: v for k, v in opts.items() if k != "workers"})
+            merge.run()
+            return None
+        if executor != "local":
+            raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
+        bar = _Progress(plan, work_dir) if progress else None
+        if bar:
+            bar.start()
+        try:
+            LocalPipelineExecutor(pipeline=[step], tasks=len(plan.shards), workers=workers,
+                                  logging_dir=str(work_dir / "logs")).run()
+        finally:
+            if bar:
+                bar.stop.set()
+                bar.join()
+        summary = merge_shards(plan, work_dir, root)
+        if not keep_shards:
+            shutil.rmtree(work_dir, ignore_errors=True)
+    if push_to_hub:
+        push(plan.repo_id, root, private=private)
+    return summary
+
+
+def push(repo_id: str, root: Path, private: bool = False) -> None:
+    """Upload with LeRobot's own path (``LeRobotDataset.push_to_hub``), metadata folder included."""
+    from lerobot.datasets.lerobot_dataset import LeRobotDataset
+
+    ds = LeRobotDataset(repo_id, root=root, video_backend="pyav")
+    ds.push_to_hub(private=private, tags=["activearena", "active-perception", "mujoco"])
