@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from lerobot_activearena.annotations.keyframes import (chunk_keyframes, dedup, eef_events, gripper_events,
-                                                       memory_view, motion_keyframes, retrieval_positions,
+                                                       memory_frames, memory_view, motion_keyframes, retrieval_positions,
                                                        rotation_events, stride_sequence, subtask_keyframes)
 from lerobot_activearena.sim.action import ACTION_NAMES
 
@@ -109,3 +109,16 @@ def test_motion_keyframes_are_causal():
     full = motion_keyframes(x)
     for t in (10, 37, 79):
         assert (motion_keyframes(x[: t + 1]) == full[: t + 1]).all()
+
+
+def test_memory_frames_per_write_policy():
+    sub = subtask_keyframes([0] * 10 + [1] * 30 + [2] * 20)  # keyframes 0, 10, 40
+    assert memory_frames("chunk", 64, H=12) == [0, 16, 32, 48]
+    assert memory_frames("chunk", 250, H=12)[0] == 250 - 16 * 12 and len(memory_frames("chunk", 250, H=12)) == 12
+    assert memory_frames("subtask", 40, H=12, keyframes=sub) == [0, 10]  # 40 itself is not memory yet
+    assert memory_frames("subtask", 59, H=1, keyframes=sub) == [40]
+    assert memory_frames("none", 64, H=12) == [] and memory_frames("chunk", 64, H=0) == []
+    with pytest.raises(ValueError, match="write policy"):
+        memory_frames("planned", 5)
+    with pytest.raises(ValueError, match="motion_keyframe"):
+        memory_frames("motion", 5)

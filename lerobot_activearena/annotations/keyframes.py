@@ -151,3 +151,22 @@ def retrieval_positions(frames, subtask_keyframes_seen, stride: int = STRIDE) ->
     (unique, chronological)."""
     qs = list(subtask_keyframes_seen)
     return [i for i, f in enumerate(frames) if any(q <= f < q + stride for q in qs)]
+
+
+WRITE_POLICIES = ("chunk", "subtask", "motion", "none")
+
+
+def memory_frames(policy: str, t: int, H: int = 12, keyframes=None) -> list[int]:
+    """History frame indices (chronological, all < t) for a memory write policy:
+    ``chunk``: the stride-16 frames t-16H .. t-16 (at chunk boundaries these are the chunk keyframes);
+    ``subtask`` / ``motion``: M_t over that keyframe indicator (``keyframes``, covering frames < t);
+    ``none``: no history."""
+    if policy not in WRITE_POLICIES:
+        raise ValueError(f"memory write policy must be one of {WRITE_POLICIES}, got {policy!r}")
+    if policy == "none" or H == 0:
+        return []
+    if policy == "chunk":
+        return stride_sequence(t, history=H)[:-1]
+    if keyframes is None:
+        raise ValueError(f"the {policy!r} write policy needs the episode's {policy}_keyframe indicator")
+    return memory_view(t, keyframes, H)

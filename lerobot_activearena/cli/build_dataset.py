@@ -52,7 +52,7 @@ def main(argv: list[str] | None = None) -> None:
         p.error('--executor slurm needs --slurm \'{"partition": ..., "time": ...}\'')
     try:
         plan = BuildPlan(repo_id=args.repo_id, split=args.split, tasks=[args.tasks],
-                         episodes=(args.episodes or 100) if args.seeds is None else None,
+                         episodes=(100 if args.episodes is None else args.episodes) if args.seeds is None else None,
                          seeds=args.seeds, seed_start=args.seed_start, episodes_per_shard=args.episodes_per_shard,
                          max_objects=MAX_OBJECTS)
     except ValueError as exc:

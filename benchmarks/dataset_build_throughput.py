@@ -1,0 +1,65 @@
+"""Dataset-builder throughput: expert episodes per hour per core, render + annotation + keyframes +
+streaming AV1 encoding + parquet + LeRobot aggregation included.
+
+    python benchmarks/dataset_build_throughput.py --tasks all --episodes 2 --workers 1
+
+Runs the real ``build_dataset`` (the code behind ``activearena-build-dataset``) into a temporary
+root and prints episodes/hour/core, frames/episode, and the ratio to the paper-scale target
+(35 tasks x 100 ID episodes, ~581k frames, on one 2-core machine in < 8 h: >= 220 episodes/hour/core
+at ~166 frames per episode). Per-frame time is also reported, since our episodes are shorter or
+longer than the paper's 166 frames on average.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+from lerobot_activearena.datasets_build.pipeline import build_dataset
+from lerobot_activearena.datasets_build.plan import BuildPlan
+
+TARGET_EPS_PER_HOUR_CORE = 220
+PAPER_FRAMES_PER_EPISODE = 166
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--tasks", default="all")
+    p.add_argument("--episodes", type=int, default=2, help="kept episodes per task")
+    p.add_argument("--split", default="id")
+    p.add_argument("--workers", type=int, default=1, help="worker processes (= cores used)")
+    args = p.parse_args()
+    plan = BuildPlan(repo_id="bench/throughput", split=args.split, tasks=args.tasks.split(","),
+                     episodes=args.episodes, episodes_per_shard=args.episodes)
+    tmp = Path(tempfile.mkdtemp(prefix="aa_build_"))
+    try:
+        t0 = time.perf_counter()
+        summary = build_dataset(plan, tmp / "ds", workers=args.workers, progress=False)
+        wall = time.perf_counter() - t0
+        episodes = [json.loads(line) for line in (tmp / "ds/meta/activearena/episodes.jsonl").read_text().splitlines()]
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    n, frames = summary["episodes"], summary["frames"]
+    expert_s = sum(e["seconds"] for e in episodes)  # expert + render + annotation only
+    cores = min(args.workers, os.cpu_count() or 1)
+    eph_core = 3600 * n / wall / cores
+    s_per_frame = wall * cores / frames
+    at_paper_length = 3600 / (s_per_frame * PAPER_FRAMES_PER_EPISODE)
+    print(f"tasks {len(plan.tasks)}, kept episodes {n} (skipped {summary['skipped']}), frames {frames} "
+          f"({frames / n:.0f}/episode), workers {args.workers}, wall {wall:.1f} s")
+    print(f"expert + render + annotation: {expert_s:.1f} s ({frames / expert_s:.0f} frames/s per core); "
+          f"encoding + writing + merge: the remaining {wall * cores - expert_s:.1f} core-s")
+    print(f"episodes/hour/core: {eph_core:.0f} at {frames / n:.0f} frames/episode; "
+          f"{at_paper_length:.0f} at the paper's {PAPER_FRAMES_PER_EPISODE} frames/episode "
+          f"(target {TARGET_EPS_PER_HOUR_CORE}: ratio {at_paper_length / TARGET_EPS_PER_HOUR_CORE:.2f})")
+    hours = 35 * 100 * PAPER_FRAMES_PER_EPISODE * s_per_frame / 2 / 3600
+    print(f"paper-scale ID set (3500 episodes x {PAPER_FRAMES_PER_EPISODE} frames) on 2 cores: ~{hours:.1f} h")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,249 @@
+"""`activearena-build-dataset`: a real sharded build opened by unmodified LeRobot, its columns
+checked against the expert, resume after SIGKILL, skipped seeds, Hub upload, LeRobot's own CLIs."""
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
+from lerobot.datasets.lerobot_dataset import LeRobotDataset
+
+from lerobot_activearena.annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
+from lerobot_activearena.cli.build_dataset import main as build_main
+from lerobot_activearena.datasets_build import shard as shard_mod
+from lerobot_activearena.datasets_build.features import IMAGE_KEY, MASK_PAD, MAX_OBJECTS, dataset_features, matrix
+from lerobot_activearena.datasets_build.pipeline import build_dataset, push
+from lerobot_activearena.datasets_build.plan import BuildPlan
+from lerobot_activearena.datasets_build.record import record_episode
+from lerobot_activearena.tasks.episode import run_expert_episode
+
+BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
+HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one
+
+
+def _exe(name):
+    return shutil.which(name, path=str(Path(sys.executable).parent)) or shutil.which(name)
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """Two tasks, one episode each, two shards built by two datatrove worker processes."""
+    root = tmp_path_factory.mktemp("ds") / "bench_id"
+    build_main(["--repo-id", "local/bench_id", "--root", str(root), "--tasks", f"{BELL},{COUNT}",
+                "--episodes", "1", "--episodes-per-shard", "1", "--workers", "2"])
+    return root
+
+
+def _episodes(root):
+    return [json.loads(line) for line in (root / "meta/activearena/episodes.jsonl").read_text().splitlines()]
+
+
+def test_dataset_opens_in_lerobot_with_stride16_history(built):
+    meta = LeRobotDatasetMetadata("local/bench_id", root=built)
+    eps = _episodes(built)
+    assert meta.total_episodes == 2 and meta.fps == 15 and meta.robot_type == "astribot_s1"
+    assert [e["task"] for e in eps] == [BELL, COUNT] and [e["seed"] for e in eps] == [0, 0]
+    assert [int(e["length"]) for e in meta.episodes] == [e["length"] for e in eps]
+    assert all("/" not in k for k in meta.features)
+    assert set(dataset_features()) <= set(meta.features) and meta.video_keys == [IMAGE_KEY]
+    ds = LeRobotDataset("local/bench_id", root=built, video_backend="pyav",
+                        delta_timestamps={IMAGE_KEY: HISTORY, "observation.state": HISTORY})
+    first_len = eps[0]["length"]
+    item = ds[first_len + 50]  # frame 50 of the second episode
+    assert item[IMAGE_KEY].shape == (13, 3, 384, 512) and item["observation.state"].shape == (13, 18)
+    # frames 50 - 16k exist for k <= 3; the other 9 history slots are padding
+    assert item[f"{IMAGE_KEY}_is_pad"].tolist() == [True] * 9 + [False] * 4
+    assert item["episode_index"] == 1 and item["frame_index"] == 50
+    sidecar = json.loads((built / "meta/activearena/sidecars/episode_000001.json").read_text())
+    assert item["task"] == sidecar["instruction"]
+    # the history is the real past: the stored state 16 frames earlier
+    assert np.allclose(item["observation.state"][-2].numpy(), ds.hf_dataset[first_len + 34]["observation.state"].numpy())
+
+
+def test_columns_match_the_expert_and_keyframe_definitions(built):
+    ds = LeRobotDataset("local/bench_id", root=built, video_backend="pyav")
+    first, ep = _episodes(built)  # the second is the count task: several objects, subtask changes
+    ref = run_expert_episode(ep["task"], ep["seed"], "id")  # deterministic: same seed, same trajectory
+    T = ref.length
+    rows = ds.hf_dataset.with_format("numpy")[first["length"]:first["length"] + T]
+    assert (rows["episode_index"] == 1).all() and len(rows["frame_index"]) == T
+    assert np.array_equal(rows["action"], ref.actions.astype(np.float32))
+    assert np.array_equal(rows["observation.state"], ref.states.astype(np.float32))
+    n = len(ref.sidecar["objects"])
+    visible = np.stack(rows["visible_object_mask"])
+    assert visible.shape == (T, MAX_OBJECTS) and (visible[:, n:] == MASK_PAD).all()
+    assert np.array_equal(visible[:, :n], np.stack([f["visible_object_mask"] for f in ref.frames]))
+    assert np.array_equal(rows["subtask_index"].ravel(), [f["subtask"] for f in ref.frames])
+    theta = np.array([f["camera_target_theta"] for f in ref.frames])
+    assert np.array_equal(rows["camera_target_active"].ravel(), np.isfinite(theta).astype(np.int8))
+    assert np.allclose(rows["camera_target_theta"].ravel()[np.isfinite(theta)], theta[np.isfinite(theta)])
+    assert np.allclose(matrix(rows, "extrinsic_cv")[7], ref.frames[7]["extrinsic_cv"])
+    assert np.array_equal(rows["subtask_keyframe"].ravel(), subtask_keyframes([f["subtask"] for f in ref.frames]))
+    assert np.array_equal(rows["motion_keyframe"].ravel(), motion_keyframes(ref.states))
+    assert np.array_equal(rows["chunk_keyframe"].ravel(), chunk_keyframes(T))
+    assert rows["subtask_keyframe"].sum() >= 2  # the count task changes subtask at least once
+
+
+def test_video_frames_are_the_head_camera_images(built):
+    ds = LeRobotDataset("local/bench_id", root=built, video_backend="pyav")
+    rec = record_episode(BELL, 0, "id")
+    for t in (0, 77, rec.result.length - 1):
+        decoded = (ds[t][IMAGE_KEY].numpy().transpose(1, 2, 0) * 255).astype(np.float32)
+        err = np.abs(decoded - rec.images[t].astype(np.float32)).mean()
+        assert err < 6.0, f"frame {t}: mean abs error {err:.1f} (lossy AV1 should stay well below 6)"
+
+
+def test_meta_folder_records_seeds_sidecars_and_plan(built):
+    build = json.loads((built / "meta/activearena/build.json").read_text())
+    assert build["episodes"] == 2 and build["skipped"] == 0 and build["plan"]["split"] == "id"
+    assert build["frames"] == sum(e["length"] for e in _episodes(built))
+    side = json.loads((built / "meta/activearena/sidecars/episode_000000.json").read_text())
+    assert side["task"] == BELL and side["seed"] == 0 and side["success"]
+    assert {"instruction", "objects", "subtasks", "transitions", "final_discovered"} <= set(side)
+    assert (built / "meta/activearena/skipped.jsonl").read_text() == ""
+    assert not built.with_name(built.name + ".work").exists()  # shards are removed after the merge
+
+
+def test_failed_expert_episodes_are_skipped_recorded_and_replaced(tmp_path, monkeypatch):
+    real = shard_mod.record_episode
+
+    def flaky(task, seed, split):
+        rec = real(task, seed, split)
+        if seed == 0:
+            rec.result.success, rec.result.failure = False, "forced failure for the test"
+        return rec
+
+    monkeypatch.setattr(shard_mod, "record_episode", flaky)
+    plan = BuildPlan(repo_id="local/flaky", split="id", tasks=[BELL], episodes=2, episodes_per_shard=2)
+    assert plan.shards[0].seeds == (0, 1) and plan.shards[0].reserve == (2, 3)
+    summary = build_dataset(plan, tmp_path / "flaky", workers=1, progress=False)
+    assert summary["episodes"] == 2 and summary["skipped"] == 1
+    assert [e["seed"] for e in _episodes(tmp_path / "flaky")] == [1, 2]  # seed 0 replaced by reserve seed 2
+    skipped = [json.loads(line) for line in (tmp_path / "flaky/meta/activearena/skipped.jsonl").read_text().splitlines()]
+    assert skipped == [{"task": BELL, "seed": 0, "split": "id", "reason": "forced failure for the test"}]
+
+
+def test_killed_build_resumes_and_keeps_finished_shards(tmp_path):
+    root, work = tmp_path / "resume", tmp_path / "resume.work"
+    cmd = [_exe("activearena-build-dataset"), "--repo-id", "local/resume", "--root", str(root), "--tasks", BELL,
+           "--episodes", "3", "--episodes-per-shard", "1", "--workers", "1", "--keep-shards"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    first = work / "shards" / f"00000-{BELL}" / "shard.json"
+    deadline = time.time() + 300
+    while not first.exists() and time.time() < deadline:
+        time.sleep(0.2)
+    assert first.exists(), "the first shard never completed"
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert not root.exists()  # the dataset folder only appears complete
+    stamp = first.stat().st_mtime_ns
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert "3 episodes" in out.stdout
+    meta = LeRobotDatasetMetadata("local/resume", root=root)
+    assert meta.total_episodes == 3 and [e["seed"] for e in _episodes(root)] == [0, 1, 2]
+    assert first.stat().st_mtime_ns == stamp  # the shard finished before the kill was kept, not rebuilt
+    # a second identical command is a no-op on a complete dataset
+    again = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert again.returncode == 0 and "3 episodes" in again.stdout
+
+
+def test_resume_does_not_rebuild_completed_shards(tmp_path, monkeypatch):
+    plan = BuildPlan(repo_id="local/partial", split="id", tasks=[BELL], episodes=2, episodes_per_shard=1)
+    work = tmp_path / "partial.work"
+    work.mkdir()
+    plan.save(work / "plan.json")
+    shard_mod.build_shard(plan.shards[0], "id", plan.repo_id, work, plan.max_objects)  # as if killed after shard 0
+    stamp = (work / "shards" / plan.shards[0].name / "shard.json").stat().st_mtime_ns
+    calls = []
+    real = shard_mod.record_episode
+    monkeypatch.setattr(shard_mod, "record_episode", lambda *a: calls.append(a) or real(*a))
+    summary = build_dataset(plan, tmp_path / "partial", work_dir=work, workers=1, keep_shards=True, progress=False)
+    assert calls == [(BELL, 1, "id")]  # only the missing shard ran
+    assert (work / "shards" / plan.shards[0].name / "shard.json").stat().st_mtime_ns == stamp
+    assert summary["episodes"] == 2
+
+
+def test_refuses_to_overwrite_other_data(tmp_path):
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "precious.txt").write_text("keep me")
+    plan = BuildPlan(repo_id="local/x", split="id", tasks=[BELL], episodes=1)
+    with pytest.raises(FileExistsError, match="--overwrite"):
+        build_dataset(plan, other, workers=1, progress=False)
+    assert (other / "precious.txt").read_text() == "keep me"
+    work = tmp_path / "w"
+    work.mkdir()
+    BuildPlan(repo_id="local/x", split="ood", tasks=[BELL], episodes=1).save(work / "plan.json")
+    with pytest.raises(FileExistsError, match="different arguments"):
+        build_dataset(plan, tmp_path / "new", work_dir=work, workers=1, progress=False)
+
+
+def test_bad_arguments_get_clear_errors():
+    with pytest.raises(ValueError, match="split"):
+        BuildPlan(repo_id="a/b", split="test", tasks=[BELL], episodes=1)
+    with pytest.raises(ValueError, match="exactly one"):
+        BuildPlan(repo_id="a/b", split="id", tasks=[BELL])
+    with pytest.raises(ValueError, match="unknown task"):
+        BuildPlan(repo_id="a/b", split="id", tasks=["nope"], episodes=1)
+    with pytest.raises(SystemExit):
+        build_main(["--repo-id", "a/b", "--root", "/tmp/x", "--episodes", "0"])
+    explicit = BuildPlan(repo_id="a/b", split="id", tasks=[BELL, COUNT], seeds=[5, 9, 11], episodes_per_shard=2)
+    assert [(s.task, s.seeds, s.reserve) for s in explicit.shards] == [
+        (BELL, (5, 9), ()), (BELL, (11,), ()), (COUNT, (5, 9), ()), (COUNT, (11,), ())]
+
+
+def test_push_to_hub_uses_lerobots_upload_path(built, monkeypatch, tmp_path):
+    from huggingface_hub import HfApi
+    from huggingface_hub.repocard import RepoCard
+
+    calls = {}
+
+    def record(name):
+        def fn(self, *args, **kwargs):
+            calls.setdefault(name, []).append(kwargs)
+            if name == "upload_folder":
+                shutil.copytree(kwargs["folder_path"], tmp_path / "hub", dirs_exist_ok=True)
+        return fn
+
+    for name in ("create_repo", "upload_folder", "upload_file", "create_commit", "create_tag", "delete_tag",
+                 "create_branch"):
+        monkeypatch.setattr(HfApi, name, record(name))
+    monkeypatch.setattr(RepoCard, "validate", lambda self, *a, **k: calls.setdefault("card", []).append(self.content))
+    push("local/bench_id", built)
+    assert calls["create_repo"][0]["repo_type"] == "dataset" and calls["create_repo"][0]["repo_id"] == "local/bench_id"
+    assert Path(calls["upload_folder"][0]["folder_path"]) == built
+    assert (tmp_path / "hub/meta/activearena/build.json").exists() and (tmp_path / "hub/meta/info.json").exists()
+    assert any((tmp_path / "hub/videos").rglob("*.mp4"))
+    assert "activearena" in calls["card"][0]  # LeRobot's dataset card, with our tags
+
+
+def test_lerobot_edit_dataset_info_and_merge(built, tmp_path):
+    info = subprocess.run([_exe("lerobot-edit-dataset"), "--repo_id", "local/bench_id", "--root", str(built),
+                           "--operation.type", "info"], capture_output=True, text=True, timeout=300)
+    assert info.returncode == 0, info.stderr[-2000:]
+    frames = json.loads((built / "meta/activearena/build.json").read_text())["frames"]
+    assert "Total episode: 2" in info.stdout and f"({frames})" in info.stdout and "FPS: 15" in info.stdout
+    merged = tmp_path / "merged"
+    out = subprocess.run([_exe("lerobot-edit-dataset"), "--new_repo_id", "local/merged", "--new_root", str(merged),
+                          "--operation.type", "merge", "--operation.repo_ids", "['local/bench_id', 'local/bench_id2']",
+                          "--operation.roots", f"['{built}', '{built}']"], capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-2000:]
+    meta = LeRobotDatasetMetadata("local/merged", root=merged)
+    assert meta.total_episodes == 4 and set(dataset_features()) <= set(meta.features)
+
+
+def test_lerobot_dataset_viz_saves_a_recording(built, tmp_path):
+    out = subprocess.run([_exe("lerobot-dataset-viz"), "--repo-id", "local/bench_id", "--root", str(built),
+                          "--episode-index", "0", "--mode", "local", "--save", "1", "--output-dir", str(tmp_path),
+                          "--num-workers", "0"], capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-2000:]
+    rrd = list(tmp_path.glob("*.rrd"))
+    assert rrd and rrd[0].stat().st_size > 100_000
