@@ -1,0 +1,75 @@
+"""Training-time access to an ActiveArena dataset's annotations by global frame ``index``: the
+current subtask text (for the ``<think>`` target) and the keyframe-memory frames (subtask / motion
+write policies pick a per-sample set of past frames that LeRobot's fixed delta indices cannot express)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from ...annotations.keyframes import memory_frames
+from .configuration_activearena_oft import IMAGE_KEY
+
+COLUMNS = ("episode_index", "frame_index", "subtask_index", "subtask_keyframe", "motion_keyframe")
+
+
+class DatasetAnnotations:
+    def __init__(self, root: str | Path, repo_id: str = "local/activearena"):
+        from lerobot.datasets.lerobot_dataset import LeRobotDataset
+
+        root = Path(root)
+        if not (root / "meta/info.json").is_file():
+            raise FileNotFoundError(f"{root} is not a LeRobot dataset (no meta/info.json); set --policy.dataset_root "
+                                    "to the ActiveArena dataset used for training")
+        self.ds = LeRobotDataset(repo_id, root=root, video_backend="pyav")
+        missing = [c for c in COLUMNS if c not in self.ds.features]
+        if missing:
+            raise ValueError(f"{root} lacks the ActiveArena annotation columns {missing}: build it with "
+                             "activearena-build-dataset")
+        table = self.ds.hf_dataset.with_format("numpy").select_columns(list(COLUMNS))[:]
+        self.cols = {c: np.asarray(table[c]).reshape(-1) for c in COLUMNS}
+        self.ep_start = {int(e["episode_index"]): int(e["dataset_from_index"]) for e in self.ds.meta.episodes}
+        self.ep_end = {int(e["episode_index"]): int(e["dataset_to_index"]) for e in self.ds.meta.episodes}
+        self.subtask_text: dict[int, dict[int, str]] = {}
+        self.instruction: dict[int, str] = {}
+        for ep in self.ep_start:
+            side = json.loads((root / f"meta/activearena/sidecars/episode_{ep:06d}.json").read_text())
+            self.subtask_text[ep] = {int(s["id"]): s["text"] for s in side["subtasks"]}
+            self.instruction[ep] = side["instruction"]
+
+    def subtask(self, index: int) -> str:
+        ep, sid = int(self.cols["episode_index"][index]), int(self.cols["subtask_index"][index])
+        return self.subtask_text[ep].get(sid, self.instruction[ep])
+
+    def memory_indices(self, index: int, policy: str, history: int) -> list[int]:
+        """Global indices of M_t for the frame at global ``index`` (chronological, all before it)."""
+        ep = int(self.cols["episode_index"][index])
+        start = self.ep_start[ep]
+        kf = self.cols[f"{policy}_keyframe"][start:self.ep_end[ep]] if policy in ("subtask", "motion") else None
+        return [start + f for f in memory_frames(policy, index - start, history, kf)]
+
+    def memory_batch(self, index: torch.Tensor, current: torch.Tensor, state: torch.Tensor | None, policy: str,
+                     history: int) -> tuple[torch.Tensor, torch.Tensor | None, torch.Tensor]:
+        """(B, history+1, C, H, W) images, (B, history+1, D) states and (B, history+1) is_pad: the memory
+        frames left-padded, then the current frame."""
+        B = current.shape[0]
+        images = current.new_zeros((B, history + 1, *current.shape[1:]))
+        states = None if state is None else state.new_zeros((B, history + 1, state.shape[-1]))
+        pad = torch.ones(B, history + 1, dtype=torch.bool)
+        for b in range(B):
+            mem = self.memory_indices(int(index[b]), policy, history)
+            slots = range(history - len(mem), history)
+            for slot, g in zip(slots, mem):
+                item = self.ds[g]
+                images[b, slot] = item[IMAGE_KEY].to(current)
+                if states is not None:
+                    states[b, slot] = item["observation.state"].to(state)
+                pad[b, slot] = False
+            images[b, history] = current[b]
+            if states is not None:
+                states[b, history] = state[b]
+            pad[b, history] = False
+        return images, states, pad

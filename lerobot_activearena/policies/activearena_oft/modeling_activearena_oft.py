@@ -1,0 +1,227 @@
+"""ActiveArena-VLA-OFT: Qwen3-VL reads the memory images, the current image (each optionally followed
+by a soft state token) and the instruction; 16 action-query positions after the prompt feed an
+MLPResNet that regresses a 16 x 18 chunk with L1. An optional ``<think>`` span *after* the queries
+is trained with next-token loss (weight 0.1); the queries cannot attend to it (causal attention), so
+actions never depend on text, generated or not.
+
+The same ``_encode`` serves training (history from the batch) and evaluation (history from the
+policy's memory bank, written causally and reset per episode), so both see identical inputs."""
+
+from __future__ import annotations
+
+from collections import deque
+
+import numpy as np
+import torch
+import torch.nn.functional as F
+from torch import Tensor, nn
+
+from lerobot.policies.pretrained import PreTrainedPolicy
+from lerobot.utils.constants import ACTION, OBS_STATE
+
+from ...annotations.keyframes import STRIDE, motion_keyframes
+from .configuration_activearena_oft import ActiveArenaOFTConfig
+from .heads import MLPResNet, StateEncoder
+from .processor_activearena_oft import (FRAME_VALID, GRID, PIXELS, PREFIX_IDS, PROMPT_IDS, PROMPT_MASK, RAW_STATE,
+                                        THINK_IDS, THINK_MASK)
+
+TEXT, IMAGE, STATE, QUERY, THINK = 0, 1, 2, 3, 4
+
+
+def _dtype(config: ActiveArenaOFTConfig) -> torch.dtype:
+    if config.dtype == "auto":
+        return torch.bfloat16 if str(config.device).startswith("cuda") else torch.float32
+    return {"float32": torch.float32, "bfloat16": torch.bfloat16}[config.dtype]
+
+
+class ActiveArenaOFTPolicy(PreTrainedPolicy):
+    config_class = ActiveArenaOFTConfig
+    name = "activearena_oft"
+
+    def __init__(self, config: ActiveArenaOFTConfig, **kwargs):
+        super().__init__(config)
+        config.validate_features()
+        self.config = config
+        from transformers import Qwen3VLForConditionalGeneration
+
+        self.vlm = Qwen3VLForConditionalGeneration.from_pretrained(config.vlm_path, dtype=_dtype(config))
+        if config.gradient_checkpointing:
+            self.vlm.gradient_checkpointing_enable()
+        vc = self.vlm.config
+        width = vc.text_config.hidden_size
+        self.max_frames = config.history + 1
+        self.action_queries = nn.Parameter(torch.randn(config.chunk_size, width) * 0.02)
+        self.head = MLPResNet(width, config.head_hidden_mult * width, config.action_dim, config.head_blocks)
+        state_ft = config.input_features.get(OBS_STATE)
+        self.state_encoder = (StateEncoder(int(state_ft.shape[0]), config.state_hidden, width, self.max_frames)
+                              if config.use_state else None)
+        self.image_token_id, self.vision_start_id, self.vision_end_id = (
+            vc.image_token_id, vc.vision_start_token_id, vc.vision_end_token_id)
+        self.pad_id = vc.text_config.pad_token_id or 0
+        self.reset()
+
+    # ----- optimisation -----
+    def get_optim_params(self) -> list[dict]:
+        backbone = [p for p in self.vlm.parameters() if p.requires_grad]
+        heads = [p for n, p in self.named_parameters() if not n.startswith("vlm.") and p.requires_grad]
+        return [{"params": backbone, "lr": self.config.optimizer_lr},
+                {"params": heads, "lr": self.config.head_lr}]
+
+    # ----- sequence assembly -----
+    def _encode(self, pixels: Tensor, grid: Tensor, valid: Tensor, state: Tensor | None, prefix: Tensor,
+                prompt: Tensor, prompt_mask: Tensor, think: Tensor | None = None, think_mask: Tensor | None = None):
+        """Returns the (B, chunk, action_dim) prediction and, when ``think`` is given, the LM loss."""
+        B, T = valid.shape
+        dev = self.action_queries.device
+        seqs, kinds, images, states = [], [], [], []
+        for b in range(B):
+            ids, kind = prefix[b].tolist(), [TEXT] * prefix.shape[1]
+            for j in range(T):
+                if not valid[b, j]:
+                    continue
+                n = int(grid[b, j].prod()) // self.vlm.config.vision_config.spatial_merge_size ** 2
+                ids += [self.vision_start_id] + [self.image_token_id] * n + [self.vision_end_id]
+                kind += [TEXT] + [IMAGE] * n + [TEXT]
+                images.append((b, j))
+                if self.state_encoder is not None:
+                    ids.append(self.pad_id)
+                    kind.append(STATE)
+                    states.append((b, j, j + self.max_frames - T))  # current frame: always the last slot
+            p = prompt[b][prompt_mask[b]].tolist()
+            ids += p + [self.pad_id] * self.config.chunk_size
+            kind += [TEXT] * len(p) + [QUERY] * self.config.chunk_size
+            if think is not None:
+                t = think[b][think_mask[b]].tolist()
+                ids += t
+                kind += [THINK] * len(t)
+            seqs.append(ids)
+            kinds.append(kind)
+        L = max(len(s) for s in seqs)
+        input_ids = torch.full((B, L), self.pad_id, dtype=torch.long)
+        kind = torch.full((B, L), -1, dtype=torch.long)
+        for b, (s, k) in enumerate(zip(seqs, kinds)):
+            input_ids[b, :len(s)], kind[b, :len(k)] = torch.tensor(s), torch.tensor(k)
+        input_ids, kind = input_ids.to(dev), kind.to(dev)
+        attn = (kind >= 0).long()
+        mm = (kind == IMAGE).long()
+        embeds = self.vlm.get_input_embeddings()(input_ids)
+        embeds = embeds.masked_scatter((kind == QUERY)[..., None],
+                                       self.action_queries.to(embeds.dtype).repeat(B, 1))
+        if states:
+            rows = torch.stack([state[b, j] for b, j, _ in states]).to(dev, torch.float32)
+            slots = torch.tensor([s for _, _, s in states], device=dev)
+            embeds = embeds.masked_scatter((kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype))
+        pv = torch.cat([pixels[b, j] for b, j in images]).to(dev, self.vlm.dtype)
+        thw = torch.stack([grid[b, j] for b, j in images]).to(dev)
+        position_ids, _ = self.vlm.model.get_rope_index(input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw,
+                                                        attention_mask=attn)
+        out = self.vlm.model(input_ids=None, inputs_embeds=embeds, attention_mask=attn, position_ids=position_ids,
+                             pixel_values=pv, image_grid_thw=thw, mm_token_type_ids=mm)
+        h = out.last_hidden_state
+        actions = self.head(h[kind == QUERY].view(B, self.config.chunk_size, -1).float())
+        lm_loss = None
+        if think is not None:
+            span = kind == THINK
+            src = span.clone()
+            src[:, :-1] &= span[:, 1:]  # a think token predicts the next think token
+            src[:, -1] = False
+            tgt = torch.zeros_like(span)
+            tgt[:, 1:] = src[:, :-1]
+            logits = self.vlm.lm_head(h[src]).float()
+            lm_loss = F.cross_entropy(logits, input_ids[tgt])
+        return actions, lm_loss
+
+    # ----- training -----
+    def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
+        state = batch.get(OBS_STATE) if self.state_encoder is not None else None
+        if state is not None and state.dim() == 2:
+            state = state[:, None]
+        think = batch.get(THINK_IDS) if self.config.think != "none" else None
+        pred, lm_loss = self._encode(batch[PIXELS], batch[GRID], batch[FRAME_VALID], state, batch[PREFIX_IDS],
+                                     batch[PROMPT_IDS], batch[PROMPT_MASK], think, batch.get(THINK_MASK))
+        target = batch[ACTION]
+        keep = ~batch["action_is_pad"] if "action_is_pad" in batch else torch.ones(target.shape[:2], dtype=torch.bool,
+                                                                                   device=target.device)
+        l1 = (pred - target).abs().mean(-1)
+        l1 = (l1 * keep).sum(-1) / keep.sum(-1).clamp(min=1)
+        loss = l1.mean() if reduction == "mean" else l1
+        info = {"l1_loss": float(l1.detach().mean())}
+        if lm_loss is not None:
+            loss = loss + self.config.lm_loss_weight * lm_loss
+            info["lm_loss"] = float(lm_loss.detach())
+        return loss, info
+
+    # ----- evaluation: memory bank -----
+    def reset(self) -> None:
+        self._queue: deque[Tensor] = deque()
+        self._bank: list[list[dict]] | None = None
+        self._raw_states: list[list[np.ndarray]] | None = None
+        self._t = 0
+
+    def _retained(self, b: int) -> bool:
+        """Is the frame just observed (step ``self._t``) written to env b's memory?"""
+        policy = self.config.memory
+        if policy == "chunk":
+            return self._t % STRIDE == 0
+        if policy == "motion":
+            return bool(motion_keyframes(np.stack(self._raw_states[b]))[-1])
+        return False
+
+    def _history_batch(self, batch: dict[str, Tensor]):
+        """Stack each env's last K memory entries (left-padded) and the current frame."""
+        B = batch[PIXELS].shape[0]
+        K = self.config.history if self.config.uses_history else 0
+        cur_pix, cur_grid = batch[PIXELS][:, -1], batch[GRID][:, -1]
+        cur_state = batch.get(OBS_STATE)
+        pixels = cur_pix.new_zeros((B, K + 1, *cur_pix.shape[1:]))
+        grid = cur_grid.new_ones((B, K + 1, 3))
+        valid = torch.zeros(B, K + 1, dtype=torch.bool)
+        state = None if cur_state is None else cur_state.new_zeros((B, K + 1, cur_state.shape[-1]))
+        for b in range(B):
+            mem = self._bank[b][-K:] if K else []
+            for slot, entry in zip(range(K - len(mem), K), mem):
+                pixels[b, slot], grid[b, slot], valid[b, slot] = entry["pixels"], entry["grid"], True
+                if state is not None:
+                    state[b, slot] = entry["state"]
+            pixels[b, K], grid[b, K], valid[b, K] = cur_pix[b], cur_grid[b], True
+            if state is not None:
+                state[b, K] = cur_state[b]
+        return pixels, grid, valid, state
+
+    @torch.no_grad()
+    def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        if self._bank is None:
+            self._start(batch)
+        pixels, grid, valid, state = self._history_batch(batch)
+        pred, _ = self._encode(pixels, grid, valid, state if self.state_encoder is not None else None,
+                               batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK])
+        return pred
+
+    def _start(self, batch: dict[str, Tensor]) -> None:
+        if self.config.memory == "subtask" and self.config.history > 0:
+            raise ValueError("memory=subtask needs subtask labels at evaluation, which the activearena env does not "
+                             "expose to policies; evaluate a chunk or motion memory policy, or memory=none")
+        B = batch[PIXELS].shape[0]
+        self._bank = [[] for _ in range(B)]
+        self._raw_states = [[] for _ in range(B)]
+
+    @torch.no_grad()
+    def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        self.eval()
+        if self._bank is None:
+            self._start(batch)
+        B = batch[PIXELS].shape[0]
+        if RAW_STATE in batch:
+            for b in range(B):
+                self._raw_states[b].append(batch[RAW_STATE][b].float().cpu().numpy())
+        if not self._queue:
+            chunk = self.predict_action_chunk(batch)[:, :self.config.n_action_steps]
+            self._queue.extend(chunk.transpose(0, 1))
+        if self.config.uses_history:
+            for b in range(B):
+                if self._retained(b):
+                    self._bank[b].append({"pixels": batch[PIXELS][b, -1], "grid": batch[GRID][b, -1],
+                                          "state": batch[OBS_STATE][b] if OBS_STATE in batch else None})
+                    del self._bank[b][:-self.config.history]
+        self._t += 1
+        return self._queue.popleft()

@@ -1,0 +1,171 @@
+"""Processors of ``activearena_oft``. Pre: rename -> batch -> annotations (training only: subtask
+text, keyframe memory) -> VLM inputs (Qwen image processing and tokenisation) -> normalise state /
+action -> device. Post: unnormalise the action -> CPU. Saved with the checkpoint, so
+``lerobot-eval --policy.path=...`` rebuilds them with no extra flags."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import torch
+
+from lerobot.configs.types import PipelineFeatureType, PolicyFeature
+from lerobot.lerobot_types import TransitionKey
+from lerobot.processor import PolicyAction, PolicyProcessorPipeline, ProcessorStep, ProcessorStepRegistry
+from lerobot.processor.factory import make_default_policy_processor_steps, make_policy_processor_pipelines
+from lerobot.utils.constants import OBS_STATE
+
+from .configuration_activearena_oft import IMAGE_KEY, ActiveArenaOFTConfig
+
+VLM = "observation.vlm."
+PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
+PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
+THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
+PREFIX = "<|im_start|>user\n"
+PROMPT = ("The images are ordered from earliest to latest, and the last image is the current view. "
+          "Task: {instruction}<|im_end|>\n<|im_start|>assistant\n")
+THINK = "<think>{target}</think><|im_end|>"
+
+
+def _pad_flag(comp: dict, B: int, T: int) -> torch.Tensor:
+    pad = comp.get(f"{IMAGE_KEY}_is_pad")
+    if pad is None or tuple(pad.shape) != (B, T):
+        return torch.zeros(B, T, dtype=torch.bool)
+    return pad.bool().cpu()
+
+
+@ProcessorStepRegistry.register(name="activearena_oft_annotations")
+@dataclass
+class ActiveArenaAnnotationStep(ProcessorStep):
+    """Training only (batches that carry the dataset ``index``): adds the annotated current subtask
+    text and, for the subtask / motion write policies, the keyframe-memory frames and states."""
+
+    dataset_root: str | None = None
+    repo_id: str = "local/activearena"
+    memory: str = "chunk"
+    history: int = 12
+    think: str = "none"
+    _ann: Any = field(default=None, init=False, repr=False)
+
+    def _needed(self) -> bool:
+        return self.think == "subtask" or (self.memory in ("subtask", "motion") and self.history > 0)
+
+    def __call__(self, transition):
+        comp = transition.get(TransitionKey.COMPLEMENTARY_DATA) or {}
+        index = comp.get("index")
+        if index is None or not self._needed():
+            return transition  # evaluation: the policy's own memory bank supplies history
+        if self.dataset_root is None:
+            raise ValueError("this activearena_oft configuration reads the dataset's annotations at training time; "
+                             "set --policy.dataset_root (lerobot-train fills it from --dataset.root)")
+        if self._ann is None:
+            from .dataset_annotations import DatasetAnnotations
+
+            self._ann = DatasetAnnotations(self.dataset_root, self.repo_id)
+        idx = torch.as_tensor(index).reshape(-1).tolist()
+        comp = dict(comp)
+        if self.think == "subtask":
+            comp["subtask"] = [self._ann.subtask(i) for i in idx]
+        obs = dict(transition[TransitionKey.OBSERVATION])
+        if self.memory in ("subtask", "motion") and self.history > 0:
+            img = obs[IMAGE_KEY]
+            if img.dim() != 4:
+                raise ValueError(f"keyframe memory expects the current frame only, got {tuple(img.shape)}")
+            obs[IMAGE_KEY], states, comp[f"{IMAGE_KEY}_is_pad"] = self._ann.memory_batch(
+                torch.tensor(idx), img, obs.get(OBS_STATE), self.memory, self.history)
+            if states is not None:
+                obs[OBS_STATE] = states
+        out = dict(transition)
+        out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
+        return out
+
+    def get_config(self) -> dict[str, Any]:
+        return {"dataset_root": self.dataset_root, "repo_id": self.repo_id, "memory": self.memory,
+                "history": self.history, "think": self.think}
+
+    def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
+        return features
+
+
+@ProcessorStepRegistry.register(name="activearena_oft_vlm_inputs")
+@dataclass
+class ActiveArenaVLMInputsStep(ProcessorStep):
+    """Qwen3-VL inputs: every head image (history + current) through the model's image processor,
+    the instruction prompt and (training) the ``<think>`` target through its tokenizer. The policy
+    assembles the token sequence, so its memory bank can reuse processed frames at evaluation."""
+
+    vlm_path: str = "Qwen/Qwen3-VL-2B-Instruct"
+    think: str = "none"
+    image_max_pixels: int = 512 * 384
+    _processor: Any = field(default=None, init=False, repr=False)
+
+    def __post_init__(self):
+        from transformers import AutoProcessor
+
+        self._processor = AutoProcessor.from_pretrained(self.vlm_path)
+
+    def _tokenize(self, texts: list[str]) -> tuple[torch.Tensor, torch.Tensor]:
+        tok = self._processor.tokenizer(texts, padding=True, padding_side="right", return_tensors="pt",
+                                        add_special_tokens=False)
+        return tok["input_ids"], tok["attention_mask"].bool()
+
+    def __call__(self, transition):
+        obs = dict(transition[TransitionKey.OBSERVATION])
+        comp = dict(transition.get(TransitionKey.COMPLEMENTARY_DATA) or {})
+        if IMAGE_KEY not in obs:
+            raise KeyError(f"activearena_oft needs {IMAGE_KEY!r} in the observation (got {sorted(obs)})")
+        img = obs.pop(IMAGE_KEY)
+        img = img[:, None] if img.dim() == 4 else img
+        B, T = img.shape[:2]
+        frames = (img.detach().float().clamp(0, 1) * 255).round().to(torch.uint8).cpu().flatten(0, 1)
+        out = self._processor.image_processor(images=list(frames), return_tensors="pt",
+                                              max_pixels=self.image_max_pixels, min_pixels=16 * 16 * 4)
+        pv = out["pixel_values"]
+        obs[PIXELS] = pv.reshape(B, T, -1, pv.shape[-1])
+        obs[GRID] = out["image_grid_thw"].reshape(B, T, 3)
+        obs[FRAME_VALID] = ~_pad_flag(comp, B, T)
+        if OBS_STATE in obs:
+            obs[RAW_STATE] = obs[OBS_STATE].clone()
+        tasks = comp.get("task")
+        if tasks is None:
+            raise ValueError("activearena_oft needs the task instruction ('task') in the batch")
+        tasks = [tasks] * B if isinstance(tasks, str) else list(tasks)
+        obs[PREFIX_IDS] = self._tokenize([PREFIX] * B)[0]
+        obs[PROMPT_IDS], obs[PROMPT_MASK] = self._tokenize([PROMPT.format(instruction=t) for t in tasks])
+        if transition.get(TransitionKey.ACTION) is not None and self.think != "none":
+            if self.think == "subtask":
+                if "subtask" not in comp:
+                    raise ValueError("think=subtask needs the annotated subtask text: train on an ActiveArena "
+                                     "dataset (activearena-build-dataset) with --policy.dataset_root set")
+                targets = list(comp["subtask"])
+            else:
+                targets = tasks
+            obs[THINK_IDS], obs[THINK_MASK] = self._tokenize([THINK.format(target=t) for t in targets])
+        out = dict(transition)
+        out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
+        return out
+
+    def get_config(self) -> dict[str, Any]:
+        return {"vlm_path": self.vlm_path, "think": self.think, "image_max_pixels": self.image_max_pixels}
+
+    def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
+        return features
+
+
+def make_activearena_oft_pre_post_processors(
+    config: ActiveArenaOFTConfig, dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
+    dataset_meta: Any | None = None,
+) -> tuple[PolicyProcessorPipeline[dict[str, Any], dict[str, Any]], PolicyProcessorPipeline[PolicyAction, PolicyAction]]:
+    if dataset_meta is not None and getattr(dataset_meta, "root", None) is not None:
+        config.dataset_root = str(dataset_meta.root)
+    s = make_default_policy_processor_steps(config, dataset_stats, normalizer_device=config.device)
+    annotations = ActiveArenaAnnotationStep(
+        dataset_root=config.dataset_root, repo_id=getattr(dataset_meta, "repo_id", None) or "local/activearena",
+        memory=config.memory, history=config.history, think=config.think)
+    inputs = ActiveArenaVLMInputsStep(vlm_path=config.vlm_path, think=config.think,
+                                      image_max_pixels=config.image_max_pixels)
+    return make_policy_processor_pipelines(
+        input_steps=[s.rename_observations, s.add_batch_dim, annotations, inputs, s.normalize, s.to_device],
+        output_steps=[s.unnormalize, s.to_cpu],
+    )
