@@ -157,6 +157,8 @@ def make_activearena_oft_pre_post_processors(
     config: ActiveArenaOFTConfig, dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
     dataset_meta: Any | None = None,
 ) -> tuple[PolicyProcessorPipeline[dict[str, Any], dict[str, Any]], PolicyProcessorPipeline[PolicyAction, PolicyAction]]:
+    # lerobot-train hands the dataset metadata to make_policy, which keeps it on the config
+    dataset_meta = dataset_meta or getattr(config, "_runtime_dataset_meta", None)
     if dataset_meta is not None and getattr(dataset_meta, "root", None) is not None:
         config.dataset_root = str(dataset_meta.root)
     s = make_default_policy_processor_steps(config, dataset_stats, normalizer_device=config.device)
