@@ -173,6 +173,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         K = self.config.history if self.config.uses_history else 0
         cur_pix, cur_grid = batch[PIXELS][:, -1], batch[GRID][:, -1]
         cur_state = batch.get(OBS_STATE)
+        cur_state = cur_state[:, -1] if cur_state is not None and cur_state.dim() == 3 else cur_state
         pixels = cur_pix.new_zeros((B, K + 1, *cur_pix.shape[1:]))
         grid = cur_grid.new_ones((B, K + 1, 3))
         valid = torch.zeros(B, K + 1, dtype=torch.bool)
@@ -190,9 +191,16 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
 
     @torch.no_grad()
     def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
-        if self._bank is None:
-            self._start(batch)
-        pixels, grid, valid, state = self._history_batch(batch)
+        """A chunk for the batch's current frames. A dataset batch carries its own history (T > 1);
+        an env batch (T = 1) gets it from the memory bank."""
+        if batch[PIXELS].shape[1] > 1:
+            state = batch.get(OBS_STATE)
+            state = state[:, None] if state is not None and state.dim() == 2 else state
+            pixels, grid, valid = batch[PIXELS], batch[GRID], batch[FRAME_VALID]
+        else:
+            if self._bank is None:
+                self._start(batch)
+            pixels, grid, valid, state = self._history_batch(batch)
         pred, _ = self._encode(pixels, grid, valid, state if self.state_encoder is not None else None,
                                batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK])
         return pred
@@ -220,7 +228,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         if self.config.uses_history:
             for b in range(B):
                 if self._retained(b):
-                    self._bank[b].append({"pixels": batch[PIXELS][b, -1], "grid": batch[GRID][b, -1],
+                    self._bank[b].append({"t": self._t, "pixels": batch[PIXELS][b, -1], "grid": batch[GRID][b, -1],
                                           "state": batch[OBS_STATE][b] if OBS_STATE in batch else None})
                     del self._bank[b][:-self.config.history]
         self._t += 1

@@ -1,0 +1,32 @@
+"""`activearena-make-tiny-vlm OUTDIR`: write a tiny random Qwen3-VL (model, tokenizer, image
+processor) that ``--policy.vlm_path=OUTDIR`` loads exactly like ``Qwen/Qwen3-VL-2B-Instruct``;
+for smoke runs, tests and docs on machines without the real weights."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+
+def main(argv: list[str] | None = None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0].split(": ", 1)[1])
+    p.add_argument("out_dir", type=Path)
+    p.add_argument("--hidden", type=int, default=64, help="text and vision width")
+    p.add_argument("--layers", type=int, default=2, help="text decoder layers")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--overwrite", action="store_true")
+    args = p.parse_args(argv)
+    if (args.out_dir / "config.json").exists() and not args.overwrite:
+        p.error(f"{args.out_dir} already holds a model; pass --overwrite to replace it")
+    if args.hidden % 4 or args.hidden < 32:
+        p.error("--hidden must be a multiple of 4 and >= 32")
+    from ..policies.activearena_oft.tiny_vlm import make_tiny_vlm
+
+    out = make_tiny_vlm(args.out_dir, hidden=args.hidden, layers=args.layers, seed=args.seed)
+    n = sum(f.stat().st_size for f in out.iterdir())
+    print(f"{out}: tiny Qwen3-VL ({args.layers} layers, width {args.hidden}), {n / 1e6:.1f} MB; "
+          f"use --policy.vlm_path={out}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,242 @@
+"""`activearena_oft` on CPU with a tiny random Qwen3-VL saved to disk and loaded by path: shapes and
+gradients, an overfit check, think text cannot reach the actions, no future frames in memory, the
+memory bank per write policy, save/load round trip, presets, and real lerobot-train + lerobot-eval."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
+from lerobot.datasets.factory import resolve_delta_timestamps
+from lerobot.datasets.lerobot_dataset import LeRobotDataset
+from lerobot.policies.factory import make_policy, make_pre_post_processors
+
+from lerobot_activearena.annotations.keyframes import motion_keyframes
+from lerobot_activearena.datasets_build.pipeline import build_dataset
+from lerobot_activearena.datasets_build.plan import BuildPlan
+from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
+from lerobot_activearena.policies.activearena_oft.dataset_annotations import DatasetAnnotations
+from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
+from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import PIXELS, THINK_IDS, THINK_MASK
+from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
+from lerobot_activearena.tasks.episode import run_expert_episode
+
+REPO = "local/oft_tiny"
+COUNT = "count_target_press_button"
+CONFIGS = Path(__file__).resolve().parents[1] / "configs" / "policy"
+
+
+def _exe(name):
+    return shutil.which(name, path=str(Path(sys.executable).parent)) or shutil.which(name)
+
+
+@pytest.fixture(scope="module")
+def vlm(tmp_path_factory):
+    return make_tiny_vlm(tmp_path_factory.mktemp("vlm") / "tiny_qwen3_vl")
+
+
+@pytest.fixture(scope="module")
+def root(tmp_path_factory):
+    root = tmp_path_factory.mktemp("oft_ds") / "ds"
+    plan = BuildPlan(repo_id=REPO, split="id", tasks=["click_bell_rotate_view", COUNT], episodes=1, episodes_per_shard=1)
+    build_dataset(plan, root, workers=2, progress=False)
+    return root
+
+
+def _setup(vlm, root, **overrides):
+    meta = LeRobotDatasetMetadata(REPO, root=root)
+    cfg = ActiveArenaOFTConfig(vlm_path=str(vlm), device="cpu", state_hidden=32, **overrides)
+    torch.manual_seed(0)
+    policy = make_policy(cfg, ds_meta=meta)
+    pre, post = make_pre_post_processors(cfg, dataset_stats=meta.stats)
+    ds = LeRobotDataset(REPO, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    return cfg, policy, pre, post, ds
+
+
+def _batch(ds, pre, indices):
+    items = [ds[i] for i in indices]
+    batch = torch.utils.data.default_collate(items)
+    return pre(batch)
+
+
+def test_forward_backward_shapes_and_gradients(vlm, root):
+    cfg, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="subtask")
+    batch = _batch(ds, pre, [70, len(ds) - 40])
+    assert batch[PIXELS].shape[:2] == (2, 5)  # 4 stride-16 history frames + the current one
+    assert batch["observation.state"].shape == (2, 5, 18)
+    assert batch[THINK_IDS].shape[0] == 2
+    loss, info = policy.forward(batch)
+    assert torch.isfinite(loss) and info["l1_loss"] > 0 and info["lm_loss"] > 0
+    loss.backward()
+    for name in ("action_queries", "head.inp.1.weight", "state_encoder.mlp.0.weight", "state_encoder.frame.weight"):
+        grad = dict(policy.named_parameters())[name].grad
+        assert grad is not None and grad.abs().sum() > 0, name
+    assert policy.vlm.get_input_embeddings().weight.grad.abs().sum() > 0  # the LM loss reaches the backbone
+    policy.reset()
+    with torch.no_grad():
+        assert policy.predict_action_chunk(_batch(ds, pre, [70])).shape == (1, 16, 18)
+    groups = policy.get_optim_params()
+    assert [g["lr"] for g in groups] == [1e-5, 1e-4]
+    assert sum(p.numel() for g in groups for p in g["params"]) == sum(p.numel() for p in policy.parameters())
+
+
+def test_loss_decreases_when_overfitting_a_fixed_batch(vlm, root):
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="instruction")
+    batch = _batch(ds, pre, [20, 90, len(ds) - 30])
+    opt = torch.optim.AdamW(policy.parameters(), lr=1e-3)
+    losses = []
+    for _ in range(30):
+        loss, info = policy.forward(batch)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+        losses.append(info["l1_loss"])
+    assert losses[-1] < 0.5 * losses[0], losses
+
+
+def test_actions_cannot_see_the_think_text(vlm, root):
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask")
+    batch = _batch(ds, pre, [40, len(ds) - 10])
+    policy.eval()
+    with torch.no_grad():
+        a_none, _ = policy._encode(*_encode_args(batch))
+        a_think, lm = policy._encode(*_encode_args(batch), batch[THINK_IDS], batch[THINK_MASK])
+        other = torch.flip(batch[THINK_IDS], dims=[1])
+        a_other, lm_other = policy._encode(*_encode_args(batch), other, torch.flip(batch[THINK_MASK], dims=[1]))
+    assert torch.allclose(a_none, a_think, atol=1e-5) and torch.allclose(a_none, a_other, atol=1e-5)
+    assert not torch.isclose(lm, lm_other)  # the think span is really there and read by the LM loss
+
+
+def _encode_args(batch):
+    return (batch[PIXELS], batch["observation.vlm.image_grid_thw"], batch["observation.vlm.frame_valid"],
+            batch["observation.state"], batch["observation.vlm.prefix_ids"], batch["observation.vlm.prompt_ids"],
+            batch["observation.vlm.prompt_mask"])
+
+
+def test_keyframe_memory_never_reads_the_future(vlm, root):
+    ann = DatasetAnnotations(root, REPO)
+    for policy in ("chunk", "subtask", "motion"):
+        for i in range(len(ann.cols["episode_index"])):
+            mem = ann.memory_indices(i, policy, 12)
+            ep = ann.cols["episode_index"][i]
+            assert all(m < i and ann.cols["episode_index"][m] == ep for m in mem), (policy, i, mem)
+            assert len(mem) <= 12
+    # a training batch with motion memory: history slots hold exactly the retained past frames
+    cfg, policy, pre, _, ds = _setup(vlm, root, memory="motion", history=3, think="none")
+    t = len(ds) - 60
+    batch = _batch(ds, pre, [t])
+    mem = ann.memory_indices(t, "motion", 3)
+    assert batch["observation.vlm.frame_valid"][0].tolist() == [False] * (3 - len(mem)) + [True] * (len(mem) + 1)
+    raw = batch["observation.vlm.raw_state"][0, 3 - len(mem):]
+    expect = torch.stack([ds.hf_dataset[m]["observation.state"] for m in mem + [t]])
+    assert torch.allclose(raw, expect)
+
+
+def _scripted_observations(T, seed=0):
+    """An expert trajectory's states with small random images, as lerobot-eval would pass them."""
+    ref = run_expert_episode(COUNT, 0, "id")
+    gen = torch.Generator().manual_seed(seed)
+    for t in range(T):
+        yield t, {"observation.images.head": torch.rand(1, 3, 64, 64, generator=gen),
+                  "observation.state": torch.as_tensor(ref.states[t], dtype=torch.float32)[None],
+                  "task": [ref.sidecar["instruction"]]}, ref.states
+
+
+@pytest.mark.parametrize("memory", ["chunk", "motion", "none"])
+def test_memory_bank_contents_per_write_policy(vlm, root, memory):
+    _, policy, pre, _, _ = _setup(vlm, root, memory=memory, history=4, think="none")
+    T = 70
+    for t, obs, states in _scripted_observations(T):
+        batch = pre(obs)
+        assert all(e["t"] < t for e in (policy._bank[0] if policy._bank else []))  # only the past is memory
+        policy.select_action(batch)
+        if policy._bank[0] and policy._bank[0][-1]["t"] == t:  # written now: it is this step's frame
+            assert torch.equal(policy._bank[0][-1]["pixels"], batch[PIXELS][0, -1])
+    if memory == "chunk":
+        expected = [0, 16, 32, 48, 64]
+    elif memory == "motion":
+        expected = [int(i) for i in np.flatnonzero(motion_keyframes(states[:T]))]
+    else:
+        expected = []
+    assert [e["t"] for e in policy._bank[0]] == expected[-4:]
+    policy.reset()
+    assert policy._bank is None and not policy._queue
+
+
+def test_subtask_memory_at_evaluation_is_refused_clearly(vlm, root):
+    _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="none")
+    _, obs, _ = next(_scripted_observations(1))
+    with pytest.raises(ValueError, match="subtask labels"):
+        policy.select_action(pre(obs))
+
+
+def test_save_and_reload_give_identical_actions(vlm, root, tmp_path):
+    cfg, policy, pre, post, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask")
+    with torch.no_grad():
+        for p in policy.head.parameters():
+            p.add_(0.01 * torch.randn_like(p))  # not the init: the weights must really round-trip
+    policy.save_pretrained(tmp_path)
+    pre.save_pretrained(tmp_path)
+    post.save_pretrained(tmp_path)
+    loaded = ActiveArenaOFTPolicy.from_pretrained(tmp_path)
+    pre2, post2 = make_pre_post_processors(loaded.config, pretrained_path=str(tmp_path))
+    policy.eval()
+    loaded.eval()
+    raw = torch.utils.data.default_collate([ds[50]])
+    with torch.no_grad():
+        a = post(policy.predict_action_chunk(pre(dict(raw))))
+        b = post2(loaded.predict_action_chunk(pre2(dict(raw))))
+    assert torch.equal(a, b)
+
+
+def test_bad_config_values_are_named():
+    with pytest.raises(ValueError, match="memory"):
+        ActiveArenaOFTConfig(memory="planned", device="cpu")
+    with pytest.raises(ValueError, match="think"):
+        ActiveArenaOFTConfig(think="plan", device="cpu")
+    with pytest.raises(ValueError, match="n_action_steps"):
+        ActiveArenaOFTConfig(n_action_steps=20, device="cpu")
+
+
+def test_presets_match_the_papers_run_names():
+    names = sorted(p.stem for p in CONFIGS.glob("oft_*.json"))
+    assert names == sorted(["oft_instruction_action_12_ws", "oft_no_action_12_ws", "oft_subtask_no_0_ws",
+                            "oft_subtask_action_12_wos", "oft_subtask_action_12_ws", "oft_subtask_action_6_ws",
+                            "oft_subtask_motion_12_ws", "oft_subtask_motion_6_ws", "oft_subtask_subtask_12_ws",
+                            "oft_subtask_subtask_6_ws"])
+    memory_of = {"action": "chunk", "no": "none", "motion": "motion", "subtask": "subtask"}
+    for name in names:
+        _, think, history, k, state = name.split("_")
+        policy = json.loads((CONFIGS / f"{name}.json").read_text())["policy"]
+        cfg = ActiveArenaOFTConfig(**{k2: v for k2, v in policy.items() if k2 != "type"}, device="cpu")
+        assert cfg.think == {"no": "none"}.get(think, think) and cfg.memory == memory_of[history]
+        assert cfg.history == int(k) and cfg.use_state == (state == "ws")
+        expected = [-16 * i for i in range(int(k), 0, -1)] + [0] if history == "action" else None
+        assert cfg.observation_delta_indices == expected
+
+
+def test_lerobot_train_then_lerobot_eval(vlm, root, tmp_path):
+    train_dir = tmp_path / "train"
+    train = subprocess.run([
+        _exe("lerobot-train"), f"--config_path={CONFIGS / 'oft_subtask_action_6_ws.json'}",
+        f"--dataset.repo_id={REPO}", f"--dataset.root={root}", f"--policy.vlm_path={vlm}",
+        "--policy.device=cpu", "--policy.state_hidden=32", "--steps=2", "--batch_size=2", "--num_workers=0",
+        "--save_freq=2", "--log_freq=1", f"--output_dir={train_dir}"], capture_output=True, text=True, timeout=600)
+    assert train.returncode == 0, train.stderr[-3000:]
+    assert "lm_loss" in train.stderr + train.stdout and "l1_loss" in train.stderr + train.stdout
+    ckpt = train_dir / "checkpoints" / "last" / "pretrained_model"
+    assert json.loads((ckpt / "config.json").read_text())["history"] == 6
+    out = tmp_path / "eval"
+    ev = subprocess.run([
+        _exe("lerobot-eval"), f"--policy.path={ckpt}", "--env.type=activearena", "--env.task=click_bell_rotate_view",
+        "--eval.n_episodes=1", "--eval.batch_size=1", "--policy.device=cpu", f"--output_dir={out}"],
+        capture_output=True, text=True, timeout=600)
+    assert ev.returncode == 0, ev.stderr[-3000:]
+    info = json.loads((out / "eval_info.json").read_text())
+    assert info["overall"]["n_episodes"] == 1
+    assert list(out.glob("videos/*/*.mp4"))
