@@ -168,11 +168,32 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
     assert policy._bank is None and not policy._queue
 
 
-def test_subtask_memory_at_evaluation_is_refused_clearly(vlm, root):
-    _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="none")
-    _, obs, _ = next(_scripted_observations(1))
-    with pytest.raises(ValueError, match="subtask labels"):
+def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, monkeypatch):
+    _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="subtask")
+    script = {0: (5, 6), 16: (5, 6), 32: (7,), 48: (8, 9), 64: (8, 9)}  # predicted subtask per chunk boundary
+    monkeypatch.setattr(policy, "predict_subtask", lambda args: [script[policy._t]])
+    for t, obs, _ in _scripted_observations(70):
         policy.select_action(pre(obs))
+    assert [e["t"] for e in policy._bank[0]] == [0, 32, 48]
+    _, refused, pre2, _, _ = _setup(vlm, root, memory="subtask", history=4, think="none")
+    _, obs, _ = next(_scripted_observations(1))
+    with pytest.raises(ValueError, match="think=subtask"):
+        refused.select_action(pre2(obs))
+
+
+def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=0, think="subtask")
+    batch = _batch(ds, pre, [len(ds) - 20])
+    opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
+    for _ in range(60):
+        loss, _ = policy.forward(batch)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+    policy.eval()
+    decoded = policy.predict_subtask(_encode_args(batch))[0]
+    target = batch[THINK_IDS][0][batch[THINK_MASK][0]].tolist()  # <think> text </think> <|im_end|>
+    assert list(decoded) == target[1:-1]
 
 
 def test_save_and_reload_give_identical_actions(vlm, root, tmp_path):

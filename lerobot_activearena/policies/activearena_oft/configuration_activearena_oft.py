@@ -30,6 +30,7 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
     use_state: bool = True
     think: str = "subtask"  # auxiliary <think> target: none | instruction | subtask
     lm_loss_weight: float = 0.1
+    subtask_max_tokens: int = 32  # memory=subtask at evaluation: greedy <think> decoding budget per chunk
     chunk_size: int = 16
     n_action_steps: int = 16
     state_hidden: int = 1024

@@ -69,10 +69,14 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
 
     # ----- sequence assembly -----
     def _encode(self, pixels: Tensor, grid: Tensor, valid: Tensor, state: Tensor | None, prefix: Tensor,
-                prompt: Tensor, prompt_mask: Tensor, think: Tensor | None = None, think_mask: Tensor | None = None):
-        """Returns the (B, chunk, action_dim) prediction and, when ``think`` is given, the LM loss."""
+                prompt: Tensor, prompt_mask: Tensor, think: Tensor | None = None, think_mask: Tensor | None = None,
+                next_token: bool = False):
+        """Returns the (B, chunk, action_dim) prediction and, when ``think`` is given, the LM loss (or,
+        with ``next_token``, the (B, vocab) logits after each sample's last think token)."""
         B, T = valid.shape
         dev = self.action_queries.device
+        if state is not None and state.dim() == 2:  # no history: one state per sample
+            state = state[:, None]
         seqs, kinds, images, states = [], [], [], []
         for b in range(B):
             ids, kind = prefix[b].tolist(), [TEXT] * prefix.shape[1]
@@ -120,6 +124,9 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         h = out.last_hidden_state
         actions = self.head(h[kind == QUERY].view(B, self.config.chunk_size, -1).float())
         lm_loss = None
+        if think is not None and next_token:
+            last = torch.where(kind == THINK, torch.arange(kind.shape[1], device=dev), -1).max(dim=1).values
+            return actions, self.vlm.lm_head(h[torch.arange(B, device=dev), last]).float()
         if think is not None:
             span = kind == THINK
             src = span.clone()
@@ -165,6 +172,9 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             return self._t % STRIDE == 0
         if policy == "motion":
             return bool(motion_keyframes(np.stack(self._raw_states[b]))[-1])
+        if policy == "subtask":  # decided at chunk boundaries, where the subtask is predicted
+            new, self._subtask_new[b] = self._subtask_new[b], False
+            return new
         return False
 
     def _history_batch(self, batch: dict[str, Tensor]):
@@ -201,17 +211,53 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             if self._bank is None:
                 self._start(batch)
             pixels, grid, valid, state = self._history_batch(batch)
-        pred, _ = self._encode(pixels, grid, valid, state if self.state_encoder is not None else None,
-                               batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK])
+        args = (pixels, grid, valid, state if self.state_encoder is not None else None,
+                batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK])
+        pred, _ = self._encode(*args)
+        if batch[PIXELS].shape[1] == 1 and self.config.memory == "subtask" and self.config.uses_history:
+            for b, sub in enumerate(self.predict_subtask(args)):
+                self._subtask_new[b] = sub != self._subtask[b]  # first frame of a new (predicted) subtask
+                self._subtask[b] = sub
         return pred
 
     def _start(self, batch: dict[str, Tensor]) -> None:
-        if self.config.memory == "subtask" and self.config.history > 0:
-            raise ValueError("memory=subtask needs subtask labels at evaluation, which the activearena env does not "
-                             "expose to policies; evaluate a chunk or motion memory policy, or memory=none")
+        if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
+            raise ValueError("memory=subtask at evaluation writes a frame when the policy's own predicted subtask "
+                             "changes, so it needs a policy trained with think=subtask")
         B = batch[PIXELS].shape[0]
         self._bank = [[] for _ in range(B)]
         self._raw_states = [[] for _ in range(B)]
+        self._subtask: list[tuple[int, ...] | None] = [None] * B
+        self._subtask_new = [False] * B
+
+    def _think_token_ids(self) -> tuple[int, int]:
+        if not hasattr(self, "_think_ids"):
+            from transformers import AutoTokenizer
+
+            tok = AutoTokenizer.from_pretrained(self.config.vlm_path)
+            self._think_ids = (tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>"))
+        return self._think_ids
+
+    @torch.no_grad()
+    def predict_subtask(self, encode_args: tuple) -> list[tuple[int, ...]]:
+        """Greedy ``<think>`` decoding: the token ids of each sample's predicted current subtask. It
+        decides which frames the subtask memory keeps; the actions never read it."""
+        start, end = self._think_token_ids()
+        B = encode_args[2].shape[0]
+        gen, done = [[start] for _ in range(B)], [False] * B
+        for _ in range(self.config.subtask_max_tokens):
+            L = max(len(g) for g in gen)
+            ids = torch.tensor([g + [self.pad_id] * (L - len(g)) for g in gen])
+            mask = torch.tensor([[True] * len(g) + [False] * (L - len(g)) for g in gen])
+            _, logits = self._encode(*encode_args, ids, mask, next_token=True)
+            nxt = logits.argmax(-1).tolist()
+            for b in range(B):
+                if not done[b]:
+                    gen[b].append(nxt[b])
+                    done[b] = nxt[b] == end
+            if all(done):
+                break
+        return [tuple(g[1:]) for g in gen]
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
