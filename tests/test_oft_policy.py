@@ -85,6 +85,41 @@ def test_forward_backward_shapes_and_gradients(vlm, root):
     assert sum(p.numel() for g in groups for p in g["params"]) == sum(p.numel() for p in policy.parameters())
 
 
+def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, root, monkeypatch):
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none")
+    batch = _batch(ds, pre, [60])
+    seen = {}
+    real = policy.vlm.model.forward
+
+    def spy(**kwargs):
+        seen.update(kwargs)
+        return real(**kwargs)
+
+    monkeypatch.setattr(policy.vlm.model, "forward", spy)
+    with torch.no_grad():
+        policy._encode(*_encode_args(batch))
+    pos = seen["position_ids"][:, 0]  # (3, L): temporal, height, width rows
+    image = seen["mm_token_type_ids"][0].bool()
+    assert seen["input_ids"] is None and seen["inputs_embeds"].shape[1] == pos.shape[1]
+    merge = policy.vlm.config.vision_config.spatial_merge_size
+    grids = seen["image_grid_thw"]
+    n_img = int(batch["observation.vlm.frame_valid"].sum())
+    assert len(grids) == n_img == 3  # frames 60-32, 60-16 and 60
+    starts = torch.nonzero(image[1:] & ~image[:-1]).flatten() + 1
+    prev_end = -1
+    for (t, h, w), s in zip(grids.tolist(), starts.tolist()):
+        n = t * h * w // merge ** 2
+        block = pos[:, s:s + n]
+        assert image[s:s + n].all() and (block[0] == block[0, 0]).all()  # one temporal index per image
+        assert len(block[1].unique()) == h // merge and len(block[2].unique()) == w // merge
+        assert block.min() == pos[:, s - 1].max() + 1 > prev_end  # continues after the preceding text
+        prev_end = block.max()
+    text = ~image
+    text_pos = pos[:, text]
+    assert (text_pos[0] == text_pos[1]).all() and (text_pos[1] == text_pos[2]).all()  # text: all rows equal
+    assert (text_pos[0].diff() > 0).all()  # and strictly increasing, state and query tokens included
+
+
 def test_loss_decreases_when_overfitting_a_fixed_batch(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="instruction")
     batch = _batch(ds, pre, [20, 90, len(ds) - 30])
