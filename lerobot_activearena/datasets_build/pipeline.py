@@ -33,6 +33,11 @@ class BuildShardStep(PipelineStep):
 
     def run(self, data=None, rank: int = 0, world_size: int = 1):
         spec = self.plan.shards[rank]
+        if self.encoder_threads == 1:  # one worker per core: keep Mesa's rasteriser and torch on it too
+            os.environ.setdefault("LP_NUM_THREADS", "1")
+            import torch
+
+            torch.set_num_threads(1)
         work = Path(self.work_dir)
         (work / "progress").mkdir(parents=True, exist_ok=True)
         summary = build_shard(spec, self.plan.split, self.plan.repo_id, work, self.plan.max_objects,
