@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import torch
+from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
@@ -257,6 +258,20 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(think="plan", device="cpu")
     with pytest.raises(ValueError, match="n_action_steps"):
         ActiveArenaOFTConfig(n_action_steps=20, device="cpu")
+
+
+def test_a_missing_vlm_names_the_flag_and_the_fix(tmp_path):
+    cfg = ActiveArenaOFTConfig(vlm_path=str(tmp_path / "no_such_vlm"), device="cpu")
+    with pytest.raises(OSError, match="--policy.vlm_path") as err:
+        make_pre_post_processors(cfg, dataset_stats={})
+    assert "activearena-make-tiny-vlm" in str(err.value) and "processor" in str(err.value)
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(OSError, match="Qwen3-VL model from vlm_path"):
+        ActiveArenaOFTPolicy(ActiveArenaOFTConfig(vlm_path=str(empty), device="cpu", input_features={
+            "observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
+            "observation.state": PolicyFeature(FeatureType.STATE, (18,))},
+            output_features={"action": PolicyFeature(FeatureType.ACTION, (18,))}))
 
 
 def test_presets_match_the_papers_run_names():

@@ -22,6 +22,7 @@ from lerobot.utils.constants import ACTION, OBS_STATE
 from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_oft import ActiveArenaOFTConfig
 from .heads import MLPResNet, StateEncoder
+from .vlm_loading import load_from_vlm_path
 from .processor_activearena_oft import (FRAME_VALID, GRID, PIXELS, PREFIX_IDS, PROMPT_IDS, PROMPT_MASK, RAW_STATE,
                                         THINK_IDS, THINK_MASK)
 
@@ -44,7 +45,8 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         self.config = config
         from transformers import Qwen3VLForConditionalGeneration
 
-        self.vlm = Qwen3VLForConditionalGeneration.from_pretrained(config.vlm_path, dtype=_dtype(config))
+        self.vlm = load_from_vlm_path(Qwen3VLForConditionalGeneration.from_pretrained, config.vlm_path, "model",
+                                      dtype=_dtype(config))
         if config.gradient_checkpointing:
             self.vlm.gradient_checkpointing_enable()
         vc = self.vlm.config
@@ -234,7 +236,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         if not hasattr(self, "_think_ids"):
             from transformers import AutoTokenizer
 
-            tok = AutoTokenizer.from_pretrained(self.config.vlm_path)
+            tok = load_from_vlm_path(AutoTokenizer.from_pretrained, self.config.vlm_path, "tokenizer")
             self._think_ids = (tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>"))
         return self._think_ids
 

@@ -17,6 +17,7 @@ from lerobot.processor.factory import make_default_policy_processor_steps, make_
 from lerobot.utils.constants import OBS_STATE
 
 from .configuration_activearena_oft import IMAGE_KEY, ActiveArenaOFTConfig
+from .vlm_loading import load_from_vlm_path
 
 VLM = "observation.vlm."
 PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
@@ -103,7 +104,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
     def __post_init__(self):
         from transformers import AutoProcessor
 
-        self._processor = AutoProcessor.from_pretrained(self.vlm_path)
+        self._processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.vlm_path, "processor")
 
     def _tokenize(self, texts: list[str]) -> tuple[torch.Tensor, torch.Tensor]:
         tok = self._processor.tokenizer(texts, padding=True, padding_side="right", return_tensors="pt",
