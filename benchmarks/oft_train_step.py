@@ -6,7 +6,8 @@
 Builds a small ActiveArena dataset (or uses --root), runs the real LeRobot factories
 (make_policy, make_pre_post_processors, the dataset with the config's delta_timestamps), and times
 preprocess + forward + backward + AdamW step at the given batch size with K history frames, then
-``select_action`` latency at a chunk boundary (one chunk = one VLM forward). Peak memory is
+``select_action`` latency at a chunk boundary (one chunk = one VLM forward) and, with think=subtask,
+the greedy ``<think>`` decoding that memory=subtask adds per chunk (KV-cached vs re-encoding). Peak memory is
 ``torch.cuda.max_memory_allocated`` on CUDA and the process's peak RSS on the CPU.
 """
 
@@ -105,6 +106,25 @@ def main() -> None:
             lat.append(time.perf_counter() - t0)
     print(f"inference: {lat[-1] * 1000:.0f} ms per chunk with {args.history} memory frames + the current "
           f"one ({lat[0] * 1000:.0f} ms with the current frame only)")
+    if args.think == "subtask":  # what memory=subtask adds per chunk: greedy <think> decoding
+        from lerobot_activearena.policies.activearena_oft import processor_activearena_oft as P
+
+        pixels, grid, valid, state = policy._history_batch(b)
+        enc = (pixels, grid, valid, state if policy.state_encoder is not None else None, b[P.PREFIX_IDS],
+               b[P.PROMPT_IDS], b[P.PROMPT_MASK])
+        dec = {}
+        for use_cache in (True, False):
+            with torch.no_grad():
+                if cuda:
+                    torch.cuda.synchronize()
+                t0 = time.perf_counter()
+                tokens, _ = policy._greedy_think(enc, use_cache=use_cache)
+                if cuda:
+                    torch.cuda.synchronize()
+                dec[use_cache] = (time.perf_counter() - t0, len(tokens[0]))
+        print(f"subtask decoding ({dec[True][1]} tokens, {args.history} memory frames): {dec[True][0] * 1000:.0f} ms "
+              f"with the KV cache, {dec[False][0] * 1000:.0f} ms re-encoding every step "
+              f"({dec[False][0] / dec[True][0]:.1f}x)")
 
 
 if __name__ == "__main__":

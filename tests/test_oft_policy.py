@@ -232,6 +232,19 @@ def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
     assert list(decoded) == target[1:-1]
 
 
+def test_cached_think_decoding_matches_re_encoding_the_whole_sequence(vlm, root):
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="subtask", subtask_max_tokens=6)
+    batch = _batch(ds, pre, [20, len(ds) - 40])  # 2 and 5 valid frames: sequences of different lengths
+    assert batch["observation.vlm.frame_valid"].sum(1).tolist() == [2, 5]
+    policy.eval()
+    with torch.no_grad():
+        cached, cached_logits = policy._greedy_think(_encode_args(batch), use_cache=True)
+        full, full_logits = policy._greedy_think(_encode_args(batch), use_cache=False)
+    assert cached == full and len(cached_logits) == len(full_logits) == 6
+    for a, b in zip(cached_logits, full_logits):
+        assert torch.allclose(a, b, atol=1e-4), (a - b).abs().max()
+
+
 def test_save_and_reload_give_identical_actions(vlm, root, tmp_path):
     cfg, policy, pre, post, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask")
     with torch.no_grad():

@@ -4,7 +4,7 @@ MLPResNet that regresses a 16 x 18 chunk with L1. An optional ``<think>`` span *
 is trained with next-token loss (weight 0.1); the queries cannot attend to it (causal attention), so
 actions never depend on text, generated or not.
 
-The same ``_encode`` serves training (history from the batch) and evaluation (history from the
+The same ``_assemble`` / ``_encode`` serve training (history from the batch) and evaluation (history from the
 policy's memory bank, written causally and reset per episode), so both see identical inputs."""
 
 from __future__ import annotations
@@ -70,11 +70,12 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 {"params": heads, "lr": self.config.head_lr}]
 
     # ----- sequence assembly -----
-    def _encode(self, pixels: Tensor, grid: Tensor, valid: Tensor, state: Tensor | None, prefix: Tensor,
-                prompt: Tensor, prompt_mask: Tensor, think: Tensor | None = None, think_mask: Tensor | None = None,
-                next_token: bool = False):
-        """Returns the (B, chunk, action_dim) prediction and, when ``think`` is given, the LM loss (or,
-        with ``next_token``, the (B, vocab) logits after each sample's last think token)."""
+    def _assemble(self, pixels: Tensor, grid: Tensor, valid: Tensor, state: Tensor | None, prefix: Tensor,
+                  prompt: Tensor, prompt_mask: Tensor, think: Tensor | None = None,
+                  think_mask: Tensor | None = None) -> dict[str, Tensor]:
+        """One right-padded token sequence per sample: the frames (each followed by its state token), the
+        prompt, the action queries, then the optional think span. Returns the backbone's inputs and the
+        per-position ``kind`` (-1 = padding)."""
         B, T = valid.shape
         dev = self.action_queries.device
         if state is not None and state.dim() == 2:  # no history: one state per sample
@@ -121,24 +122,32 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         thw = torch.stack([grid[b, j] for b, j in images]).to(dev)
         position_ids, _ = self.vlm.model.get_rope_index(input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw,
                                                         attention_mask=attn)
-        out = self.vlm.model(input_ids=None, inputs_embeds=embeds, attention_mask=attn, position_ids=position_ids,
-                             pixel_values=pv, image_grid_thw=thw, mm_token_type_ids=mm)
-        h = out.last_hidden_state
+        return {"input_ids": input_ids, "kind": kind, "inputs_embeds": embeds, "attention_mask": attn,
+                "position_ids": position_ids, "pixel_values": pv, "image_grid_thw": thw, "mm_token_type_ids": mm}
+
+    def _backbone(self, seq: dict[str, Tensor], use_cache: bool = False):
+        keys = ("inputs_embeds", "attention_mask", "position_ids", "pixel_values", "image_grid_thw",
+                "mm_token_type_ids")
+        return self.vlm.model(input_ids=None, use_cache=use_cache, **{k: seq[k] for k in keys})
+
+    def _encode(self, *args) -> tuple[Tensor, Tensor | None]:
+        """Returns the (B, chunk, action_dim) prediction and, when a think span is given, its LM loss.
+        Arguments as ``_assemble``."""
+        seq = self._assemble(*args)
+        kind, input_ids = seq["kind"], seq["input_ids"]
+        h = self._backbone(seq).last_hidden_state
+        B = kind.shape[0]
         actions = self.head(h[kind == QUERY].view(B, self.config.chunk_size, -1).float())
-        lm_loss = None
-        if think is not None and next_token:
-            last = torch.where(kind == THINK, torch.arange(kind.shape[1], device=dev), -1).max(dim=1).values
-            return actions, self.vlm.lm_head(h[torch.arange(B, device=dev), last]).float()
-        if think is not None:
-            span = kind == THINK
-            src = span.clone()
-            src[:, :-1] &= span[:, 1:]  # a think token predicts the next think token
-            src[:, -1] = False
-            tgt = torch.zeros_like(span)
-            tgt[:, 1:] = src[:, :-1]
-            logits = self.vlm.lm_head(h[src]).float()
-            lm_loss = F.cross_entropy(logits, input_ids[tgt])
-        return actions, lm_loss
+        if not (kind == THINK).any():
+            return actions, None
+        span = kind == THINK
+        src = span.clone()
+        src[:, :-1] &= span[:, 1:]  # a think token predicts the next think token
+        src[:, -1] = False
+        tgt = torch.zeros_like(span)
+        tgt[:, 1:] = src[:, :-1]
+        logits = self.vlm.lm_head(h[src]).float()
+        return actions, F.cross_entropy(logits, input_ids[tgt])
 
     # ----- training -----
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
@@ -242,24 +251,47 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
 
     @torch.no_grad()
     def predict_subtask(self, encode_args: tuple) -> list[tuple[int, ...]]:
-        """Greedy ``<think>`` decoding: the token ids of each sample's predicted current subtask. It
-        decides which frames the subtask memory keeps; the actions never read it."""
+        """Greedy ``<think>`` decoding: the token ids of each sample's predicted current subtask (up to and
+        including ``</think>``). It decides which frames the subtask memory keeps; the actions never read it."""
+        return self._greedy_think(encode_args)[0]
+
+    def _greedy_think(self, encode_args: tuple, use_cache: bool = True) -> tuple[list[tuple[int, ...]], list[Tensor]]:
+        """Greedy decoding after ``<think>``; returns the tokens and each step's (B, vocab) logits. With
+        ``use_cache`` the images and prompt go through the backbone once and every new token reuses
+        their keys and values; without it each step re-encodes the whole sequence (the reference)."""
         start, end = self._think_token_ids()
-        B = encode_args[2].shape[0]
-        gen, done = [[start] for _ in range(B)], [False] * B
+        B, dev = encode_args[2].shape[0], self.action_queries.device
+        gen, done, step_logits = [[] for _ in range(B)], [False] * B, []
+        fed: list[list[int]] = []  # the tokens fed back after <think> (every sample gets one per step)
+        rows = torch.arange(B, device=dev)
+        seq = cache = None
         for _ in range(self.config.subtask_max_tokens):
-            L = max(len(g) for g in gen)
-            ids = torch.tensor([g + [self.pad_id] * (L - len(g)) for g in gen])
-            mask = torch.tensor([[True] * len(g) + [False] * (L - len(g)) for g in gen])
-            _, logits = self._encode(*encode_args, ids, mask, next_token=True)
-            nxt = logits.argmax(-1).tolist()
+            if seq is None or not use_cache:
+                ids = torch.tensor([[start] + [int(t) for t in step] for step in zip(*fed)] if fed else [[start]] * B)
+                seq = self._assemble(*encode_args, ids, torch.ones_like(ids, dtype=torch.bool))
+                out = self._backbone(seq, use_cache=use_cache)
+                last = torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1).max(1).values
+                hidden, cache = out.last_hidden_state[rows, last], out.past_key_values
+                position = seq["position_ids"][:, rows, last]  # (3, B): a text token's M-RoPE position
+                attn = seq["attention_mask"]
+            else:
+                position = position + 1  # the next text token, on all M-RoPE axes
+                attn = torch.cat([attn, attn.new_ones(B, 1)], dim=1)
+                out = self.vlm.model.language_model(
+                    inputs_embeds=self.vlm.get_input_embeddings()(nxt.to(dev)[:, None]), attention_mask=attn,
+                    position_ids=position[..., None], past_key_values=cache, use_cache=True)
+                hidden, cache = out.last_hidden_state[:, -1], out.past_key_values
+            logits = self.vlm.lm_head(hidden).float()
+            step_logits.append(logits)
+            nxt = logits.argmax(-1)
+            fed.append(nxt.tolist())
             for b in range(B):
                 if not done[b]:
-                    gen[b].append(nxt[b])
-                    done[b] = nxt[b] == end
+                    gen[b].append(int(nxt[b]))
+                    done[b] = int(nxt[b]) == end
             if all(done):
                 break
-        return [tuple(g[1:]) for g in gen]
+        return [tuple(g) for g in gen], step_logits
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
