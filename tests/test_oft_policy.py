@@ -273,6 +273,17 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(n_action_steps=20, device="cpu")
 
 
+def test_local_vlm_and_dataset_paths_are_stored_absolute(vlm, tmp_path, monkeypatch):
+    monkeypatch.chdir(vlm.parent)
+    cfg = ActiveArenaOFTConfig(vlm_path=vlm.name, dataset_root=".", device="cpu")
+    assert cfg.vlm_path == str(vlm.resolve()) and cfg.dataset_root == str(vlm.parent.resolve())
+    monkeypatch.chdir(tmp_path)  # e.g. lerobot-eval started elsewhere: the saved config still points at the VLM
+    cfg.save_pretrained(tmp_path / "ckpt")
+    reloaded = ActiveArenaOFTConfig.from_pretrained(tmp_path / "ckpt")
+    assert reloaded.vlm_path == str(vlm.resolve())
+    assert ActiveArenaOFTConfig(device="cpu").vlm_path == "Qwen/Qwen3-VL-2B-Instruct"  # a Hub id stays as it is
+
+
 def test_a_missing_vlm_names_the_flag_and_the_fix(tmp_path):
     cfg = ActiveArenaOFTConfig(vlm_path=str(tmp_path / "no_such_vlm"), device="cpu")
     with pytest.raises(OSError, match="--policy.vlm_path") as err:

@@ -5,6 +5,7 @@ regressed by an MLPResNet with L1, and an auxiliary ``<think>`` language loss.""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from lerobot.configs.policies import PreTrainedConfig
 from lerobot.configs.types import FeatureType, NormalizationMode
@@ -71,6 +72,11 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
             self.history = 0
         if not 1 <= self.n_action_steps <= self.chunk_size:
             raise ValueError(f"n_action_steps ({self.n_action_steps}) must be in 1..chunk_size ({self.chunk_size})")
+        # A local folder is stored absolute, so a checkpoint reloads from any working directory.
+        for name in ("vlm_path", "dataset_root"):
+            value = getattr(self, name)
+            if value and Path(value).expanduser().is_dir():
+                setattr(self, name, str(Path(value).expanduser().resolve()))
 
     @property
     def uses_history(self) -> bool:
