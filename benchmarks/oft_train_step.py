@@ -2,6 +2,8 @@
 
     python benchmarks/oft_train_step.py                      # tiny random Qwen3-VL on the CPU
     python benchmarks/oft_train_step.py --vlm-path Qwen/Qwen3-VL-2B-Instruct --device cuda --batch-size 7
+    activearena-make-tiny-vlm /tmp/qwen3vl_2b_random --architecture qwen3-vl-2b   # 2B dimensions, random
+    python benchmarks/oft_train_step.py --vlm-path /tmp/qwen3vl_2b_random --steps 0 --dtype bfloat16 --skip-uncached --decode-tokens 8   # CPU inference
 
 Builds a small ActiveArena dataset (or uses --root), runs the real LeRobot factories
 (make_policy, make_pre_post_processors, the dataset with the config's delta_timestamps), and times
@@ -43,6 +45,9 @@ def main() -> None:
     p.add_argument("--think", default="subtask")
     p.add_argument("--steps", type=int, default=5)
     p.add_argument("--gradient-checkpointing", action="store_true")
+    p.add_argument("--decode-tokens", type=int, default=32, help="greedy <think> tokens per chunk (subtask_max_tokens)")
+    p.add_argument("--skip-uncached", action="store_true", help="do not time the re-encoding reference decoder")
+    p.add_argument("--dtype", default="auto", help="backbone dtype: auto (bfloat16 on CUDA) | float32 | bfloat16")
     args = p.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="aa_oft_bench_"))
     vlm = args.vlm_path or str(make_tiny_vlm(tmp / "tiny_vlm"))
@@ -54,7 +59,8 @@ def main() -> None:
         build_dataset(plan, root, workers=2, progress=False)
     meta = LeRobotDatasetMetadata(args.repo_id, root=root)
     cfg = ActiveArenaOFTConfig(vlm_path=vlm, device=args.device, memory=args.memory, history=args.history,
-                               think=args.think, gradient_checkpointing=args.gradient_checkpointing)
+                               think=args.think, gradient_checkpointing=args.gradient_checkpointing, dtype=args.dtype,
+                               subtask_max_tokens=args.decode_tokens)
     policy = make_policy(cfg, ds_meta=meta)
     pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
     ds = LeRobotDataset(args.repo_id, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta))
@@ -63,7 +69,7 @@ def main() -> None:
     opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
     cuda = args.device.startswith("cuda")
     times, images = [], 0
-    for step in range(args.steps + 1):
+    for step in range(args.steps + 1 if args.steps else 0):  # --steps 0: inference only
         raw = next(loader)
         if cuda:
             torch.cuda.synchronize()
@@ -84,48 +90,51 @@ def main() -> None:
             else f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS")
     print(f"model {vlm}: {n_params / 1e6:.1f} M parameters, device {args.device}, batch {args.batch_size}, "
           f"K={args.history} ({args.memory} memory), think={args.think}")
-    print(f"train step (preprocess + forward + backward + AdamW): {sum(times) / len(times):.3f} s mean over "
-          f"{len(times)} steps; images in the last batch: {images}; peak memory: {peak}")
+    if times:
+        print(f"train step (preprocess + forward + backward + AdamW): {sum(times) / len(times):.3f} s mean over "
+              f"{len(times)} steps; images in the last batch: {images}; peak memory: {peak}")
     policy.eval()
     policy.reset()
     item = {k: v for k, v in ds[len(ds) // 2].items()}
     obs = {"observation.images.head": item["observation.images.head"][-1:], "observation.state": item["observation.state"][-1:],
            "task": [item["task"]]}
-    # step through K chunks so the memory bank is full, then time the chunk boundaries
-    policy.reset()
-    lat = []
-    for t in range(16 * args.history + 1):
-        b = pre(dict(obs))
+    def timed(fn):
         if cuda:
             torch.cuda.synchronize()
         t0 = time.perf_counter()
-        policy.select_action(b)
+        out = fn()
         if cuda:
             torch.cuda.synchronize()
-        if t % 16 == 0:
-            lat.append(time.perf_counter() - t0)
-    print(f"inference: {lat[-1] * 1000:.0f} ms per chunk with {args.history} memory frames + the current "
-          f"one ({lat[0] * 1000:.0f} ms with the current frame only)")
-    if args.think == "subtask":  # what memory=subtask adds per chunk: greedy <think> decoding
-        from lerobot_activearena.policies.activearena_oft import processor_activearena_oft as P
+        return time.perf_counter() - t0, out
 
+    # chunk boundary with an empty memory, then one with a full bank (K frames, as K chunk boundaries
+    # of memory=chunk would have written; their content does not change the compute)
+    from lerobot_activearena.policies.activearena_oft import processor_activearena_oft as P
+
+    policy.reset()
+    b = pre(dict(obs))
+    lat = [timed(lambda: policy.select_action(b))[0]]
+    entry = {"pixels": b[P.PIXELS][0, -1], "grid": b[P.GRID][0, -1], "state": b["observation.state"][0]}
+    policy._bank[0] = [dict(entry, t=16 * k) for k in range(args.history)]
+    policy._queue.clear()
+    policy._t = 16 * args.history
+    lat.append(timed(lambda: policy.select_action(b))[0])
+    peak = (f"{torch.cuda.max_memory_allocated() / 2**30:.2f} GiB GPU" if cuda
+            else f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS")
+    print(f"inference: {lat[-1] * 1000:.0f} ms per chunk with {args.history} memory frames + the current "
+          f"one ({lat[0] * 1000:.0f} ms with the current frame only); peak memory so far: {peak}")
+    if args.think == "subtask":  # what memory=subtask adds per chunk: greedy <think> decoding
         pixels, grid, valid, state = policy._history_batch(b)
         enc = (pixels, grid, valid, state if policy.state_encoder is not None else None, b[P.PREFIX_IDS],
                b[P.PROMPT_IDS], b[P.PROMPT_MASK])
-        dec = {}
-        for use_cache in (True, False):
-            with torch.no_grad():
-                if cuda:
-                    torch.cuda.synchronize()
-                t0 = time.perf_counter()
-                tokens, _ = policy._greedy_think(enc, use_cache=use_cache)
-                if cuda:
-                    torch.cuda.synchronize()
-                dec[use_cache] = (time.perf_counter() - t0, len(tokens[0]))
-        print(f"subtask decoding ({dec[True][1]} tokens, {args.history} memory frames): {dec[True][0] * 1000:.0f} ms "
-              f"with the KV cache, {dec[False][0] * 1000:.0f} ms re-encoding every step "
-              f"({dec[False][0] / dec[True][0]:.1f}x)")
-
+        with torch.no_grad():
+            cached, (tokens, _) = timed(lambda: policy._greedy_think(enc, use_cache=True))
+            line = (f"subtask decoding ({len(tokens[0])} tokens, {args.history} memory frames): {cached * 1000:.0f} ms "
+                    "with the KV cache")
+            if not args.skip_uncached:
+                full = timed(lambda: policy._greedy_think(enc, use_cache=False))[0]
+                line += f", {full * 1000:.0f} ms re-encoding every step ({full / cached:.1f}x)"
+        print(line)
 
 if __name__ == "__main__":
     main()

@@ -298,6 +298,24 @@ def test_a_missing_vlm_names_the_flag_and_the_fix(tmp_path):
             output_features={"action": PolicyFeature(FeatureType.ACTION, (18,))}))
 
 
+def test_the_2b_architecture_preset_has_the_real_models_size(tmp_path):
+    from transformers import Qwen3VLConfig, Qwen3VLForConditionalGeneration
+
+    from lerobot_activearena.policies.activearena_oft.heads import MLPResNet
+    from lerobot_activearena.policies.activearena_oft.tiny_vlm import QWEN3_VL_2B
+
+    cfg = Qwen3VLConfig(text_config=dict(QWEN3_VL_2B["text"], tie_word_embeddings=True), tie_word_embeddings=True,
+                        vision_config=dict(QWEN3_VL_2B["vision"], patch_size=16, spatial_merge_size=2,
+                                           temporal_patch_size=2))
+    with torch.device("meta"):  # shapes only, no memory
+        model = Qwen3VLForConditionalGeneration(cfg)
+        head = MLPResNet(cfg.text_config.hidden_size, 2 * cfg.text_config.hidden_size, 18, 2)
+    assert 2.0e9 < sum(p.numel() for p in model.parameters()) < 2.2e9
+    assert (head.inp[1].in_features, head.inp[1].out_features) == (2048, 4096)  # the paper's OFT head
+    with pytest.raises(ValueError, match="architecture"):
+        make_tiny_vlm(tmp_path / "x", architecture="qwen3-vl-8b")
+
+
 def test_presets_match_the_papers_run_names():
     names = sorted(p.stem for p in CONFIGS.glob("oft_*.json"))
     assert names == sorted(["oft_instruction_action_12_ws", "oft_no_action_12_ws", "oft_subtask_no_0_ws",

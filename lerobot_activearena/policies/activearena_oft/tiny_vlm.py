@@ -31,8 +31,24 @@ def _corpus() -> list[str]:
     return lines * 4
 
 
-def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab: int = 1024, seed: int = 0) -> Path:
-    """Write a tiny Qwen3-VL (random weights), tokenizer and processor to ``out_dir``."""
+# Qwen/Qwen3-VL-2B-Instruct's dimensions (text: the Qwen3-1.7B decoder; vision: 24-layer ViT with
+# DeepStack taps 5/11/17), for measuring memory and latency at the real size without its weights.
+QWEN3_VL_2B = {
+    "text": dict(vocab_size=151936, hidden_size=2048, intermediate_size=6144, num_hidden_layers=28,
+                 num_attention_heads=16, num_key_value_heads=8, head_dim=128, max_position_embeddings=262144,
+                 rope_parameters={"rope_type": "default", "rope_theta": 5000000.0, "mrope_section": [24, 20, 20],
+                                  "mrope_interleaved": True}),
+    "vision": dict(depth=24, hidden_size=1024, intermediate_size=4096, num_heads=16, out_hidden_size=2048,
+                   num_position_embeddings=2304, deepstack_visual_indexes=[5, 11, 17]),
+}
+
+
+def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab: int = 1024, seed: int = 0,
+                  architecture: str = "tiny") -> Path:
+    """Write a random Qwen3-VL, tokenizer and processor to ``out_dir``: tiny (``hidden`` / ``layers``), or
+    with ``architecture="qwen3-vl-2b"`` the real 2B model's dimensions (saved in bfloat16, ~4.3 GB)."""
+    if architecture not in ("tiny", "qwen3-vl-2b"):
+        raise ValueError(f"architecture must be 'tiny' or 'qwen3-vl-2b', got {architecture!r}")
     import torch
     from tokenizers import Tokenizer, decoders, models, pre_tokenizers, trainers
     from transformers import (Qwen2TokenizerFast, Qwen2VLImageProcessor, Qwen3VLConfig,
@@ -58,22 +74,26 @@ def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab:
     processor = Qwen3VLProcessor(image_processor=image_proc, tokenizer=tok, video_processor=video_proc,
                                  chat_template=CHAT_TEMPLATE)
     heads = 4
+    text = dict(vocab_size=len(tok), hidden_size=hidden, intermediate_size=2 * hidden, num_hidden_layers=layers,
+                num_attention_heads=heads, num_key_value_heads=2, head_dim=hidden // heads,
+                max_position_embeddings=8192,
+                rope_parameters={"rope_type": "default", "rope_theta": 10000.0, "mrope_section": [2, 3, 3],
+                                 "mrope_interleaved": True})
+    vision = dict(depth=2, hidden_size=hidden, intermediate_size=2 * hidden, num_heads=heads, out_hidden_size=hidden,
+                  num_position_embeddings=1024, deepstack_visual_indexes=[1])
+    if architecture == "qwen3-vl-2b":
+        text, vision = dict(QWEN3_VL_2B["text"]), dict(QWEN3_VL_2B["vision"])
     config = Qwen3VLConfig(
-        text_config=dict(vocab_size=len(tok), hidden_size=hidden, intermediate_size=2 * hidden,
-                         num_hidden_layers=layers, num_attention_heads=heads, num_key_value_heads=2,
-                         head_dim=hidden // heads, max_position_embeddings=8192, tie_word_embeddings=True,
-                         rope_parameters={"rope_type": "default", "rope_theta": 10000.0, "mrope_section": [2, 3, 3],
-                                          "mrope_interleaved": True},
-                         pad_token_id=ids["<|endoftext|>"]),
-        vision_config=dict(depth=2, hidden_size=hidden, intermediate_size=2 * hidden, num_heads=heads,
-                           patch_size=16, spatial_merge_size=2, temporal_patch_size=2, out_hidden_size=hidden,
-                           num_position_embeddings=1024, deepstack_visual_indexes=[1]),
+        text_config=dict(text, tie_word_embeddings=True, pad_token_id=ids["<|endoftext|>"]),
+        vision_config=dict(vision, patch_size=16, spatial_merge_size=2, temporal_patch_size=2),
         image_token_id=ids["<|image_pad|>"], video_token_id=ids["<|video_pad|>"],
         vision_start_token_id=ids["<|vision_start|>"], vision_end_token_id=ids["<|vision_end|>"],
         tie_word_embeddings=True,
     )
     torch.manual_seed(seed)
     model = Qwen3VLForConditionalGeneration(config)
+    if architecture != "tiny":
+        model = model.to(torch.bfloat16)
     model.save_pretrained(out)
     processor.save_pretrained(out)
     return out
