@@ -128,9 +128,9 @@ def main() -> None:
         enc = (pixels, grid, valid, state if policy.state_encoder is not None else None, b[P.PREFIX_IDS],
                b[P.PROMPT_IDS], b[P.PROMPT_MASK])
         with torch.no_grad():
-            cached, (tokens, _) = timed(lambda: policy._greedy_think(enc, use_cache=True))
+            cached, (tokens, _, _) = timed(lambda: policy._greedy_think(enc, use_cache=True))
             line = (f"subtask decoding ({len(tokens[0])} tokens, {args.history} memory frames): {cached * 1000:.0f} ms "
-                    "with the KV cache")
+                    "with the KV cache (the same pass also gives the chunk)")
             if not args.skip_uncached:
                 full = timed(lambda: policy._greedy_think(enc, use_cache=False))[0]
                 line += f", {full * 1000:.0f} ms re-encoding every step ({full / cached:.1f}x)"

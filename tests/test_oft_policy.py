@@ -207,7 +207,8 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
 def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, monkeypatch):
     _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="subtask")
     script = {0: (5, 6), 16: (5, 6), 32: (7,), 48: (8, 9), 64: (8, 9)}  # predicted subtask per chunk boundary
-    monkeypatch.setattr(policy, "predict_subtask", lambda args: [script[policy._t]])
+    monkeypatch.setattr(policy, "predict_subtask_and_actions",
+                        lambda args: ([script[policy._t]], policy._encode(*args)[0]))
     for t, obs, _ in _scripted_observations(70):
         policy.select_action(pre(obs))
     assert [e["t"] for e in policy._bank[0]] == [0, 32, 48]
@@ -215,6 +216,22 @@ def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, mo
     _, obs, _ = next(_scripted_observations(1))
     with pytest.raises(ValueError, match="think=subtask"):
         refused.select_action(pre2(obs))
+
+
+def test_subtask_memory_decodes_and_acts_from_one_pass(vlm, root):
+    _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="subtask", subtask_max_tokens=4)
+    policy.eval()
+    _, obs, _ = next(_scripted_observations(1))
+    batch = pre(obs)
+    policy._start(batch)
+    pixels, grid, valid, state = policy._history_batch(batch)
+    with torch.no_grad():
+        alone, _ = policy._encode(pixels, grid, valid, state, batch["observation.vlm.prefix_ids"],
+                                  batch["observation.vlm.prompt_ids"], batch["observation.vlm.prompt_mask"])
+    action = policy.select_action(batch)
+    assert torch.allclose(action, alone[:, 0], atol=1e-5)
+    assert policy._subtask[0] is not None and len(policy._subtask[0]) <= 4  # decoded, within the budget
+    assert [e["t"] for e in policy._bank[0]] == [0]  # the first predicted subtask starts the memory
 
 
 def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
@@ -238,9 +255,11 @@ def test_cached_think_decoding_matches_re_encoding_the_whole_sequence(vlm, root)
     assert batch["observation.vlm.frame_valid"].sum(1).tolist() == [2, 5]
     policy.eval()
     with torch.no_grad():
-        cached, cached_logits = policy._greedy_think(_encode_args(batch), use_cache=True)
-        full, full_logits = policy._greedy_think(_encode_args(batch), use_cache=False)
+        cached, cached_logits, actions = policy._greedy_think(_encode_args(batch), use_cache=True)
+        full, full_logits, _ = policy._greedy_think(_encode_args(batch), use_cache=False)
+        alone, _ = policy._encode(*_encode_args(batch))
     assert cached == full and len(cached_logits) == len(full_logits) == 6
+    assert torch.allclose(actions, alone, atol=1e-5)  # one pass serves the chunk and the subtask
     for a, b in zip(cached_logits, full_logits):
         assert torch.allclose(a, b, atol=1e-4), (a - b).abs().max()
 

@@ -224,12 +224,13 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             pixels, grid, valid, state = self._history_batch(batch)
         args = (pixels, grid, valid, state if self.state_encoder is not None else None,
                 batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK])
-        pred, _ = self._encode(*args)
         if batch[PIXELS].shape[1] == 1 and self.config.memory == "subtask" and self.config.uses_history:
-            for b, sub in enumerate(self.predict_subtask(args)):
+            subtasks, pred = self.predict_subtask_and_actions(args)
+            for b, sub in enumerate(subtasks):
                 self._subtask_new[b] = sub != self._subtask[b]  # first frame of a new (predicted) subtask
                 self._subtask[b] = sub
-        return pred
+            return pred
+        return self._encode(*args)[0]
 
     def _start(self, batch: dict[str, Tensor]) -> None:
         if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
@@ -255,8 +256,17 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         including ``</think>``). It decides which frames the subtask memory keeps; the actions never read it."""
         return self._greedy_think(encode_args)[0]
 
-    def _greedy_think(self, encode_args: tuple, use_cache: bool = True) -> tuple[list[tuple[int, ...]], list[Tensor]]:
-        """Greedy decoding after ``<think>``; returns the tokens and each step's (B, vocab) logits. With
+    @torch.no_grad()
+    def predict_subtask_and_actions(self, encode_args: tuple) -> tuple[list[tuple[int, ...]], Tensor]:
+        """The predicted subtasks and the action chunk from one backbone pass over images and prompt: the
+        queries sit before ``<think>``, so (causal attention) the actions are those of ``_encode``."""
+        tokens, _, actions = self._greedy_think(encode_args)
+        return tokens, actions
+
+    def _greedy_think(self, encode_args: tuple, use_cache: bool = True
+                      ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
+        """Greedy decoding after ``<think>``; returns the tokens, each step's (B, vocab) logits and the
+        action chunk read from the first pass's query positions. With
         ``use_cache`` the images and prompt go through the backbone once and every new token reuses
         their keys and values; without it each step re-encodes the whole sequence (the reference)."""
         start, end = self._think_token_ids()
@@ -264,7 +274,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         gen, done, step_logits = [[] for _ in range(B)], [False] * B, []
         fed: list[list[int]] = []  # the tokens fed back after <think> (every sample gets one per step)
         rows = torch.arange(B, device=dev)
-        seq = cache = None
+        seq = cache = actions = None
         for _ in range(self.config.subtask_max_tokens):
             if seq is None or not use_cache:
                 ids = torch.tensor([[start] + [int(t) for t in step] for step in zip(*fed)] if fed else [[start]] * B)
@@ -272,6 +282,9 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 out = self._backbone(seq, use_cache=use_cache)
                 last = torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1).max(1).values
                 hidden, cache = out.last_hidden_state[rows, last], out.past_key_values
+                if actions is None:
+                    q = out.last_hidden_state[seq["kind"] == QUERY].view(B, self.config.chunk_size, -1)
+                    actions = self.head(q.float())
                 position = seq["position_ids"][:, rows, last]  # (3, B): a text token's M-RoPE position
                 attn = seq["attention_mask"]
             else:
@@ -291,7 +304,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                     done[b] = int(nxt[b]) == end
             if all(done):
                 break
-        return [tuple(g) for g in gen], step_logits
+        return [tuple(g) for g in gen], step_logits, actions
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
