@@ -96,7 +96,9 @@ def main() -> None:
     policy.eval()
     policy.reset()
     item = {k: v for k, v in ds[len(ds) // 2].items()}
-    obs = {"observation.images.head": item["observation.images.head"][-1:], "observation.state": item["observation.state"][-1:],
+    image, state = item["observation.images.head"], item["observation.state"]
+    obs = {"observation.images.head": (image[-1] if image.dim() == 4 else image)[None],  # the current frame,
+           "observation.state": (state[-1] if state.dim() == 2 else state)[None],       # as an env batch of 1
            "task": [item["task"]]}
     def timed(fn):
         if cuda:

@@ -234,6 +234,14 @@ def test_subtask_memory_decodes_and_acts_from_one_pass(vlm, root):
     assert [e["t"] for e in policy._bank[0]] == [0]  # the first predicted subtask starts the memory
 
 
+def test_a_wrongly_shaped_state_at_evaluation_is_named(vlm, root):
+    _, policy, pre, _, _ = _setup(vlm, root, memory="motion", history=4, think="none")
+    _, obs, _ = next(_scripted_observations(1))
+    obs["observation.state"] = obs["observation.state"][:, :1]  # e.g. one joint instead of the 18-D state
+    with pytest.raises(ValueError, match=r"observation.state must be \(batch, 18\)"):
+        policy.select_action(pre(obs))
+
+
 def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=0, think="subtask")
     batch = _batch(ds, pre, [len(ds) - 20])

@@ -313,6 +313,11 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             self._start(batch)
         B = batch[PIXELS].shape[0]
         if RAW_STATE in batch:
+            dim = self.config.input_features[OBS_STATE].shape[0]
+            if tuple(batch[RAW_STATE].shape) != (B, dim):
+                raise ValueError(f"observation.state must be (batch, {dim}) at evaluation, got "
+                                 f"{tuple(batch[RAW_STATE].shape)}: pass the current state only (history comes "
+                                 "from the policy's memory bank)")
             for b in range(B):
                 self._raw_states[b].append(batch[RAW_STATE][b].float().cpu().numpy())
         if not self._queue:
