@@ -90,20 +90,22 @@ def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, r
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none")
     batch = _batch(ds, pre, [60])
     seen = {}
-    real = policy.vlm.model.forward
+    real = policy.vlm.model.language_model.forward
 
     def spy(**kwargs):
         seen.update(kwargs)
         return real(**kwargs)
 
-    monkeypatch.setattr(policy.vlm.model, "forward", spy)
+    monkeypatch.setattr(policy.vlm.model.language_model, "forward", spy)
     with torch.no_grad():
-        policy._encode(*_encode_args(batch))
-    pos = seen["position_ids"][:, 0]  # (3, L): temporal, height, width rows
-    image = seen["mm_token_type_ids"][0].bool()
-    assert seen["input_ids"] is None and seen["inputs_embeds"].shape[1] == pos.shape[1]
+        seq = policy._assemble(*_encode_args(batch))
+        policy._backbone(seq)
+    assert torch.equal(seen["position_ids"], seq["position_ids"])  # the decoder gets exactly these
+    pos = seq["position_ids"][:, 0]  # (3, L): temporal, height, width rows
+    image = seq["mm_token_type_ids"][0].bool()
+    assert seen.get("input_ids") is None and seen["inputs_embeds"].shape[1] == pos.shape[1]
     merge = policy.vlm.config.vision_config.spatial_merge_size
-    grids = seen["image_grid_thw"]
+    grids = seq["image_grid_thw"]
     n_img = int(batch["observation.vlm.frame_valid"].sum())
     assert len(grids) == n_img == 3  # frames 60-32, 60-16 and 60
     starts = torch.nonzero(image[1:] & ~image[:-1]).flatten() + 1
@@ -208,7 +210,7 @@ def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, mo
     _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="subtask")
     script = {0: (5, 6), 16: (5, 6), 32: (7,), 48: (8, 9), 64: (8, 9)}  # predicted subtask per chunk boundary
     monkeypatch.setattr(policy, "predict_subtask_and_actions",
-                        lambda args: ([script[policy._t]], policy._encode(*args)[0]))
+                        lambda args, vision_cache=None: ([script[policy._t]], policy._encode(*args)[0]))
     for t, obs, _ in _scripted_observations(70):
         policy.select_action(pre(obs))
     assert [e["t"] for e in policy._bank[0]] == [0, 32, 48]
@@ -224,7 +226,7 @@ def test_subtask_memory_decodes_and_acts_from_one_pass(vlm, root):
     _, obs, _ = next(_scripted_observations(1))
     batch = pre(obs)
     policy._start(batch)
-    pixels, grid, valid, state = policy._history_batch(batch)
+    pixels, grid, valid, state, _ = policy._history_batch(batch)
     with torch.no_grad():
         alone, _ = policy._encode(pixels, grid, valid, state, batch["observation.vlm.prefix_ids"],
                                   batch["observation.vlm.prompt_ids"], batch["observation.vlm.prompt_mask"])
@@ -240,6 +242,38 @@ def test_a_wrongly_shaped_state_at_evaluation_is_named(vlm, root):
     obs["observation.state"] = obs["observation.state"][:, :1]  # e.g. one joint instead of the 18-D state
     with pytest.raises(ValueError, match=r"observation.state must be \(batch, 18\)"):
         policy.select_action(pre(obs))
+
+
+def test_backbone_matches_qwen3_vl_forward(vlm, root):
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="none")
+    batch = _batch(ds, pre, [20, len(ds) - 40])
+    with torch.no_grad():
+        seq = policy._assemble(*_encode_args(batch))
+        ours = policy._backbone(seq)[0].last_hidden_state
+        keys = ("inputs_embeds", "attention_mask", "position_ids", "pixel_values", "image_grid_thw", "mm_token_type_ids")
+        ref = policy.vlm.model(input_ids=None, **{k: seq[k] for k in keys}).last_hidden_state
+    real = seq["attention_mask"].bool()
+    assert torch.allclose(ours[real], ref[real], atol=1e-5)
+
+
+def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
+    _, policy, pre, _, _ = _setup(vlm, root, memory="chunk", history=2, think="none")
+    policy.eval()
+    seen = []
+    vision = policy._vision
+    monkeypatch.setattr(policy, "_vision", lambda pv, grid: seen.append(len(grid)) or vision(pv, grid))
+    for t, obs, _ in _scripted_observations(33):
+        batch = pre(obs)
+        if t == 32:  # a full bank (frames 0 and 16): compare with encoding every image afresh
+            pixels, grid, valid, state, _ = policy._history_batch(batch)
+            with torch.no_grad():
+                fresh, _ = policy._encode(pixels, grid, valid, state, batch["observation.vlm.prefix_ids"],
+                                          batch["observation.vlm.prompt_ids"], batch["observation.vlm.prompt_mask"])
+            seen.clear()
+        action = policy.select_action(batch)
+    assert seen == [1]  # only the current frame went through the vision tower
+    assert torch.allclose(action, fresh[:, 0], atol=1e-5)
+    assert all(e["vision"] is not None for e in policy._bank[0])
 
 
 def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):

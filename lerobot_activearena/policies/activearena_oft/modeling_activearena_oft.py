@@ -123,19 +123,46 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         position_ids, _ = self.vlm.model.get_rope_index(input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw,
                                                         attention_mask=attn)
         return {"input_ids": input_ids, "kind": kind, "inputs_embeds": embeds, "attention_mask": attn,
-                "position_ids": position_ids, "pixel_values": pv, "image_grid_thw": thw, "mm_token_type_ids": mm}
+                "position_ids": position_ids, "pixel_values": pv, "image_grid_thw": thw, "mm_token_type_ids": mm,
+                "images": images}
 
-    def _backbone(self, seq: dict[str, Tensor], use_cache: bool = False):
-        keys = ("inputs_embeds", "attention_mask", "position_ids", "pixel_values", "image_grid_thw",
-                "mm_token_type_ids")
-        return self.vlm.model(input_ids=None, use_cache=use_cache, **{k: seq[k] for k in keys})
+    def _vision(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
+        """Vision tower per image (each image attends only to itself): its merged tokens and DeepStack
+        features, so a memory frame's can be kept and reused at later chunks."""
+        out = self.vlm.model.get_image_features(pixel_values, grid)
+        sizes = (grid.prod(-1) // self.vlm.config.vision_config.spatial_merge_size ** 2).tolist()
+        deep = [torch.split(d, sizes) for d in out.deepstack_features]
+        return [(e, [d[i] for d in deep]) for i, e in enumerate(out.pooler_output)]
 
-    def _encode(self, *args) -> tuple[Tensor, Tensor | None]:
+    def _backbone(self, seq: dict, use_cache: bool = False, vision_cache: dict | None = None):
+        """The language model over the assembled sequence, image tokens from the vision tower. Memory
+        frames found in ``vision_cache`` ((sample, frame) -> bank entry) reuse the entry's features;
+        the others are computed and stored there. Returns the output and each image's features."""
+        vision_cache = vision_cache or {}
+        images, grid = seq["images"], seq["image_grid_thw"]
+        rows = torch.split(seq["pixel_values"], grid.prod(-1).tolist())
+        feats: list = [vision_cache[k].get("vision") if k in vision_cache else None for k in images]
+        todo = [i for i, f in enumerate(feats) if f is None]
+        if todo:
+            for i, f in zip(todo, self._vision(torch.cat([rows[i] for i in todo]), grid[todo])):
+                feats[i] = f
+                if images[i] in vision_cache:
+                    vision_cache[images[i]]["vision"] = f
+        mask = seq["kind"] == IMAGE
+        embeds = seq["inputs_embeds"].masked_scatter(mask[..., None],
+                                                     torch.cat([f[0] for f in feats]).to(seq["inputs_embeds"].dtype))
+        deep = [torch.cat([f[1][layer] for f in feats]) for layer in range(len(feats[0][1]))]
+        out = self.vlm.model.language_model(inputs_embeds=embeds, attention_mask=seq["attention_mask"],
+                                            position_ids=seq["position_ids"], use_cache=use_cache,
+                                            visual_pos_masks=mask, deepstack_visual_embeds=deep)
+        return out, feats
+
+    def _encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor | None]:
         """Returns the (B, chunk, action_dim) prediction and, when a think span is given, its LM loss.
         Arguments as ``_assemble``."""
         seq = self._assemble(*args)
         kind, input_ids = seq["kind"], seq["input_ids"]
-        h = self._backbone(seq).last_hidden_state
+        h = self._backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
         B = kind.shape[0]
         actions = self.head(h[kind == QUERY].view(B, self.config.chunk_size, -1).float())
         if not (kind == THINK).any():
@@ -174,6 +201,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         self._queue: deque[Tensor] = deque()
         self._bank: list[list[dict]] | None = None
         self._raw_states: list[list[np.ndarray]] | None = None
+        self._current_vision: dict = {}
         self._t = 0
 
     def _retained(self, b: int) -> bool:
@@ -189,7 +217,9 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         return False
 
     def _history_batch(self, batch: dict[str, Tensor]):
-        """Stack each env's last K memory entries (left-padded) and the current frame."""
+        """Stack each env's last K memory entries (left-padded) and the current frame. Also returns the
+        vision cache: (env, slot) -> the memory entry (its features are reused or stored there), and an
+        empty entry for the current frame that receives its features."""
         B = batch[PIXELS].shape[0]
         K = self.config.history if self.config.uses_history else 0
         cur_pix, cur_grid = batch[PIXELS][:, -1], batch[GRID][:, -1]
@@ -199,21 +229,25 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         grid = cur_grid.new_ones((B, K + 1, 3))
         valid = torch.zeros(B, K + 1, dtype=torch.bool)
         state = None if cur_state is None else cur_state.new_zeros((B, K + 1, cur_state.shape[-1]))
+        cache: dict[tuple[int, int], dict] = {}
         for b in range(B):
             mem = self._bank[b][-K:] if K else []
+            cache[(b, K)] = {}
             for slot, entry in zip(range(K - len(mem), K), mem):
+                cache[(b, slot)] = entry
                 pixels[b, slot], grid[b, slot], valid[b, slot] = entry["pixels"], entry["grid"], True
                 if state is not None:
                     state[b, slot] = entry["state"]
             pixels[b, K], grid[b, K], valid[b, K] = cur_pix[b], cur_grid[b], True
             if state is not None:
                 state[b, K] = cur_state[b]
-        return pixels, grid, valid, state
+        return pixels, grid, valid, state, cache
 
     @torch.no_grad()
     def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         """A chunk for the batch's current frames. A dataset batch carries its own history (T > 1);
         an env batch (T = 1) gets it from the memory bank."""
+        cache = None
         if batch[PIXELS].shape[1] > 1:
             state = batch.get(OBS_STATE)
             state = state[:, None] if state is not None and state.dim() == 2 else state
@@ -221,16 +255,20 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         else:
             if self._bank is None:
                 self._start(batch)
-            pixels, grid, valid, state = self._history_batch(batch)
+            pixels, grid, valid, state, cache = self._history_batch(batch)
         args = (pixels, grid, valid, state if self.state_encoder is not None else None,
                 batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK])
-        if batch[PIXELS].shape[1] == 1 and self.config.memory == "subtask" and self.config.uses_history:
-            subtasks, pred = self.predict_subtask_and_actions(args)
+        if cache is not None and self.config.memory == "subtask" and self.config.uses_history:
+            subtasks, pred = self.predict_subtask_and_actions(args, vision_cache=cache)
             for b, sub in enumerate(subtasks):
                 self._subtask_new[b] = sub != self._subtask[b]  # first frame of a new (predicted) subtask
                 self._subtask[b] = sub
-            return pred
-        return self._encode(*args)[0]
+        else:
+            pred = self._encode(*args, vision_cache=cache)[0]
+        if cache is not None:  # the current frames' features, for a memory write at this step
+            self._current_vision = {b: entry.get("vision") for (b, slot), entry in cache.items()
+                                    if slot == valid.shape[1] - 1}
+        return pred
 
     def _start(self, batch: dict[str, Tensor]) -> None:
         if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
@@ -257,13 +295,14 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         return self._greedy_think(encode_args)[0]
 
     @torch.no_grad()
-    def predict_subtask_and_actions(self, encode_args: tuple) -> tuple[list[tuple[int, ...]], Tensor]:
+    def predict_subtask_and_actions(self, encode_args: tuple, vision_cache: dict | None = None
+                                    ) -> tuple[list[tuple[int, ...]], Tensor]:
         """The predicted subtasks and the action chunk from one backbone pass over images and prompt: the
         queries sit before ``<think>``, so (causal attention) the actions are those of ``_encode``."""
-        tokens, _, actions = self._greedy_think(encode_args)
+        tokens, _, actions = self._greedy_think(encode_args, vision_cache=vision_cache)
         return tokens, actions
 
-    def _greedy_think(self, encode_args: tuple, use_cache: bool = True
+    def _greedy_think(self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
                       ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
         """Greedy decoding after ``<think>``; returns the tokens, each step's (B, vocab) logits and the
         action chunk read from the first pass's query positions. With
@@ -279,7 +318,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             if seq is None or not use_cache:
                 ids = torch.tensor([[start] + [int(t) for t in step] for step in zip(*fed)] if fed else [[start]] * B)
                 seq = self._assemble(*encode_args, ids, torch.ones_like(ids, dtype=torch.bool))
-                out = self._backbone(seq, use_cache=use_cache)
+                out = self._backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
                 last = torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1).max(1).values
                 hidden, cache = out.last_hidden_state[rows, last], out.past_key_values
                 if actions is None:
@@ -320,14 +359,16 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                                  "from the policy's memory bank)")
             for b in range(B):
                 self._raw_states[b].append(batch[RAW_STATE][b].float().cpu().numpy())
+        self._current_vision = {}
         if not self._queue:
             chunk = self.predict_action_chunk(batch)[:, :self.config.n_action_steps]
             self._queue.extend(chunk.transpose(0, 1))
         if self.config.uses_history:
             for b in range(B):
-                if self._retained(b):
+                if self._retained(b):  # vision features: this step's, else computed at first use
                     self._bank[b].append({"t": self._t, "pixels": batch[PIXELS][b, -1], "grid": batch[GRID][b, -1],
-                                          "state": batch[OBS_STATE][b] if OBS_STATE in batch else None})
+                                          "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
+                                          "vision": self._current_vision.get(b)})
                     del self._bank[b][:-self.config.history]
         self._t += 1
         return self._queue.popleft()
