@@ -33,6 +33,12 @@ from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft 
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
 
 
+def peak_memory(cuda: bool) -> str:
+    if cuda:
+        return f"{torch.cuda.max_memory_allocated() / 2**30:.2f} GiB GPU (max_memory_allocated)"
+    return f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS"
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--vlm-path", help="default: a tiny random Qwen3-VL written to a temp dir")
@@ -86,8 +92,7 @@ def main() -> None:
             times.append(time.perf_counter() - t0)
         images = int(batch["observation.vlm.frame_valid"].sum())
     n_params = sum(p.numel() for p in policy.parameters())
-    peak = (f"{torch.cuda.max_memory_allocated() / 2**30:.2f} GiB GPU (max_memory_allocated)" if cuda
-            else f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS")
+    peak = peak_memory(cuda)
     print(f"model {vlm}: {n_params / 1e6:.1f} M parameters, device {args.device}, batch {args.batch_size}, "
           f"K={args.history} ({args.memory} memory), think={args.think}")
     if times:
@@ -122,8 +127,7 @@ def main() -> None:
         policy._queue.clear()
         policy._t = 16 * args.history
         lat.append(timed(lambda: policy.select_action(b))[0])
-    peak = (f"{torch.cuda.max_memory_allocated() / 2**30:.2f} GiB GPU" if cuda
-            else f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS")
+    peak = peak_memory(cuda)
     print(f"inference per chunk: {lat[2] * 1000:.0f} ms with {args.history} memory frames + the current one "
           f"(memory frames' vision features reused, as in an episode), {lat[1] * 1000:.0f} ms encoding all "
           f"{args.history + 1} images, {lat[0] * 1000:.0f} ms with the current frame only; peak memory so far: {peak}")

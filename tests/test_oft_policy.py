@@ -360,14 +360,12 @@ def test_a_missing_vlm_names_the_flag_and_the_fix(tmp_path):
 
 
 def test_the_2b_architecture_preset_has_the_real_models_size(tmp_path):
-    from transformers import Qwen3VLConfig, Qwen3VLForConditionalGeneration
+    from transformers import Qwen3VLForConditionalGeneration
 
     from lerobot_activearena.policies.activearena_oft.heads import MLPResNet
-    from lerobot_activearena.policies.activearena_oft.tiny_vlm import QWEN3_VL_2B
+    from lerobot_activearena.policies.activearena_oft.tiny_vlm import QWEN3_VL_2B, qwen3_vl_config
 
-    cfg = Qwen3VLConfig(text_config=dict(QWEN3_VL_2B["text"], tie_word_embeddings=True), tie_word_embeddings=True,
-                        vision_config=dict(QWEN3_VL_2B["vision"], patch_size=16, spatial_merge_size=2,
-                                           temporal_patch_size=2))
+    cfg = qwen3_vl_config(QWEN3_VL_2B["text"], QWEN3_VL_2B["vision"])
     with torch.device("meta"):  # shapes only, no memory
         model = Qwen3VLForConditionalGeneration(cfg)
         head = MLPResNet(cfg.text_config.hidden_size, 2 * cfg.text_config.hidden_size, 18, 2)

@@ -157,14 +157,17 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                                             visual_pos_masks=mask, deepstack_visual_embeds=deep)
         return out, feats
 
+    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
+        """The (B, chunk, action_dim) prediction from the last-layer states at the action queries."""
+        return self.head(hidden[kind == QUERY].view(kind.shape[0], self.config.chunk_size, -1).float())
+
     def _encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor | None]:
         """Returns the (B, chunk, action_dim) prediction and, when a think span is given, its LM loss.
         Arguments as ``_assemble``."""
         seq = self._assemble(*args)
         kind, input_ids = seq["kind"], seq["input_ids"]
         h = self._backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
-        B = kind.shape[0]
-        actions = self.head(h[kind == QUERY].view(B, self.config.chunk_size, -1).float())
+        actions = self._actions(h, kind)
         if not (kind == THINK).any():
             return actions, None
         span = kind == THINK
@@ -310,40 +313,35 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         their keys and values; without it each step re-encodes the whole sequence (the reference)."""
         start, end = self._think_token_ids()
         B, dev = encode_args[2].shape[0], self.action_queries.device
-        gen, done, step_logits = [[] for _ in range(B)], [False] * B, []
-        fed: list[list[int]] = []  # the tokens fed back after <think> (every sample gets one per step)
-        rows = torch.arange(B, device=dev)
+        fed = torch.full((B, 1), start, dtype=torch.long)  # <think> and every token fed back since
+        rows, step_logits = torch.arange(B, device=dev), []
         seq = cache = actions = None
         for _ in range(self.config.subtask_max_tokens):
             if seq is None or not use_cache:
-                ids = torch.tensor([[start] + [int(t) for t in step] for step in zip(*fed)] if fed else [[start]] * B)
-                seq = self._assemble(*encode_args, ids, torch.ones_like(ids, dtype=torch.bool))
+                seq = self._assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
                 out = self._backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
                 last = torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1).max(1).values
                 hidden, cache = out.last_hidden_state[rows, last], out.past_key_values
                 if actions is None:
-                    q = out.last_hidden_state[seq["kind"] == QUERY].view(B, self.config.chunk_size, -1)
-                    actions = self.head(q.float())
+                    actions = self._actions(out.last_hidden_state, seq["kind"])
                 position = seq["position_ids"][:, rows, last]  # (3, B): a text token's M-RoPE position
                 attn = seq["attention_mask"]
             else:
                 position = position + 1  # the next text token, on all M-RoPE axes
                 attn = torch.cat([attn, attn.new_ones(B, 1)], dim=1)
                 out = self.vlm.model.language_model(
-                    inputs_embeds=self.vlm.get_input_embeddings()(nxt.to(dev)[:, None]), attention_mask=attn,
+                    inputs_embeds=self.vlm.get_input_embeddings()(fed[:, -1:].to(dev)), attention_mask=attn,
                     position_ids=position[..., None], past_key_values=cache, use_cache=True)
                 hidden, cache = out.last_hidden_state[:, -1], out.past_key_values
             logits = self.vlm.lm_head(hidden).float()
             step_logits.append(logits)
-            nxt = logits.argmax(-1)
-            fed.append(nxt.tolist())
-            for b in range(B):
-                if not done[b]:
-                    gen[b].append(int(nxt[b]))
-                    done[b] = int(nxt[b]) == end
-            if all(done):
+            fed = torch.cat([fed, logits.argmax(-1).cpu()[:, None]], dim=1)
+            if (fed[:, 1:] == end).any(1).all():
                 break
-        return [tuple(g) for g in gen], step_logits, actions
+        tokens = []
+        for row in fed[:, 1:].tolist():  # each sample's text up to and including its first </think>
+            tokens.append(tuple(row[:row.index(end) + 1] if end in row else row))
+        return tokens, step_logits, actions
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:

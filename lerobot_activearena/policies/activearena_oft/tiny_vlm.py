@@ -43,6 +43,21 @@ QWEN3_VL_2B = {
 }
 
 
+def qwen3_vl_config(text: dict, vision: dict, ids: dict[str, int] | None = None):
+    """A Qwen3-VL config from text / vision dimensions (16 px patches, 2x2 merge, tied embeddings) and,
+    when given, the tokenizer's special-token ids."""
+    from transformers import Qwen3VLConfig
+
+    tokens = {}
+    if ids is not None:
+        tokens = dict(image_token_id=ids["<|image_pad|>"], video_token_id=ids["<|video_pad|>"],
+                      vision_start_token_id=ids["<|vision_start|>"], vision_end_token_id=ids["<|vision_end|>"])
+        text = dict(text, pad_token_id=ids["<|endoftext|>"])
+    return Qwen3VLConfig(text_config=dict(text, tie_word_embeddings=True),
+                         vision_config=dict(vision, patch_size=16, spatial_merge_size=2, temporal_patch_size=2),
+                         tie_word_embeddings=True, **tokens)
+
+
 def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab: int = 1024, seed: int = 0,
                   architecture: str = "tiny") -> Path:
     """Write a random Qwen3-VL, tokenizer and processor to ``out_dir``: tiny (``hidden`` / ``layers``), or
@@ -51,7 +66,7 @@ def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab:
         raise ValueError(f"architecture must be 'tiny' or 'qwen3-vl-2b', got {architecture!r}")
     import torch
     from tokenizers import Tokenizer, decoders, models, pre_tokenizers, trainers
-    from transformers import (Qwen2TokenizerFast, Qwen2VLImageProcessor, Qwen3VLConfig,
+    from transformers import (Qwen2TokenizerFast, Qwen2VLImageProcessor,
                               Qwen3VLForConditionalGeneration, Qwen3VLProcessor)
     from transformers.models.qwen3_vl.video_processing_qwen3_vl import Qwen3VLVideoProcessor
 
@@ -83,13 +98,7 @@ def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab:
                   num_position_embeddings=1024, deepstack_visual_indexes=[1])
     if architecture == "qwen3-vl-2b":
         text, vision = dict(QWEN3_VL_2B["text"]), dict(QWEN3_VL_2B["vision"])
-    config = Qwen3VLConfig(
-        text_config=dict(text, tie_word_embeddings=True, pad_token_id=ids["<|endoftext|>"]),
-        vision_config=dict(vision, patch_size=16, spatial_merge_size=2, temporal_patch_size=2),
-        image_token_id=ids["<|image_pad|>"], video_token_id=ids["<|video_pad|>"],
-        vision_start_token_id=ids["<|vision_start|>"], vision_end_token_id=ids["<|vision_end|>"],
-        tie_word_embeddings=True,
-    )
+    config = qwen3_vl_config(text, vision, ids)
     torch.manual_seed(seed)
     model = Qwen3VLForConditionalGeneration(config)
     if architecture != "tiny":
