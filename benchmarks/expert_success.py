@@ -19,7 +19,7 @@ from pathlib import Path
 
 def _run(job):
     task, seed, split, render = job
-    from lerobot_activearena.tasks.episode import run_expert_episode
+    from lerobot_activearena.tasks.rollout import run_expert_episode
 
     cb = (lambda t, sim, frame, action: sim.render_head()) if render else None
     try:

@@ -22,7 +22,7 @@ from lerobot_activearena.datasets_build.features import IMAGE_KEY, MASK_PAD, MAX
 from lerobot_activearena.datasets_build.pipeline import build_dataset, push
 from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.datasets_build.record import record_episode
-from lerobot_activearena.tasks.episode import run_expert_episode
+from lerobot_activearena.tasks.rollout import run_expert_episode
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one

@@ -10,7 +10,7 @@ import pytest
 
 from lerobot_activearena.annotations.schema import CAMERA_HOLD, FRAME_FIELDS, STAGE_ACTION, STAGE_SEARCH
 from lerobot_activearena.tasks import get_task
-from lerobot_activearena.tasks.episode import run_expert_episode
+from lerobot_activearena.tasks.rollout import run_expert_episode
 
 TASKS = ["click_bell_rotate_view", "place_empty_cup_rotate_view", "blocks_ranking_rgb_rotate_view",
          "count_target_press_button", "check_block_color"]
@@ -119,7 +119,7 @@ def test_search_never_finds_an_object_outside_every_view():
 
 SCRIPT = r"""
 import hashlib, numpy as np, lerobot_activearena
-from lerobot_activearena.tasks.episode import run_expert_episode
+from lerobot_activearena.tasks.rollout import run_expert_episode
 r = run_expert_episode("click_bell_rotate_view", 7, "ood")
 h = hashlib.sha256(r.actions.tobytes())
 for f in r.frames:

@@ -25,7 +25,7 @@ from lerobot_activearena.policies.activearena_oft.dataset_annotations import Dat
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
 from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import PIXELS, THINK_IDS, THINK_MASK
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
-from lerobot_activearena.tasks.episode import run_expert_episode
+from lerobot_activearena.tasks.rollout import run_expert_episode
 
 REPO = "local/oft_tiny"
 COUNT = "count_target_press_button"

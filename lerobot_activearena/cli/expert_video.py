@@ -17,7 +17,7 @@ from ..annotations.schema import CAMERA_MODE_NAMES, STAGE_NAMES
 from ..sim.scene import CONTROL_HZ
 from ..sim.video import Mp4Writer, draw_annotations
 from ..tasks import get_task, task_names
-from ..tasks.episode import run_expert_episode
+from ..tasks.rollout import run_expert_episode
 
 
 def _jsonable(frame: dict) -> dict:

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
-from ..tasks.episode import EpisodeResult, run_expert_episode
+from ..tasks.rollout import EpisodeResult, run_expert_episode
 from .features import frame_row
 
 

@@ -1,6 +1,7 @@
 """Gymnasium environment of one ActiveArena task: head-camera pixels + 18-D state in, 18-D absolute
 joint targets out, ``info["is_success"]`` every step, and the failure state (DM / CO / CR) when a
-failed episode ends."""
+failed episode ends. An irreversible mistake (a wrong button, a task object off the table) ends the
+episode at once: ``terminated=True``, ``is_success=False``, ``info["failure_reason"]``."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from ..sim import embodiment as E
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..tasks import get_task
+from ..tasks.rollout import ExpertDriver
 from ..tasks.sampling import sample_scene
 from .manifests import manifest_seed
 
@@ -36,7 +38,7 @@ class ActiveArenaEnv(gym.Env):
 
     def __init__(self, task: str = "click_bell_rotate_view", split: str = "id", fixed_view: bool = False,
                  use_manifest: bool = True, seed_base: int = DEFAULT_SEED_BASE, expert_channel: bool = False,
-                 episode_log_dir: str | None = None, render_mode: str = "rgb_array"):
+                 episode_log_dir: str | None = None, render_mode: str = "rgb_array", render_pixels: bool = True):
         """``use_manifest``: reset(seed=s) plays the (s - seed_base)-th seed of the task's evaluation
         manifest (so lerobot-eval's seeds seed_base, seed_base+1, ... give the protocol's episodes in
         order whatever the batch size); otherwise ``s`` is the scene seed itself.
@@ -44,7 +46,9 @@ class ActiveArenaEnv(gym.Env):
         episode and its next action is exposed as ``environment_state`` for the
         ``activearena_expert`` policy. Never enable it for learned policies or dataset recording.
         ``episode_log_dir``: append one JSON line per finished episode (seed, success, failure state,
-        commanded torso/head targets) to ``<dir>/<task>_<split>_<pid>.jsonl`` for the report."""
+        commanded torso/head targets) to ``<dir>/<task>_<split>_<pid>.jsonl`` for the report.
+        ``render_pixels=False``: observations carry a black image (for policies that look at nothing,
+        e.g. the validity suite's adversaries); visibility and failure states are still computed."""
         self.spec_task = get_task(task)
         self.task = task
         self.task_description = self.spec_task.instruction
@@ -52,6 +56,8 @@ class ActiveArenaEnv(gym.Env):
         self.episode_log_dir = episode_log_dir
         self.use_manifest, self.seed_base = use_manifest, seed_base
         self.render_mode = render_mode
+        self.render_pixels = render_pixels
+        self._black = np.zeros((HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)
         self._max_episode_steps = self.spec_task.max_episode_steps
         self.sim: ActiveArenaSim | None = None
         self.scene = None
@@ -84,6 +90,7 @@ class ActiveArenaEnv(gym.Env):
         self.monitor = self.spec_task.monitor(self.sim, self.scene)
         self.recorder = AnnotationRecorder(self.sim, len(self.scene.objects))
         self.recorder.observe()
+        self._info_seen = self.spec_task.information_seen(self.sim, self.scene)
         self._steps = 0
         self._episode = None if seed is None else int(seed) - self.seed_base
         self._scene_seed = scene_seed
@@ -103,19 +110,28 @@ class ActiveArenaEnv(gym.Env):
         self._steps += 1
         self._view_targets.append([float(action[A.TORSO_YAW]), float(action[A.HEAD_PITCH])])
         success = bool(self.monitor.update())
+        failure_reason = self.monitor.failure_reason
         self.recorder.observe()
+        if not self._info_seen:
+            self._info_seen = self.spec_task.information_seen(self.sim, self.scene)
         if self.expert_channel:
             self._advance_expert()
-        truncated = self._steps >= self._max_episode_steps and not success
+        terminated = success or failure_reason is not None
+        truncated = self._steps >= self._max_episode_steps and not terminated
         info = {"is_success": success, "clipped_action": clip.as_dict()}
-        if success or truncated:
+        if terminated or truncated:
             t = self.scene.search_targets
-            info["failure_state"] = failure_state(success, self.recorder.discovered[t], self.recorder.visible[t])
+            seen = np.append(self.recorder.discovered[t], self._info_seen)
+            info["failure_state"] = failure_state(success, seen, self.recorder.visible[t])
+            info["failure_reason"] = failure_reason or ("" if success else
+                                                        f"step limit {self._max_episode_steps} reached; "
+                                                        f"unmet: {', '.join(self.monitor.failed_checks)}")
+            info["checks"] = dict(self.monitor.checks)
             if self.episode_log_dir:
-                self._log_episode(success, info["failure_state"])
-        return self._obs(), float(success), success, truncated, info
+                self._log_episode(success, info["failure_state"], info["failure_reason"])
+        return self._obs(), float(success), terminated, truncated, info
 
-    def _log_episode(self, success: bool, failure: str) -> None:
+    def _log_episode(self, success: bool, failure: str, reason: str) -> None:
         import json
         import os
         from pathlib import Path
@@ -124,7 +140,7 @@ class ActiveArenaEnv(gym.Env):
         d.mkdir(parents=True, exist_ok=True)
         rec = {"task": self.task, "category": self.spec_task.category, "split": self.split,
                "fixed_view": self.fixed_view, "episode": self._episode, "scene_seed": self._scene_seed,
-               "success": success, "failure_state": failure, "steps": self._steps,
+               "success": success, "failure_state": failure, "failure_reason": reason, "steps": self._steps,
                "view_targets": self._view_targets}
         with open(d / f"{self.task}_{self.split}_{os.getpid()}.jsonl", "a") as f:
             f.write(json.dumps(rec) + "\n")
@@ -138,34 +154,26 @@ class ActiveArenaEnv(gym.Env):
             self.sim = None
 
     def _obs(self) -> dict:
-        obs = {"pixels": {"head": self.sim.render_head()}, "agent_pos": self.sim.state().astype(np.float32)}
+        pixels = self.sim.render_head() if self.render_pixels else self._black
+        obs = {"pixels": {"head": pixels}, "agent_pos": self.sim.state().astype(np.float32)}
         if self.expert_channel:
             obs["environment_state"] = self._expert_action.astype(np.float32)
         return obs
 
     # ---- privileged expert channel -------------------------------------------------------------
     def _start_expert(self) -> None:
-        from ..expert.context import ExpertContext
-        from ..expert.kinematics import shared_kinematics
-
-        ik, gaze = shared_kinematics()
-        self._ctx = ExpertContext(self.sim, self.scene.objects, self.recorder, ik, gaze)
-        self._script = self.spec_task.expert(self._ctx, self.scene)
-        self._expert_action = self._ctx.emit()
-        self._advance_expert()
+        self._driver = ExpertDriver(self.spec_task, self.scene, self.sim, self.recorder)
+        self._expert_action = self._driver.next_action()
+        if self._expert_action is None:
+            self._expert_action = self._home.copy()
 
     def _advance_expert(self) -> None:
         """The expert's next action from the current state; once its script ends (or it gives
-        up), it holds its last command."""
-        from ..expert.context import ExpertError
-
-        self._ctx.update_memory()
-        if self._script is None:
-            return
-        try:
-            self._expert_action = next(self._script)
-        except (StopIteration, ExpertError):
-            self._script = None
+        up: ``ExpertDriver.failure``), it holds its last command."""
+        self._driver.observed()
+        nxt = self._driver.next_action()
+        if nxt is not None:
+            self._expert_action = nxt
 
 
 _LIMITS: tuple[np.ndarray, np.ndarray] | None = None

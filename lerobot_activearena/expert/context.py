@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import numpy as np
 
 from ..annotations.recorder import AnnotationRecorder, Intent
@@ -19,8 +21,10 @@ class ExpertContext:
     """Shared by all primitives of one episode. Search decisions read only ``memory`` (positions of
     objects the camera has seen); manipulation reads the true pose of an object once it is known."""
 
-    def __init__(self, sim: ActiveArenaSim, objects: list[str], recorder: AnnotationRecorder, ik: ArmIK, gaze: Gaze):
+    def __init__(self, sim: ActiveArenaSim, objects: list[str], recorder: AnnotationRecorder, ik: ArmIK, gaze: Gaze,
+                 n_subtasks: int = 1):
         self.sim, self.recorder, self.ik, self.gaze = sim, recorder, ik, gaze
+        self.n_subtasks = n_subtasks
         self.objects = list(objects)
         self.info = {o.name: o for o in sim.info.objects}
         self.action = sim.home_action()
@@ -29,8 +33,19 @@ class ExpertContext:
         self.explored: set[int] = set()  # sector ids swept so far
         self.notes: dict = {}  # what the expert inferred (colours, counts), for the sidecar
 
+    @contextmanager
+    def subtask(self, k: int):
+        """Frames emitted inside the block are annotated as subtask ``k`` (the task's k-th declared
+        subtask, 1-based)."""
+        if not 1 <= k <= self.n_subtasks:
+            raise ValueError(f"subtask {k} is not declared (the task has {self.n_subtasks})")
+        self.intent.subtask = k
+        yield
+
     # ---- objects -----------------------------------------------------------------------------
     def idx(self, name: str) -> int:
+        if name not in self.objects:
+            raise ExpertError(f"the scene has no object {name!r}")
         return self.objects.index(name)
 
     def obj(self, i: int):

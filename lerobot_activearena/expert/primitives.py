@@ -30,8 +30,8 @@ Actions = Iterator[np.ndarray]
 
 SECTOR_YAWS = (0.0, -0.95, 0.95)  # torso yaw of each search sector (heading 90, 36, 144 deg)
 SEARCH_PITCH = 1.0
-TORSO_VMAX, TORSO_AMAX = 0.8, 3.0  # below the joint's 2.5 rad/s, 10 rad/s^2
-HEAD_VMAX, HEAD_AMAX = 1.2, 5.0  # below the joint's 10 rad/s, 25 rad/s^2
+TORSO_VMAX, TORSO_AMAX = E.TORSO_LIMITS  # the paper's 2.5 rad/s, 10 rad/s^2
+HEAD_VMAX, HEAD_AMAX = E.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^2
 FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
 GRASP_Z_MIN_ABOVE_BOTTOM = 0.033  # open pads reach 0.028 m past the TCP: keep them off the table
 

@@ -21,6 +21,11 @@ ARM_JOINTS = {side: [f"{PREFIX}arm_{side}_joint_{i}" for i in range(1, 8)] for s
 TORSO_YAW_JOINT = f"{PREFIX}torso_joint_4"
 HEAD_PITCH_JOINT = f"{PREFIX}head_joint_2"
 HEAD_CAMERA = f"{PREFIX}head"
+# Paper, App. "Moving Cameras and Calibration": the head camera on head_link_2 at this translation (m)
+# and roll-pitch-yaw (camera frame x forward, y left, z up). No offset along the pitch axis (link z),
+# so the home view is symmetric about the torso heading (the official model's camera sits 8 cm left).
+HEAD_CAMERA_MOUNT = (0.066, -0.210, 0.0)
+HEAD_CAMERA_RPY = (np.pi / 2, 0.0, 0.0)
 WRIST_CAMERAS = {side: f"{PREFIX}arm_{side}_effector" for side in ("left", "right")}
 TCP_SITES = {side: f"{PREFIX}{side}_tcp" for side in ("left", "right")}
 
@@ -165,14 +170,28 @@ def _add_fixed_visuals(body: mujoco.MjsBody, name: str) -> None:
         vis(mujoco.mjtGeom.mjGEOM_BOX, (0.05, 0.15, 0.035), (-0.03, 0, 0.325), rgba=ROBOT_DARK)
         vis(mujoco.mjtGeom.mjGEOM_CYLINDER, (0.03, 0.04, 0), (-0.02, 0, 0.40), rgba=ROBOT_DARK)
     elif short == "head_link_2":
-        # head_link_2 frame: x forward (camera axis), y down-ish; a rounded head around the camera.
-        vis(mujoco.mjtGeom.mjGEOM_BOX, (0.07, 0.06, 0.09), (0.02, -0.06, 0.0))
-        vis(mujoco.mjtGeom.mjGEOM_BOX, (0.005, 0.025, 0.06), (0.101, -0.08, 0.0), rgba=ROBOT_DARK)
+        # head_link_2 frame: x forward (camera axis), -y up; the head sits behind the camera.
+        vis(mujoco.mjtGeom.mjGEOM_BOX, (0.065, 0.12, 0.09), (-0.015, -0.14, 0.0))
+        vis(mujoco.mjtGeom.mjGEOM_BOX, (0.004, 0.03, 0.06), (0.055, -0.21, 0.0), rgba=ROBOT_DARK)
     elif short == "chassis_base":
         vis(mujoco.mjtGeom.mjGEOM_CYLINDER, (0.2, 0.05, 0), (0, 0, 0.0), rgba=ROBOT_DARK)
     elif short.startswith("gripper_") and short.endswith("_base"):
         g = vis(mujoco.mjtGeom.mjGEOM_CYLINDER, (0.032, 0.03, 0), (0, 0, 0.03), rgba=ROBOT_DARK)
         g.contype, g.conaffinity = ROBOT_CONTYPE, ROBOT_CONAFFINITY
+
+
+def _forward_left_up_camera_quat(rpy) -> np.ndarray:
+    """MuJoCo camera quaternion (looks along -z, x right, y up) of a camera whose frame (x forward,
+    y left, z up, the paper's convention) has roll-pitch-yaw ``rpy`` in its parent."""
+    q = np.zeros(4)
+    mujoco.mju_euler2Quat(q, np.asarray(rpy, float), "XYZ")
+    R = np.zeros(9)
+    mujoco.mju_quat2Mat(R, q)
+    R = R.reshape(3, 3)
+    mj = np.stack([-R[:, 1], R[:, 2], -R[:, 0]], axis=1)  # right = -left, up = up, back = -forward
+    out = np.zeros(4)
+    mujoco.mju_mat2Quat(out, mj.reshape(-1))
+    return out
 
 
 def _add_body(parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing: dict[str, float]) -> mujoco.MjsBody:
@@ -217,7 +236,9 @@ def _add_body(parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing:
         c.name = cam["name"]
         c.pos = np.asarray(cam["pos"], float)
         c.fovy = float(cam["fovy"][0])
-        if "xyaxes" in cam:
+        if cam["name"] == HEAD_CAMERA:
+            c.pos, c.quat = np.asarray(HEAD_CAMERA_MOUNT, float), _forward_left_up_camera_quat(HEAD_CAMERA_RPY)
+        elif "xyaxes" in cam:
             x = np.asarray(cam["xyaxes"][:3], float)
             y = np.asarray(cam["xyaxes"][3:], float)
             z = np.cross(x, y)

@@ -1,4 +1,9 @@
-"""What a task is: name, category, instruction, subtasks, scene layout, success and expert script."""
+"""What a task is: its row of the paper's inventory table (name, category, instruction, subtasks,
+step limit), a layout by region, named success checks, irreversible failures and an expert script.
+
+A task module (``tasks/inventory/<paper name>.py``) subclasses ``Task``; defining the class
+registers it. See ``tasks/inventory/click_bell_rotate_view.py`` for a commented example.
+"""
 
 from __future__ import annotations
 
@@ -9,25 +14,28 @@ from typing import TYPE_CHECKING, ClassVar
 import mujoco
 import numpy as np
 
+from . import predicates as P
+
 if TYPE_CHECKING:
     from ..expert.context import ExpertContext
     from ..sim.scene import SceneInfo
     from ..sim.simulator import ActiveArenaSim
-    from .sampling import SceneDraft
+    from .draft import SceneDraft
+    from .success import SuccessMonitor
 
 CATEGORIES = {
-    "SS": "single-target search",
-    "SL": "search and localize",
-    "ML": "multi-target localization",
-    "MD": "memory-dependent decision",
-    "IA": "interactive acquisition",
+    "SS": "single-object search",
+    "SL": "single-object loop",
+    "ML": "multi-object loop",
+    "MD": "multi-object decision",
+    "IA": "interactive information acquisition",
 }
 SPLITS = ("id", "ood")
 
 
 @dataclass(frozen=True)
 class Subtask:
-    id: int  # semantic subtask id (T1 -> 1)
+    id: int  # semantic subtask id (T1 -> 1), the position in the task's declaration
     name: str
     text: str
     instruction_idx: int  # index into the task's distinct subtask instructions (T1/T4 can share one)
@@ -48,19 +56,11 @@ class TaskScene:
     params: dict = field(default_factory=dict)
     instruction: str = ""
     search_targets: list[int] = field(default_factory=list)
+    hidden: list[str] = field(default_factory=list)  # placed out of the home view
+    reach: dict[str, tuple[str, ...]] = field(default_factory=dict)  # object -> arms that may touch it
 
-
-class SuccessMonitor:
-    """Tracks success over an episode. The default checks the task's state predicate every step;
-    tasks with events (presses) latch them here."""
-
-    def __init__(self, task: Task, sim: ActiveArenaSim, scene: TaskScene):
-        self.task, self.sim, self.scene = task, sim, scene
-        self.success = False
-
-    def update(self) -> bool:
-        self.success = bool(self.task.is_success(self.sim, self.scene))
-        return self.success
+    def obj(self, name: str):
+        return self.info.objects[self.objects.index(name)]
 
 
 class Task:
@@ -68,8 +68,14 @@ class Task:
     category: ClassVar[str]
     instruction: ClassVar[str]
     subtasks: ClassVar[tuple[Subtask, ...]]
-    max_episode_steps: ClassVar[int] = 600
+    max_episode_steps: ClassVar[int]  # the protocol's evaluation step limit (paper's release)
 
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "name" in cls.__dict__:
+            register_task(cls)
+
+    # ---- scene -------------------------------------------------------------------------------
     def layout(self, draft: SceneDraft) -> None:
         """Place the registered task objects (and set ``draft.params``)."""
         raise NotImplementedError
@@ -81,21 +87,38 @@ class Task:
         """Objects whose observation the task needs (design-principle checks, DM/CO/CR)."""
         return list(range(len(scene.objects)))
 
-    def reach_targets(self, scene: TaskScene) -> dict[int, tuple[str, ...]]:
-        """Objects the arms must touch, with the arms allowed to (principle check: reachable)."""
-        return {}
-
     def information_hidden_at_start(self, scene: TaskScene) -> bool:
         """True when the deciding information is hidden at reset by construction (e.g. a colour on
         an object's back face); then principle (1) does not need an unseen object."""
         return False
 
-    def is_success(self, sim: ActiveArenaSim, scene: TaskScene) -> bool:
+    def information_seen(self, sim: ActiveArenaSim, scene: TaskScene) -> bool:
+        """For tasks whose deciding information is hidden on an object: whether the head camera sees
+        it now (counts as a task-relevant observation in the DM/CO/CR failure states)."""
+        return True
+
+    # ---- success -----------------------------------------------------------------------------
+    def evaluate(self, sim: ActiveArenaSim, scene: TaskScene, monitor: SuccessMonitor) -> dict[str, bool]:
+        """Named sub-conditions of success; success = all hold for ``STABLE_FRAMES`` frames."""
         raise NotImplementedError
 
+    def failure(self, sim: ActiveArenaSim, scene: TaskScene, monitor: SuccessMonitor) -> str | None:
+        """An irreversible mistake that ends the episode as a failure (reason), else None."""
+        return None
+
+    def common_failure(self, sim: ActiveArenaSim, scene: TaskScene) -> str | None:
+        """Every task: a task object that left the table ends the episode."""
+        for name in scene.objects:
+            if P.is_free(sim, name) and P.off_table(sim, name):
+                return f"{name} fell off the table"
+        return None
+
     def monitor(self, sim: ActiveArenaSim, scene: TaskScene) -> SuccessMonitor:
+        from .success import SuccessMonitor
+
         return SuccessMonitor(self, sim, scene)
 
+    # ---- expert ------------------------------------------------------------------------------
     def expert(self, ctx: ExpertContext, scene: TaskScene) -> Iterator[np.ndarray]:
         raise NotImplementedError
 
@@ -110,9 +133,12 @@ TASKS: dict[str, type[Task]] = {}
 
 
 def register_task(cls: type[Task]) -> type[Task]:
-    if cls.name in TASKS:
-        raise ValueError(f"task {cls.name!r} registered twice")
+    if cls.name in TASKS and TASKS[cls.name] is not cls:
+        raise ValueError(f"task {cls.name!r} registered twice ({TASKS[cls.name].__module__} and {cls.__module__})")
     if cls.category not in CATEGORIES:
         raise ValueError(f"task {cls.name!r}: unknown category {cls.category!r}; use one of {sorted(CATEGORIES)}")
+    ids = [s.id for s in cls.subtasks]
+    if ids != list(range(1, len(ids) + 1)):
+        raise ValueError(f"task {cls.name!r}: subtask ids must be 1..n in declaration order, got {ids}")
     TASKS[cls.name] = cls
     return cls

@@ -1,18 +1,24 @@
-"""Task lookup by paper name or category; importing this module registers every task module."""
+"""Task lookup by paper name or category. Every module in ``tasks/inventory/`` is imported on first
+use; defining a ``Task`` subclass there registers it (no list to edit)."""
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
+
+from . import inventory
 from .base import CATEGORIES, TASKS, Task
+
+_LOADED = False
 
 
 def _load() -> None:
-    from . import (  # noqa: F401  (each module registers its task)
-        blocks_ranking_rgb_rotate_view,
-        check_block_color,
-        click_bell_rotate_view,
-        count_target_press_button,
-        place_empty_cup_rotate_view,
-    )
+    global _LOADED
+    if not _LOADED:
+        for mod in pkgutil.iter_modules(inventory.__path__):
+            if not mod.name.startswith("_"):
+                importlib.import_module(f"{inventory.__name__}.{mod.name}")
+        _LOADED = True
 
 
 def get_task(name: str) -> Task:
@@ -37,4 +43,6 @@ def task_names(selector: str = "all") -> list[str]:
             raise ValueError(f"unknown task selector {part!r}: use 'all', a category {sorted(CATEGORIES)}, "
                              f"or a task name {sorted(TASKS)}")
         out += [n for n in names if n not in out]
+    if not out:
+        raise ValueError(f"task selector {selector!r} selects no task")
     return out

@@ -1,5 +1,7 @@
-"""Run the scripted expert on one (task, seed, split): actions, per-frame annotations, sidecar,
-success, and physics health. The single entry point for videos, datasets and expert evaluation."""
+"""The scripted expert's episode driver (``ExpertDriver``, also used by the env's expert channel)
+and ``run_expert_episode``: one (task, seed, split) -> actions, per-frame annotations, sidecar,
+success and physics health. The single entry point for videos, datasets and expert evaluation.
+Like an evaluation episode, it ends at the first reported success or irreversible failure."""
 
 from __future__ import annotations
 
@@ -14,7 +16,7 @@ from ..annotations.recorder import AnnotationRecorder
 from ..expert.context import ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
 from ..sim.simulator import ActiveArenaSim
-from .base import TaskScene
+from .base import Task, TaskScene
 from .registry import get_task
 from .sampling import sample_scene
 
@@ -80,7 +82,8 @@ def make_sidecar(task, scene: TaskScene, recorder: AnnotationRecorder, ctx: Expe
         "subtasks": [{"id": s.id, "name": s.name, "text": s.text, "instruction_idx": s.instruction_idx}
                      for s in task.subtasks],
         "search_targets": list(scene.search_targets),
-        "params": {k: v for k, v in scene.params.items() if k != "rejected_attempts"},
+        "params": {k: v for k, v in scene.params.items() if k not in ("rejected_attempts", "placements")},
+        "placements": scene.params.get("placements", []),
         "transitions": recorder.transitions,
         "final_discovered": {scene.objects[i]: bool(d) for i, d in enumerate(recorder.discovered)},
         "expert_notes": ctx.notes,
@@ -89,53 +92,89 @@ def make_sidecar(task, scene: TaskScene, recorder: AnnotationRecorder, ctx: Expe
     }
 
 
+class ExpertDriver:
+    """Steps a task's expert script. Call ``next_action()`` before each simulator step and
+    ``observed()`` after the recorder has observed the new state. An expert that gives up
+    (``ExpertError``: object never found, grasp lost) ends its script: ``failure`` says why and
+    ``next_action()`` returns None from then on, as it does when the script is finished."""
+
+    def __init__(self, task: Task, scene: TaskScene, sim: ActiveArenaSim, recorder: AnnotationRecorder):
+        ik, gaze = shared_kinematics()
+        self.task, self.recorder = task, recorder
+        self.ctx = ExpertContext(sim, scene.objects, recorder, ik, gaze, n_subtasks=len(task.subtasks))
+        self._script = task.expert(self.ctx, scene)
+        self.finished = False
+        self.failure: str | None = None
+        self.ctx.update_memory()
+
+    def next_action(self) -> np.ndarray | None:
+        if self.finished:
+            return None
+        try:
+            return next(self._script)
+        except StopIteration:
+            pass
+        except ExpertError as exc:
+            self.failure = f"expert: {exc}"
+        self.finished = True
+        return None
+
+    def observed(self) -> None:
+        self.ctx.update_memory()
+
+    def annotation(self, t: int) -> dict:
+        """The per-frame annotation of frame ``t`` (the observation before action ``t``)."""
+        sub = self.task.subtask(self.ctx.intent.subtask)
+        return self.recorder.frame(t, self.ctx.intent, sub.instruction_idx)
+
+
 def run_expert_episode(task_name: str, seed: int, split: str = "id",
                        on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None) -> EpisodeResult:
-    """Sample the scene, run the expert until it finishes (or the step limit), return everything.
-    ``on_frame(t, sim, annotation, action)`` runs before each step (e.g. to render video)."""
+    """Sample the scene, run the expert until success is reported, it fails or gives up, or the
+    step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
+    (e.g. to render video)."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
     sim = ActiveArenaSim(scene.model, scene.info)
-    ik, gaze = shared_kinematics()
     recorder = AnnotationRecorder(sim, len(scene.objects))
-    ctx = ExpertContext(sim, scene.objects, recorder, ik, gaze)
+    recorder.observe()
+    driver = ExpertDriver(task, scene, sim, recorder)
     monitor = task.monitor(sim, scene)
     health = PhysicsHealth(sim)
-    script = task.expert(ctx, scene)
-    recorder.observe()
-    ctx.update_memory()
     frames, actions, states = [], [], []
     failure = None
-    try:
-        for t in range(task.max_episode_steps + 1):
-            try:
-                action = next(script)
-            except StopIteration:
-                break
-            if t == task.max_episode_steps:
-                failure = f"timeout: the expert needed more than {task.max_episode_steps} steps"
-                break
-            sub = task.subtask(ctx.intent.subtask)
-            frame = recorder.frame(t, ctx.intent, sub.instruction_idx)
-            states.append(sim.state())
-            frames.append(frame)
-            actions.append(action)
-            if on_frame is not None:
-                on_frame(t, sim, frame, action)
-            sim.step(action)
-            monitor.update()
-            if health.check():
-                failure = f"physics: {health.problem}"
-                break
-            recorder.observe()
-            ctx.update_memory()
-    except ExpertError as exc:
-        failure = f"expert: {exc}"
+    for t in range(task.max_episode_steps + 1):
+        action = driver.next_action()
+        if action is None:
+            failure = driver.failure
+            break
+        if t == task.max_episode_steps:
+            failure = f"timeout: the expert needed more than {task.max_episode_steps} steps"
+            break
+        frame = driver.annotation(t)
+        states.append(sim.state())
+        frames.append(frame)
+        actions.append(action)
+        if on_frame is not None:
+            on_frame(t, sim, frame, action)
+        sim.step(action)
+        monitor.update()
+        if health.check():
+            failure = f"physics: {health.problem}"
+            break
+        if monitor.failure_reason:
+            failure = f"task failure: {monitor.failure_reason}"
+            break
+        if monitor.success:
+            break
+        recorder.observe()
+        driver.observed()
     success = bool(monitor.success) and failure is None
     if failure is None and not success:
-        failure = "task not accomplished at the end of the expert script"
-    sidecar = make_sidecar(task, scene, recorder, ctx, success, failure)
+        failure = f"task not accomplished when the expert script ended (failed checks: {monitor.failed_checks})"
+    sidecar = make_sidecar(task, scene, recorder, driver.ctx, success, failure)
+    sidecar["final_checks"] = monitor.checks
     sim.close()
     return EpisodeResult(task.name, seed, split, success, failure, np.array(actions), np.array(states), frames, sidecar,
                          {"max_penetration_m": health.max_penetration, "problem": health.problem},

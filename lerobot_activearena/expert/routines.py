@@ -1,0 +1,38 @@
+"""Idioms the task experts share, built from the primitives: find an object and face it with the
+arm that will act, press an object at its press point, and finish (retreat and hold)."""
+
+from __future__ import annotations
+
+from collections.abc import Generator
+
+import numpy as np
+
+from . import primitives as P
+from .context import ExpertContext
+
+
+def find_and_face(ctx: ExpertContext, i: int, side: str | None = None, then=None) -> Generator[np.ndarray, None, str]:
+    """Search for object ``i`` (from memory or by sector sweep), choose the arm (``side``, or the one
+    on the object's half of the fan; with a known destination ``then``, the half of the midpoint)
+    and turn the torso so the object sits in front of it. Returns the arm: ``side = yield from ...``."""
+    yield from P.search(ctx, i, center=False)
+    side = side or P.arm_for(ctx.memory[i], then)
+    yield from P.face_for_arm(ctx, ctx.memory[i], side)
+    return side
+
+
+def press_point(ctx: ExpertContext, i: int) -> np.ndarray:
+    """World position of object ``i``'s registered press point (its ``extra['press_point']``)."""
+    pos, R = ctx.pose(i)
+    return pos + R @ np.asarray(ctx.obj(i).extra["press_point"])
+
+
+def press_object(ctx: ExpertContext, side: str, i: int, depth: float):
+    """Closed fingertips pressed ``depth`` m into object ``i``'s press point, then lifted off."""
+    yield from P.press(ctx, side, press_point(ctx, i), depth=depth, targets={i})
+
+
+def finish(ctx: ExpertContext, side: str, hold: int = 3):
+    """Return the arm home with the gripper open, then hold still."""
+    yield from P.retreat(ctx, side)
+    yield from P.hold(ctx, hold)

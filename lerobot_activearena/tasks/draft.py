@@ -1,0 +1,188 @@
+"""A scene under construction and the regions tasks place objects in.
+
+A task's ``layout(draft)`` places its registered objects by region: distance band, workspace angles
+(90 deg = straight ahead), level, side (``left`` = angles above 90 deg) and whether the object must
+be out of the head camera's home view (``hidden=True``; both sides are used, paper's release:
+|theta - 90| in [38.5, 70] deg). The sampler (``sampling.py``) then adds clutter, compiles the scene
+and checks the design principles.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from functools import lru_cache
+
+import numpy as np
+
+from ..sim.appearance import random_appearance
+from ..sim.assets import ASSETS, categories
+from ..sim.scene import SceneBuilder
+
+REACH_R = (0.34, 0.45)  # top-down grasps and presses reach here at every angle (benchmarks/initial_view.py)
+CLUTTER_R = (0.55, 1.0)  # beyond the arms' working band
+FAN_ANGLES = (20.0, 160.0)  # the lower fan's placement span (20 deg margin at each end)
+SIDE_ANGLES = {"right": (20.0, 90.0), "left": (90.0, 160.0)}
+# Out of the home view candidates (paper's release: |theta - 90| in [38.5, 70] deg); each placement
+# is then checked against the home camera's projection.
+HIDDEN_ANGLES = {"right": (20.0, 51.5), "left": (128.5, 160.0)}
+TABLE_TOP = 0.74
+
+
+class SamplingFailed(RuntimeError):
+    """No valid placement in this draft; the sampler retries with a derived seed."""
+
+
+@dataclass(frozen=True)
+class Region:
+    """Where an object may go. ``hidden``: True = out of the home view, False = in it, None = either;
+    ``side``: 'left' / 'right' / None (any; a hidden region then picks a side at random)."""
+
+    r: tuple[float, float] = REACH_R
+    angle: tuple[float, float] = FAN_ANGLES
+    hidden: bool | None = None
+    side: str | None = None
+    level: int = 0
+
+    def on(self, side: str) -> Region:
+        return replace(self, side=side)
+
+    def angles(self, side: str | None) -> tuple[float, float]:
+        lo, hi = self.angle
+        if self.hidden and side is not None:
+            h = HIDDEN_ANGLES[side]
+            lo, hi = max(lo, h[0]), min(hi, h[1])
+        elif side is not None:
+            s = SIDE_ANGLES[side]
+            lo, hi = max(lo, s[0]), min(hi, s[1])
+        if lo > hi:
+            raise ValueError(f"region {self} has no angles on the {side} side")
+        return lo, hi
+
+
+REACH = Region()  # anywhere in the arms' band
+HIDDEN = Region(hidden=True)  # in the arms' band, out of the home view, random side
+VISIBLE = Region(hidden=False)  # in the arms' band and in the home view
+CLUTTER = Region(r=CLUTTER_R)
+
+
+@lru_cache(maxsize=1)
+def _home_camera() -> tuple[np.ndarray, np.ndarray]:
+    """Intrinsics and world-to-camera of the head camera at home (robot only)."""
+    import mujoco
+
+    from ..sim import embodiment as E
+    from ..sim.camera import extrinsic_cv, intrinsics
+    from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+
+    model, _ = SceneBuilder().compile()
+    data = mujoco.MjData(model)
+    data.qpos[model.joint(E.TORSO_YAW_JOINT).qposadr[0]] = E.HOME_TORSO_YAW
+    data.qpos[model.joint(E.HEAD_PITCH_JOINT).qposadr[0]] = E.HOME_HEAD_PITCH
+    mujoco.mj_forward(model, data)
+    cam = model.camera(E.HEAD_CAMERA).id
+    return intrinsics(float(model.cam_fovy[cam]), HEAD_WIDTH, HEAD_HEIGHT), extrinsic_cv(data, cam)
+
+
+def in_home_view(xy, radius: float, heights=(0.005, 0.08)) -> bool:
+    """Whether any point of the disc (``xy``, ``radius``) at the given heights above the table
+    projects into the home image."""
+    from ..sim.camera import project
+    from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+
+    K, T = _home_camera()
+    ring = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    pts = [[xy[0] + radius * math.cos(a), xy[1] + radius * math.sin(a), TABLE_TOP + h] for a in ring for h in heights]
+    pts += [[xy[0], xy[1], TABLE_TOP + h] for h in heights]
+    uv, z = project(np.asarray(pts), K, T)
+    inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] <= HEAD_WIDTH) & (uv[:, 1] >= 0) & (uv[:, 1] <= HEAD_HEIGHT)
+    return bool(inside.any())
+
+
+class SceneDraft:
+    """Non-overlapping placement on the fan, registered object labels, episode parameters."""
+
+    def __init__(self, split: str, rng: np.random.Generator):
+        self.split, self.rng = split, rng
+        appearance = random_appearance(rng) if split == "ood" else None
+        self.builder = SceneBuilder(appearance=appearance)
+        self.workspace = self.builder.workspace
+        self.discs: list[tuple[np.ndarray, float]] = []
+        self.labels: list[str] = []
+        self.params: dict = {}
+        self.hidden: list[str] = []  # objects placed out of the home view (checked after compiling)
+        self.reach: dict[str, tuple[str, ...]] = {}  # object -> arms allowed to touch it
+        self.placements: list[dict] = []  # (name, role, r, angle) of every registered object
+
+    def is_free(self, xy, radius: float, margin: float) -> bool:
+        return all(np.linalg.norm(np.asarray(xy) - p) >= radius + r + margin for p, r in self.discs)
+
+    def reserve(self, distance: float, angle_deg: float, radius: float) -> None:
+        """Keep a disc empty (e.g. where an object will be placed later)."""
+        self.discs.append((self.workspace.place(distance, angle_deg)[:2], radius))
+
+    def side(self) -> str:
+        return "left" if self.rng.integers(0, 2) else "right"
+
+    def random_yaw(self) -> float:
+        return float(self.rng.uniform(-np.pi, np.pi))
+
+    def place(self, category: str, name: str, label: str, region: Region = REACH, *, r=None, angle=None,
+              yaw: float | str | None = None, arms: tuple[str, ...] = (), margin: float = 0.04,
+              register: bool = True, static: bool = False, tries: int = 200, **params):
+        """Sample a free spot in ``region`` (or the explicit ``r`` / ``angle``, a value or a range) and
+        add the object. ``yaw``: radians, ``'random'``, or None (body +x points radially outward, with
+        a little jitter). ``arms``: the arms that may touch it (checked reachable by the sampler).
+        Returns (ObjectInfo, distance, angle_deg)."""
+        foot = ASSETS[category].footprint
+        side = region.side if region.side is not None or not region.hidden else self.side()
+        r = region.r if r is None else r
+        angle = region.angles(side) if angle is None else angle
+        for _ in range(tries):
+            rr = float(self.rng.uniform(*r)) if np.ndim(r) else float(r)
+            aa = float(self.rng.uniform(*angle)) if np.ndim(angle) else float(angle)
+            xy = self.workspace.place(rr, aa, region.level)[:2]
+            if not self.is_free(xy, foot, margin):
+                continue
+            if region.hidden is not None and in_home_view(xy, foot) == region.hidden:
+                continue
+            break
+        else:
+            raise SamplingFailed(f"no free spot for {name} ({category}) in r={r}, angle={angle}, hidden={region.hidden}")
+        if yaw == "random":
+            yaw = self.random_yaw()
+        elif yaw is None:
+            yaw = math.radians(aa) + float(self.rng.uniform(-0.25, 0.25))
+        info = self.builder.add_object(category, name, rr, aa, yaw=yaw, rng=self.rng, register=register,
+                                       static=static or ASSETS[category].static, **params)
+        self.discs.append((xy, foot))
+        if register:
+            self.labels.append(label)
+            self.placements.append({"name": name, "category": category, "r": rr, "angle": aa,
+                                    "hidden": bool(region.hidden)})
+            if region.hidden:
+                self.hidden.append(name)
+            if arms:
+                self.reach[name] = tuple(arms)
+        return info, rr, aa
+
+    def add_clutter(self) -> int:
+        """Static distractors beyond the arms' band; returns how many fitted."""
+        ood = self.split == "ood"
+        present = {ASSETS[o.category].family for o in self.builder.info.objects}
+        pool = [c for c in categories(None if ood else "distractor") if ASSETS[c].family not in present]
+        n = int(self.rng.integers(9, 14) if ood else self.rng.integers(4, 8))
+        placed = 0
+        for k in range(n):
+            if not pool:
+                break
+            cat = pool[int(self.rng.integers(0, len(pool)))]
+            try:
+                self.place(cat, f"clutter_{k}_{cat}", cat, CLUTTER, margin=0.02, register=False, static=True, tries=40)
+            except SamplingFailed:
+                continue
+            placed += 1
+            if ood:  # no near-duplicates in one scene
+                fam = ASSETS[cat].family
+                pool = [c for c in pool if ASSETS[c].family != fam]
+        return placed

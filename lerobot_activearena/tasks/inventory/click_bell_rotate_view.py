@@ -1,0 +1,54 @@
+"""click_bell_rotate_view (SS): press the bell's top centre with the left arm.
+
+Task Description:
+    A desk bell stands out of the head camera's home view; find it, face it with the left arm and
+    press its plunger with the closed gripper.
+Randomizations:
+    Bell at 0.34-0.45 m from the base, out of the home view on a random side (|theta - 90| >= 38.5
+    deg, checked by projection), random yaw; clutter and (OOD) appearance from the sampler.
+Success Conditions:
+    pressed: the plunger went below its pressed threshold while the LEFT gripper, closed, touched
+    the bell within 2.5 cm (xy) / 3 cm (z) of the top centre (paper's release), with the bell
+    upright and in place at that moment; bell_upright, bell_in_place: still true afterwards.
+    Failure: the bell knocked over or pushed out of place (irreversible).
+"""
+
+from __future__ import annotations
+
+from ...expert import routines as R
+from ...sim.assets.task_props import BELL_PRESSED
+from .. import predicates as P
+from ..base import Subtask, Task
+from ..draft import HIDDEN
+
+
+class ClickBellRotateView(Task):
+    name = "click_bell_rotate_view"
+    category = "SS"
+    instruction = "Press the bell's top center using the left arm."
+    subtasks = (Subtask(1, "_click_bell", "locate the bell and press its top center", 0),)
+    max_episode_steps = 137
+
+    def layout(self, draft):
+        draft.place("bell", "bell", "bell", HIDDEN, yaw="random", arms=("left",))
+
+    def evaluate(self, sim, scene, monitor):
+        upright, in_place = P.upright(sim, "bell"), P.in_place(sim, "bell", 0.03)
+        top = P.body_point(sim, "bell", scene.obj("bell").extra["press_point"])
+        pressed = monitor.event("pressed", P.joint_below(sim, "bell_plunger_joint", BELL_PRESSED)
+                                and P.pressed_by(sim, "left", "bell", top) and upright and in_place)
+        return {"pressed_top_center_with_left_gripper": pressed, "bell_upright": upright, "bell_in_place": in_place}
+
+    def failure(self, sim, scene, monitor):
+        if P.knocked_over(sim, "bell"):
+            return "the bell was knocked over"
+        if not P.in_place(sim, "bell", 0.06):
+            return "the bell was pushed out of place"
+        return None
+
+    def expert(self, ctx, scene):
+        bell = ctx.idx("bell")
+        with ctx.subtask(1):
+            yield from R.find_and_face(ctx, bell, side="left")
+            yield from R.press_object(ctx, "left", bell, depth=0.007)
+            yield from R.finish(ctx, "left")

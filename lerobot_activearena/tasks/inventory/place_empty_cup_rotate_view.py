@@ -1,0 +1,54 @@
+"""place_empty_cup_rotate_view (SL): place the empty cup on the coaster.
+
+Task Description:
+    Find the cup, pick it up, find the coaster (elsewhere on the fan) and set the cup down on it.
+Randomizations:
+    One of cup / coaster (random) out of the home view on a random side, the other anywhere in the
+    arms' band (0.34-0.45 m); cup yaw random; cup and coaster colours; clutter and (OOD) appearance.
+Success Conditions:
+    cup_on_coaster: the cup's base rests on the coaster, centred within the coaster's radius less
+    1.5 cm; cup_upright; cup_released: no robot link touches the cup; all for 8 frames.
+"""
+
+from __future__ import annotations
+
+from ...expert import primitives as P
+from ...expert import routines as R
+from .. import predicates as Pr
+from ..base import Subtask, Task
+from ..draft import HIDDEN, REACH
+
+ARMS = ("left", "right")
+
+
+class PlaceEmptyCupRotateView(Task):
+    name = "place_empty_cup_rotate_view"
+    category = "SL"
+    instruction = "Place the empty cup on the coaster."
+    subtasks = (
+        Subtask(1, "pick_cup", "locate and grasp the cup", 0),
+        Subtask(2, "place_cup_on_coaster", "localize the coaster and place the carried cup on it", 1),
+    )
+    max_episode_steps = 199
+
+    def layout(self, draft):
+        cup_hidden = bool(draft.rng.integers(0, 2))
+        draft.place("cup", "cup", "cup", HIDDEN if cup_hidden else REACH, yaw="random", arms=ARMS)
+        draft.place("coaster", "coaster", "coaster", REACH if cup_hidden else HIDDEN, arms=ARMS)
+
+    def evaluate(self, sim, scene, monitor):
+        coaster = scene.obj("coaster")
+        on = Pr.resting_on(sim, "cup", "coaster", coaster.half_extents[0] / 2 ** 0.5, coaster.extra["top"],
+                           margin=0.0) and Pr.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
+        return {"cup_on_coaster": on, "cup_upright": Pr.upright(sim, "cup"), "cup_released": Pr.released(sim, "cup")}
+
+    def expert(self, ctx, scene):
+        cup, coaster = ctx.idx("cup"), ctx.idx("coaster")
+        with ctx.subtask(1):
+            side = yield from R.find_and_face(ctx, cup)
+            yield from P.pick(ctx, side, cup, closing=P.radial_tangent(ctx.center(cup)), lift=0.12)
+        with ctx.subtask(2):
+            yield from R.find_and_face(ctx, coaster, side)
+            P.start_action(ctx, {cup, coaster})
+            yield from P.place(ctx, side, cup, ctx.center(coaster)[:2], ctx.top_z(coaster) + 0.002)
+            yield from R.finish(ctx, side)

@@ -1,0 +1,158 @@
+"""Named predicates over the simulator state that success checks compose.
+
+State predicates (``resting_on``, ``inside``, ``left_of`` ...) read object poses; contact predicates
+(``touched_by_robot``, ``pressed_by``) read MuJoCo's contact list. All take body names.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..sim import action as A
+from ..sim import embodiment as E
+from ..sim.simulator import ActiveArenaSim
+from .draft import TABLE_TOP
+
+GRIPPER_CLOSED_BELOW = 0.3  # normalised gripper state (0 closed, 1 open)
+
+
+def polar(xy) -> tuple[float, float]:
+    """(distance from the robot base, workspace angle in degrees)."""
+    return float(np.hypot(xy[0], xy[1])), math.degrees(math.atan2(xy[1], xy[0]))
+
+
+def position(sim: ActiveArenaSim, body: str) -> np.ndarray:
+    return sim.data.body(body).xpos.copy()
+
+
+def joint_pos(sim: ActiveArenaSim, joint: str) -> float:
+    return float(sim.data.joint(joint).qpos[0])
+
+
+def joint_below(sim: ActiveArenaSim, joint: str, threshold: float) -> bool:
+    return joint_pos(sim, joint) < threshold
+
+
+def upright(sim: ActiveArenaSim, body: str, max_tilt_deg: float = 15.0) -> bool:
+    z = sim.data.body(body).xmat.reshape(3, 3)[:, 2]
+    return bool(z[2] >= math.cos(math.radians(max_tilt_deg)))
+
+
+def knocked_over(sim: ActiveArenaSim, body: str, tilt_deg: float = 45.0) -> bool:
+    return not upright(sim, body, tilt_deg)
+
+
+def in_place(sim: ActiveArenaSim, body: str, tol: float = 0.03) -> bool:
+    """Within ``tol`` m (horizontally) of where it was spawned."""
+    spawn = sim.model.body(body).pos
+    return bool(np.linalg.norm(sim.data.body(body).xpos[:2] - spawn[:2]) <= tol)
+
+
+def is_free(sim: ActiveArenaSim, body: str) -> bool:
+    """Whether ``body`` moves freely (a free joint), i.e. is not welded to the world."""
+    m = sim.model
+    b = m.body(body)
+    return bool(b.jntnum[0] > 0 and m.jnt_type[b.jntadr[0]] == 0)
+
+
+def off_table(sim: ActiveArenaSim, body: str, below: float = 0.05) -> bool:
+    """Fallen below the tabletop (``below`` m under it) or out of the fan's outer radius."""
+    p = sim.data.body(body).xpos
+    return bool(p[2] < TABLE_TOP - below or np.hypot(p[0], p[1]) > 1.12)
+
+
+def lifted(sim: ActiveArenaSim, body: str, height: float) -> bool:
+    """Raised at least ``height`` m above its spawn height."""
+    return bool(sim.data.body(body).xpos[2] - sim.model.body(body).pos[2] >= height)
+
+
+def _robot_body(sim: ActiveArenaSim, bid: int) -> bool:
+    return sim.model.body(bid).name.startswith(E.PREFIX)
+
+
+def _gripper_body(sim: ActiveArenaSim, bid: int, arm: str) -> bool:
+    return sim.model.body(bid).name.startswith(f"{E.PREFIX}gripper_{arm}")
+
+
+def contacts_with(sim: ActiveArenaSim, body: str):
+    """(other body id, contact position) of every contact of the geoms of ``body`` and of the bodies
+    attached to it (a bell's plunger, a button's cap)."""
+    m, d = sim.model, sim.data
+    root = m.body_rootid[m.body(body).id]
+    for c in d.contact[: d.ncon]:
+        b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
+        if m.body_rootid[b1] == root and m.body_rootid[b2] != root:
+            yield int(b2), c.pos.copy()
+        elif m.body_rootid[b2] == root and m.body_rootid[b1] != root:
+            yield int(b1), c.pos.copy()
+
+
+def touched_by_robot(sim: ActiveArenaSim, body: str) -> bool:
+    return any(_robot_body(sim, other) for other, _ in contacts_with(sim, body))
+
+
+def released(sim: ActiveArenaSim, body: str) -> bool:
+    """No robot link touches it (it rests by itself)."""
+    return not touched_by_robot(sim, body)
+
+
+def gripper_closed(sim: ActiveArenaSim, arm: str) -> bool:
+    g = A.LEFT_GRIPPER if arm == "left" else A.RIGHT_GRIPPER
+    return bool(sim.state()[g] < GRIPPER_CLOSED_BELOW)
+
+
+def gripper_contact_near(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float, radius_z: float) -> bool:
+    """A contact between ``arm``'s gripper and ``body`` within the cylinder (radius_xy, +/- radius_z)
+    around the world ``point``."""
+    point = np.asarray(point, float)
+    for other, pos in contacts_with(sim, body):
+        if _gripper_body(sim, other, arm):
+            if np.hypot(*(pos[:2] - point[:2])) <= radius_xy and abs(pos[2] - point[2]) <= radius_z:
+                return True
+    return False
+
+
+def pressed_by(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03) -> bool:
+    """``arm``'s closed gripper touches ``body`` near ``point`` (the paper's release: closed gripper,
+    contact within 2.5 cm (xy) / 3 cm (z) of the press point)."""
+    return gripper_closed(sim, arm) and gripper_contact_near(sim, arm, body, point, radius_xy, radius_z)
+
+
+def pressed_by_either(sim: ActiveArenaSim, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03) -> bool:
+    return any(pressed_by(sim, arm, body, point, radius_xy, radius_z) for arm in ("left", "right"))
+
+
+def body_point(sim: ActiveArenaSim, body: str, local) -> np.ndarray:
+    """World position of a point given in ``body``'s frame."""
+    b = sim.data.body(body)
+    return b.xpos + b.xmat.reshape(3, 3) @ np.asarray(local, float)
+
+
+def resting_on(sim: ActiveArenaSim, body: str, support: str, half_xy, height: float, margin: float = 0.01,
+               z_tol: float = 0.012) -> bool:
+    """``body``'s origin lies within the support's top rectangle (``half_xy`` in the support's frame,
+    shrunk by ``margin``) at ``height`` above the support's origin (+/- ``z_tol``)."""
+    s = sim.data.body(support)
+    local = s.xmat.reshape(3, 3).T @ (sim.data.body(body).xpos - s.xpos)
+    hx, hy = (half_xy, half_xy) if np.isscalar(half_xy) else half_xy
+    return bool(abs(local[0]) <= hx - margin and abs(local[1]) <= hy - margin and abs(local[2] - height) <= z_tol)
+
+
+def inside_disc(sim: ActiveArenaSim, body: str, center_body: str, radius: float) -> bool:
+    """Horizontal distance between the two bodies' origins below ``radius``."""
+    return bool(np.linalg.norm(sim.data.body(body).xpos[:2] - sim.data.body(center_body).xpos[:2]) <= radius)
+
+
+def left_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
+    """``a`` is left of ``b`` as the robot sees them (larger workspace angle)."""
+    return polar(sim.data.body(a).xpos)[1] - polar(sim.data.body(b).xpos)[1] > min_deg
+
+
+def right_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
+    return left_of(sim, b, a, min_deg)
+
+
+def ordered_left_to_right(sim: ActiveArenaSim, bodies: list[str]) -> bool:
+    return all(left_of(sim, a, b) for a, b in zip(bodies, bodies[1:]))

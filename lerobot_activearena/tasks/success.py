@@ -1,0 +1,51 @@
+"""Success and failure over an episode.
+
+Every step the monitor asks the task for its named checks (``Task.evaluate``) and for an irreversible
+mistake (``Task.failure``). Success is reported once every check has held for ``STABLE_FRAMES``
+consecutive frames (state goals must hold with the robot off the objects). Events (a press, a
+switch) latch through ``monitor.event(name, happened_now)``: the task decides what makes the event
+count (instructed arm, instructed part, object upright and in place) at the frame it happens.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..sim.simulator import ActiveArenaSim
+    from .base import Task, TaskScene
+
+STABLE_FRAMES = 8
+
+
+class SuccessMonitor:
+    def __init__(self, task: Task, sim: ActiveArenaSim, scene: TaskScene):
+        self.task, self.sim, self.scene = task, sim, scene
+        self.events: dict[str, bool] = {}
+        self.checks: dict[str, bool] = {}
+        self.streak = 0
+        self.success = False
+        self.failure_reason: str | None = None
+
+    def event(self, name: str, happened_now: bool) -> bool:
+        """Latch ``name`` the first frame it happens; True from then on."""
+        self.events[name] = self.events.get(name, False) or bool(happened_now)
+        return self.events[name]
+
+    def update(self) -> bool:
+        """Evaluate the current frame; returns whether success is reported."""
+        if self.success or self.failure_reason:
+            return self.success
+        self.checks = {k: bool(v) for k, v in self.task.evaluate(self.sim, self.scene, self).items()}
+        if not self.checks:
+            raise ValueError(f"{self.task.name}.evaluate() returned no checks")
+        self.failure_reason = self.task.failure(self.sim, self.scene, self) or self.task.common_failure(self.sim, self.scene)
+        if self.failure_reason:
+            return False
+        self.streak = self.streak + 1 if all(self.checks.values()) else 0
+        self.success = self.streak >= STABLE_FRAMES
+        return self.success
+
+    @property
+    def failed_checks(self) -> list[str]:
+        return [k for k, v in self.checks.items() if not v]
