@@ -2,8 +2,9 @@
 
     python benchmarks/expert_success.py --tasks all --splits id,ood --seeds 100 --workers 2
 
-Prints a Markdown table: success rate, mean episode length (frames), failures by reason, expert
-frames/s per worker (physics + IK + visibility + annotation; + head rendering with --render).
+Prints a Markdown table: success rate, mean and 95th-percentile episode length (frames, up to the
+reported success) against the task's step limit (target: p95 <= 0.9 x limit), failures by reason,
+expert frames/s per worker (physics + IK + visibility + annotation; + head rendering with --render).
 """
 
 from __future__ import annotations
@@ -57,15 +58,23 @@ def main() -> None:
     groups = collections.defaultdict(list)
     for r in results:
         groups[(r["task"], r["split"])].append(r)
-    print(f"\n| task | split | success | mean frames | max penetration (mm) | frames/s/worker | failures |")
-    print("|---|---|---|---|---|---|---|")
+    import numpy as np
+
+    from lerobot_activearena.tasks import get_task
+
+    print("\n| task | split | success | mean frames | p95 frames | limit | p95 / limit | max penetration (mm) "
+          "| frames/s/worker | failures |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for (task, split), rs in groups.items():
         ok = sum(r["success"] for r in rs)
         frames = [r["frames"] for r in rs if r["frames"]]
+        solved = [r["frames"] for r in rs if r["success"]] or [0]
+        limit = get_task(task).max_episode_steps
+        p95 = float(np.percentile(solved, 95))
         fps = sum(frames) / max(1e-9, sum(r["seconds"] for r in rs))
         reasons = collections.Counter((r["failure"] or "")[:70] for r in rs if not r["success"])
-        print(f"| {task} | {split} | {ok}/{len(rs)} ({100 * ok / len(rs):.0f}%) | {sum(frames) / max(1, len(frames)):.0f} | "
-              f"{1000 * max(r['penetration'] for r in rs):.1f} | {fps:.0f} | "
+        print(f"| {task} | {split} | {ok}/{len(rs)} ({100 * ok / len(rs):.0f}%) | {np.mean(solved):.0f} | {p95:.0f} | "
+              f"{limit} | {p95 / limit:.2f} | {1000 * max(r['penetration'] for r in rs):.1f} | {fps:.0f} | "
               + "; ".join(f"{n}x {k}" for k, n in reasons.most_common(3)) + " |")
     n = len(results)
     print(f"\n{n} episodes in {wall:.0f} s with {args.workers} workers: {3600 * n / wall:.0f} episodes/hour")

@@ -33,7 +33,7 @@ def test_official_names_and_18_controlled_joints(sim):
             assert m.joint(j).type == mujoco.mjtJoint.mjJNT_HINGE
     assert m.joint("astribot_torso_joint_4") and m.joint("astribot_head_joint_2")
     assert m.camera("astribot_head").id >= 0
-    assert m.nu == 18
+    assert m.nu == 20  # 18 joint targets + velocity targets of torso yaw and head pitch
     # Torso joints 1-3 and head yaw are baked into the standing pose, not simulated.
     for fixed in E.STANDING_POSE:
         with pytest.raises(KeyError):

@@ -50,6 +50,10 @@ class JointTargetController:
         self.torso.reset(state18[A.TORSO_YAW])
         self.head.reset(state18[A.HEAD_PITCH])
 
+    def reference_velocity(self) -> tuple[float, float]:
+        """Velocity of the torso-yaw and head-pitch references (rad/s), the drives' velocity targets."""
+        return self.torso.v, self.head.v
+
     def substep_targets(self, target: np.ndarray):
         """Yield the 18-D reference for each physics substep of one control step."""
         start = self.prev.copy()

@@ -313,12 +313,19 @@ def _add_actuators(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
     for side in ("left", "right"):
         for j in ARM_JOINTS[side]:
             _position_actuator(spec, j, j, *ARM_GAINS)
-    _position_actuator(spec, TORSO_YAW_JOINT, TORSO_YAW_JOINT, *TORSO_GAINS)
-    _position_actuator(spec, HEAD_PITCH_JOINT, HEAD_PITCH_JOINT, *HEAD_GAINS)
+    # Torso and head drives track the reference's position AND velocity (a PD drive with a velocity
+    # target, as SAPIEN's joint drives): a position actuator (stiffness) plus a velocity actuator
+    # (damping) whose control is the rate-limited reference's velocity.
+    for joint, (kp, kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
+        _position_actuator(spec, joint, joint, kp, 0.0)
     for side in ("left", "right"):
         _position_actuator(
             spec, f"{PREFIX}gripper_{side}", info.gripper_joints[side], *GRIPPER_GAINS,
             force=GRIPPER_FORCE * GRIPPER_FINGER_LEVER,
         )
+    for joint, (kp, kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
+        a = spec.add_actuator()
+        a.name, a.target, a.trntype = f"{joint}_velocity", joint, mujoco.mjtTrn.mjTRN_JOINT
+        a.set_to_velocity(kv=kv)
 
 

@@ -41,6 +41,8 @@ class ActiveArenaSim:
         grip = [model.actuator(f"{E.PREFIX}gripper_{s}").id for s in ("left", "right")]
         # action index -> actuator index
         self._act_of_action = np.array(act[:7] + [grip[0]] + act[7:14] + [grip[1]] + act[14:16])
+        # velocity actuators of torso yaw and head pitch (control: the reference's velocity)
+        self._vel_act = np.array([model.actuator(f"{j}_velocity").id for j in (E.TORSO_YAW_JOINT, E.HEAD_PITCH_JOINT)])
         self.action_low = np.zeros(A.ACTION_DIM)
         self.action_high = np.ones(A.ACTION_DIM)
         ranges = np.array([model.joint(j).range for j in robot.actuated_joints])
@@ -90,8 +92,9 @@ class ActiveArenaSim:
         return s
 
     # ---- control -----------------------------------------------------------------------------
-    def _ctrl_from_reference(self, ref: np.ndarray) -> np.ndarray:
-        ctrl = np.empty(self.model.nu)
+    def _ctrl_from_reference(self, ref: np.ndarray, velocity=(0.0, 0.0)) -> np.ndarray:
+        ctrl = np.zeros(self.model.nu)
+        ctrl[self._vel_act] = velocity
         ctrl[self._act_of_action] = ref
         ctrl[self._act_of_action[self._grip_idx]] = self._gripper_to_joint(ref[self._grip_idx])
         return ctrl
@@ -108,7 +111,7 @@ class ActiveArenaSim:
                 "; further clips are reported in step() results and logged at DEBUG" if self.clip_count == 1 else "",
             )
         for ref in self.controller.substep_targets(a):
-            self.data.ctrl[:] = self._ctrl_from_reference(ref)
+            self.data.ctrl[:] = self._ctrl_from_reference(ref, self.controller.reference_velocity())
             mujoco.mj_step(self.model, self.data)
         self.last_clip = report
         return report

@@ -119,7 +119,11 @@ class SceneDraft:
 
     def reserve(self, distance: float, angle_deg: float, radius: float) -> None:
         """Keep a disc empty (e.g. where an object will be placed later)."""
-        self.discs.append((self.workspace.place(distance, angle_deg)[:2], radius))
+        try:
+            xy = self.workspace.place(distance, angle_deg)[:2]
+        except ValueError as exc:  # off the fan: this draft cannot hold the layout
+            raise SamplingFailed(str(exc)) from exc
+        self.discs.append((xy, radius))
 
     def side(self) -> str:
         return "left" if self.rng.integers(0, 2) else "right"
@@ -141,7 +145,10 @@ class SceneDraft:
         for _ in range(tries):
             rr = float(self.rng.uniform(*r)) if np.ndim(r) else float(r)
             aa = float(self.rng.uniform(*angle)) if np.ndim(angle) else float(angle)
-            xy = self.workspace.place(rr, aa, region.level)[:2]
+            try:
+                xy = self.workspace.place(rr, aa, region.level)[:2]
+            except ValueError as exc:  # an explicit spot off the fan
+                raise SamplingFailed(f"{name}: {exc}") from exc
             if not self.is_free(xy, foot, margin):
                 continue
             if region.hidden is not None and in_home_view(xy, foot) == region.hidden:

@@ -4,7 +4,7 @@ Task Description:
     The red block stays; the green block goes to its right, the blue block to the right of the
     green one (left/right as the robot sees them), in a row on one arc.
 Randomizations:
-    Red block anywhere in the arms' band with two empty slots on its right; one of green / blue out
+    Red block at 50-150 deg in the arms' band with two empty slots on its right; one of green / blue out
     of the home view on a random side, the other anywhere in the band; yaws random; no single view
     shows all three (principle check); clutter and (OOD) appearance.
 Success Conditions:
@@ -61,7 +61,7 @@ class BlocksRankingRgbRotateView(Task):
     def layout(self, draft):
         rng = draft.rng
         # Red anywhere with room for two slots on its right; the slots stay empty.
-        _, r_red, a_red = draft.place("block", "red_block", "red block", Region(angle=(45.0, 150.0)),
+        _, r_red, a_red = draft.place("block", "red_block", "red block", Region(angle=(50.0, 150.0)),
                                       yaw=float(rng.uniform(-0.4, 0.4)), rgba=BLOCK_COLORS["red"], half=(HALF,) * 3,
                                       arms=ARMS)
         step = math.degrees(SPACING / r_red)

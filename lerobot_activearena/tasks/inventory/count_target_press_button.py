@@ -6,7 +6,7 @@ Task Description:
     the button whose number is the count.
 Randomizations:
     Count 1-3; the first green block out of the home view on a random side (0.36-0.8 m), the others
-    anywhere at 0.36-0.8 m; other colours random; the button row's centre at 40-140 deg and
+    anywhere at 0.36-0.8 m; other colours random; the button row's centre at 44-136 deg and
     0.38-0.43 m, numbers in random order; clutter and (OOD) appearance.
 Success Conditions:
     pressed_matching_button: button <count>'s cap went below -0.005 m (paper's threshold) while a
@@ -45,7 +45,7 @@ class CountTargetPressButton(Task):
     def layout(self, draft):
         rng = draft.rng
         count = int(rng.integers(1, 4))
-        centre = float(rng.uniform(40.0, 140.0))
+        centre = float(rng.uniform(44.0, 136.0))
         r_b = float(rng.uniform(0.38, 0.43))
         step = float(np.degrees(BUTTON_SPACING / r_b))
         for k, n in enumerate(rng.permutation([1, 2, 3])):

@@ -1,0 +1,74 @@
+"""The validity suite: on every registered task, adversaries that look at nothing (random, held
+random, still, blind replay) never score, the fixed-view expert fails with a detection miss; the
+suite resumes from its episode log; the CLI names the valid adversaries when given a wrong one."""
+
+import json
+
+import pytest
+
+from lerobot_activearena.cli.validity import main as validity_main
+from lerobot_activearena.eval.validity import (ADVERSARIES, LOOK_AT_NOTHING, VALIDITY_SEED_BASE, check_outside_manifests,
+                                               run_episode, run_suite, summarise, targets_met, write_report)
+from lerobot_activearena.envs.manifests import EVAL_SEED_START
+from lerobot_activearena.tasks import task_names
+
+TASKS = task_names("all")
+SEEDS = (VALIDITY_SEED_BASE, VALIDITY_SEED_BASE + 1)
+
+
+@pytest.mark.parametrize("adversary", LOOK_AT_NOTHING)
+@pytest.mark.parametrize("task", TASKS)
+def test_look_at_nothing_adversaries_never_score(task, adversary):
+    for seed in SEEDS:
+        rec = run_episode(task, "id", adversary, seed)
+        assert not rec["success"], f"{adversary} solved {task} seed {seed}: {rec}"
+        assert rec["failure_state"] in ("DM", "CO", "CR") and rec["failure_reason"], rec
+
+
+@pytest.mark.parametrize("task", TASKS)
+def test_fixed_view_expert_misses_a_hidden_object(task):
+    rec = run_episode(task, "id", "fixed_view_expert", VALIDITY_SEED_BASE)
+    assert not rec["success"] and rec["failure_state"] == "DM", rec
+
+
+def test_suite_resumes_after_a_kill(tmp_path):
+    task = TASKS[0]
+    run_suite([task], ["still"], 2, out_dir=tmp_path, workers=2)  # through the process pool
+    log = tmp_path / "episodes.jsonl"
+    assert len(log.read_text().splitlines()) == 2
+    with open(log, "a") as f:
+        f.write('{"task": "' + task + '", "spl')  # a line cut by a kill
+    records = run_suite([task], ["still"], 3, out_dir=tmp_path, workers=1)
+    lines = [json.loads(line) for line in log.read_text().splitlines()]
+    assert len(lines) == 3 and [r["seed"] for r in lines][-1] == VALIDITY_SEED_BASE + 2
+    assert [r["seed"] for r in records] == [VALIDITY_SEED_BASE + i for i in range(3)]
+    rows = summarise(records)
+    assert len(rows) == 1 and rows[0]["episodes"] == 3 and rows[0]["successes"] == 0 and rows[0]["met"]
+    table = write_report(rows, tmp_path)
+    assert "| ok |" in table and (tmp_path / "validity.csv").read_text().count("\n") == 2
+
+
+def test_seeds_inside_a_manifest_are_refused():
+    with pytest.raises(ValueError, match="evaluation seeds"):
+        check_outside_manifests(TASKS, [EVAL_SEED_START])
+
+
+def test_targets():
+    row = lambda adv, k, n=50: dict(adversary=adv, successes=k, episodes=n)  # noqa: E731
+    assert targets_met(row("random", 1)) and not targets_met(row("still", 2))
+    assert targets_met(row("held_random", 2, 100)) and not targets_met(row("held_random", 3, 100))
+    assert targets_met(row("blind_replay", 5)) and not targets_met(row("blind_replay", 6))
+    assert targets_met(row("fixed_view_expert", 2)) and not targets_met(row("fixed_view_expert", 3))
+    assert targets_met(row("expert", 48)) and not targets_met(row("expert", 47))
+    assert not targets_met(row("random", 0, 0))  # nothing measured
+
+
+def test_cli_rejects_unknown_adversary_and_split(capsys):
+    with pytest.raises(SystemExit) as exc:
+        validity_main(["--adversaries", "random,peek"])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "unknown adversary peek" in err and all(a in err for a in ADVERSARIES)
+    with pytest.raises(SystemExit):
+        validity_main(["--splits", "test"])
+    assert "valid splits: id, ood" in capsys.readouterr().err
