@@ -18,7 +18,7 @@ def test_reset_step_observation_contract():
     assert env.observation_space.contains(obs)
     assert env.metadata["render_fps"] == 15
     assert env.task_description == "Press the bell's top center using the left arm."
-    assert env.task == "click_bell_rotate_view" and env._max_episode_steps == 300
+    assert env.task == "click_bell_rotate_view" and env._max_episode_steps == 137
     obs2, reward, terminated, truncated, info = env.step(obs["agent_pos"])
     assert info["is_success"] is False and reward == 0.0 and not terminated and not truncated
     np.testing.assert_allclose(obs2["agent_pos"], obs["agent_pos"], atol=2e-3)

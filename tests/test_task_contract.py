@@ -1,0 +1,82 @@
+"""The contract every registered task keeps, parametrised over the whole registry (a new task module
+is tested here with no list to edit): deterministic sampling that satisfies the design principles,
+a valid shipped seed manifest, no success at reset, an expert that succeeds within the step limit,
+and gymnasium's env checker. The adversaries' side of validity is in test_validity.py."""
+
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+from lerobot_activearena.envs.gym_env import ActiveArenaEnv
+from lerobot_activearena.envs.manifests import EVAL_SEED_START, MANIFEST_SIZE, load_manifest
+from lerobot_activearena.tasks import CATEGORIES, get_task, task_names
+from lerobot_activearena.tasks.base import SPLITS
+from lerobot_activearena.tasks.rollout import run_expert_episode
+from lerobot_activearena.tasks.sampling import goal_holds_at_reset, principle_violations, sample_scene
+
+TASKS = task_names("all")
+
+
+def _layout(scene):
+    return {o.name: np.round(np.asarray(scene.model.body(o.body).pos), 6).tolist()
+            for o in scene.info.objects + scene.info.clutter}
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_task_declares_its_inventory_row(name):
+    task = get_task(name)
+    assert task.category in CATEGORIES and task.instruction and task.max_episode_steps > 0
+    assert [s.id for s in task.subtasks] == list(range(1, len(task.subtasks) + 1))
+    doc = type(task).__module__ and __import__(type(task).__module__, fromlist=["_"]).__doc__
+    for section in ("Task Description:", "Randomizations:", "Success Conditions:"):
+        assert section in doc, f"{name}'s module docstring lacks {section!r}"
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_sampling_is_deterministic_and_keeps_the_design_principles(name):
+    task = get_task(name)
+    for split in SPLITS:
+        a, b = sample_scene(task, 11, split), sample_scene(task, 11, split)
+        assert _layout(a) == _layout(b) and a.params == b.params and a.attempt == b.attempt
+        assert _layout(a) != _layout(sample_scene(task, 12, split))
+        assert principle_violations(task, a) == [] and goal_holds_at_reset(task, a) == []
+        assert a.search_targets and all(0 <= i < len(a.objects) for i in a.search_targets)
+        assert set(a.hidden) <= set(a.objects) and set(a.reach) <= set(a.objects)
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_seed_manifest_is_shipped_and_valid(name):
+    for split in SPLITS:
+        seeds = load_manifest(name, split)
+        assert len(seeds) == MANIFEST_SIZE and len(set(seeds)) == MANIFEST_SIZE
+        assert seeds == sorted(seeds) and seeds[0] >= EVAL_SEED_START
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_no_success_at_reset_or_while_holding_still(name):
+    env = ActiveArenaEnv(name, split="ood", render_pixels=False)
+    obs, info = env.reset(seed=env.seed_base)  # manifest episode 0
+    assert info["is_success"] is False
+    for _ in range(10):
+        obs, reward, terminated, truncated, info = env.step(obs["agent_pos"])
+        assert not info["is_success"] and not terminated and reward == 0.0
+    checks = env.monitor.checks
+    assert checks and not all(checks.values()), f"{name}: a still robot meets every check: {checks}"
+    env.close()
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_expert_succeeds_within_the_step_limit(name):
+    task = get_task(name)
+    for seed, split in ((0, "id"), (1, "ood")):
+        r = run_expert_episode(name, seed, split)
+        assert r.success, f"{name} seed {seed} {split}: {r.failure}"
+        assert r.length <= task.max_episode_steps and r.health["problem"] is None
+        assert all(r.sidecar["final_checks"].values())
+
+
+@pytest.mark.parametrize("name", TASKS)
+def test_gymnasium_env_checker(name):
+    env = ActiveArenaEnv(name, use_manifest=False)
+    check_env(env, skip_render_check=True)
+    env.close()
