@@ -34,7 +34,11 @@ def test_a_plunger_dip_without_the_left_gripper_is_not_a_press():
         sim.step(home)
         assert not mon.update()
     assert mon.checks["pressed_top_center_with_left_gripper"] is False
-    assert mon.failed_checks == ["pressed_top_center_with_left_gripper"]
+    assert mon.failed_checks == ["saw_task_objects", "pressed_top_center_with_left_gripper"]
+    mon.observe(np.ones(len(scene.objects), bool))  # even once the bell has been seen
+    sim.data.joint("bell_plunger_joint").qpos[0] = -0.007
+    sim.step(home)
+    assert not mon.update() and mon.failed_checks == ["pressed_top_center_with_left_gripper"]
 
 
 def test_a_knocked_over_bell_ends_the_episode_with_a_reason():
@@ -66,13 +70,23 @@ def test_a_placed_cup_succeeds_only_after_resting_for_the_stable_frames():
     task, scene, sim, mon = _sim("place_empty_cup_rotate_view", 2)
     top = scene.obj("coaster").extra["top"]
     _set_free_pose(sim, "cup", sim.data.body("coaster").xpos + [0, 0, top + 0.001])
+    mon.observe(np.ones(len(scene.objects), bool))
     home = sim.home_action()
     reported = []
     for _ in range(STABLE_FRAMES + 4):
         sim.step(home)
         reported.append(mon.update())
-    assert mon.checks == {"cup_on_coaster": True, "cup_upright": True, "cup_released": True}
+    assert mon.checks == {"saw_task_objects": True, "cup_on_coaster": True, "cup_upright": True, "cup_released": True}
     assert reported.index(True) == STABLE_FRAMES - 1, reported
+
+
+def test_a_placed_cup_the_camera_never_saw_is_not_a_success():
+    task, scene, sim, mon = _sim("place_empty_cup_rotate_view", 2)
+    _set_free_pose(sim, "cup", sim.data.body("coaster").xpos + [0, 0, scene.obj("coaster").extra["top"] + 0.001])
+    for _ in range(STABLE_FRAMES + 4):
+        sim.step(sim.home_action())
+        assert not mon.update()
+    assert mon.failed_checks == ["saw_task_objects"]
 
 
 def test_a_tipped_cup_on_the_coaster_is_not_placed():

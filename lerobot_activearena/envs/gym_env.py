@@ -90,7 +90,7 @@ class ActiveArenaEnv(gym.Env):
         self.monitor = self.spec_task.monitor(self.sim, self.scene)
         self.recorder = AnnotationRecorder(self.sim, len(self.scene.objects))
         self.recorder.observe()
-        self._info_seen = self.spec_task.information_seen(self.sim, self.scene)
+        self.monitor.observe(self.recorder.discovered)
         self._steps = 0
         self._episode = None if seed is None else int(seed) - self.seed_base
         self._scene_seed = scene_seed
@@ -112,8 +112,7 @@ class ActiveArenaEnv(gym.Env):
         success = bool(self.monitor.update())
         failure_reason = self.monitor.failure_reason
         self.recorder.observe()
-        if not self._info_seen:
-            self._info_seen = self.spec_task.information_seen(self.sim, self.scene)
+        self.monitor.observe(self.recorder.discovered)
         if self.expert_channel:
             self._advance_expert()
         terminated = success or failure_reason is not None
@@ -121,7 +120,7 @@ class ActiveArenaEnv(gym.Env):
         info = {"is_success": success, "clipped_action": clip.as_dict()}
         if terminated or truncated:
             t = self.scene.search_targets
-            seen = np.append(self.recorder.discovered[t], self._info_seen)
+            seen = np.append(self.recorder.discovered[t], self.monitor.info_seen)
             info["failure_state"] = failure_state(success, seen, self.recorder.visible[t])
             info["failure_reason"] = failure_reason or ("" if success else
                                                         f"step limit {self._max_episode_steps} reached; "

@@ -141,6 +141,7 @@ def run_expert_episode(task_name: str, seed: int, split: str = "id",
     recorder.observe()
     driver = ExpertDriver(task, scene, sim, recorder)
     monitor = task.monitor(sim, scene)
+    monitor.observe(recorder.discovered)
     health = PhysicsHealth(sim)
     frames, actions, states = [], [], []
     failure = None
@@ -169,6 +170,7 @@ def run_expert_episode(task_name: str, seed: int, split: str = "id",
         if monitor.success:
             break
         recorder.observe()
+        monitor.observe(recorder.discovered)
         driver.observed()
     success = bool(monitor.success) and failure is None
     if failure is None and not success:

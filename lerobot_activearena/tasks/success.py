@@ -5,11 +5,18 @@ mistake (``Task.failure``). Success is reported once every check has held for ``
 consecutive frames (state goals must hold with the robot off the objects). Events (a press, a
 switch) latch through ``monitor.event(name, happened_now)``: the task decides what makes the event
 count (instructed arm, instructed part, object upright and in place) at the frame it happens.
+
+Every task also needs ``saw_task_objects``: the head camera has seen every task-relevant object
+(and, for information-acquisition tasks, the hidden information) before an event counts and before
+success is reported. A policy that acts without ever looking (flailing, a memorised motion) is in
+the DM failure state by the paper's definition; it cannot succeed by luck.
 """
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
+
+import numpy as np
 
 if TYPE_CHECKING:
     from ..sim.simulator import ActiveArenaSim
@@ -26,19 +33,28 @@ class SuccessMonitor:
         self.streak = 0
         self.success = False
         self.failure_reason: str | None = None
+        self.info_seen = False  # the task's hidden information was seen (True for tasks without)
+        self.informed = False  # every task-relevant object and the information were seen
+
+    def observe(self, discovered: np.ndarray) -> None:
+        """After each observation: ``discovered`` = registered objects the head camera has seen so far."""
+        if not self.info_seen:
+            self.info_seen = bool(self.task.information_seen(self.sim, self.scene))
+        self.informed = bool(np.asarray(discovered)[self.scene.search_targets].all()) and self.info_seen
 
     def event(self, name: str, happened_now: bool) -> bool:
-        """Latch ``name`` the first frame it happens; True from then on."""
-        self.events[name] = self.events.get(name, False) or bool(happened_now)
+        """Latch ``name`` the first frame it happens after the task-relevant objects were seen."""
+        self.events[name] = self.events.get(name, False) or (bool(happened_now) and self.informed)
         return self.events[name]
 
     def update(self) -> bool:
         """Evaluate the current frame; returns whether success is reported."""
         if self.success or self.failure_reason:
             return self.success
-        self.checks = {k: bool(v) for k, v in self.task.evaluate(self.sim, self.scene, self).items()}
-        if not self.checks:
+        checks = self.task.evaluate(self.sim, self.scene, self)
+        if not checks:
             raise ValueError(f"{self.task.name}.evaluate() returned no checks")
+        self.checks = {"saw_task_objects": self.informed, **{k: bool(v) for k, v in checks.items()}}
         self.failure_reason = self.task.failure(self.sim, self.scene, self) or self.task.common_failure(self.sim, self.scene)
         if self.failure_reason:
             return False

@@ -4,13 +4,14 @@ Task Description:
     A desk bell stands out of the head camera's home view; find it, face it with the left arm and
     press its plunger with the closed gripper.
 Randomizations:
-    Bell at 0.34-0.45 m from the base, out of the home view on a random side (|theta - 90| >= 38.5
+    Bell at 0.32-0.48 m from the base, out of the home view on a random side (|theta - 90| >= 38.5
     deg, checked by projection), random yaw; clutter and (OOD) appearance from the sampler.
 Success Conditions:
     pressed: the plunger went below its pressed threshold while the LEFT gripper, closed, touched
     the bell within 2.5 cm (xy) / 3 cm (z) of the top centre (paper's release), with the bell
     upright and in place at that moment; bell_upright, bell_in_place: still true afterwards.
-    Failure: the bell knocked over or pushed out of place (irreversible).
+    Failure: the bell knocked over or pushed out of place (irreversible). As for every task, the
+    press counts only after the head camera has seen the bell (saw_task_objects).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from ...expert import routines as R
 from ...sim.assets.task_props import BELL_PRESSED
 from .. import predicates as P
 from ..base import Subtask, Task
-from ..draft import HIDDEN
+from ..draft import Region
 
 
 class ClickBellRotateView(Task):
@@ -30,7 +31,7 @@ class ClickBellRotateView(Task):
     max_episode_steps = 137
 
     def layout(self, draft):
-        draft.place("bell", "bell", "bell", HIDDEN, yaw="random", arms=("left",))
+        draft.place("bell", "bell", "bell", Region(r=(0.32, 0.48), hidden=True), yaw="random", arms=("left",))
 
     def evaluate(self, sim, scene, monitor):
         upright, in_place = P.upright(sim, "bell"), P.in_place(sim, "bell", 0.03)
