@@ -95,10 +95,7 @@ def _blind_replay(env, obs, task, split, seed) -> Act:
 
 
 def _expert(env, obs, task, split, seed) -> Act:
-    # environment_state is float32: a target at a joint limit rounds just past it, which the env
-    # would clip (and warn about); clip here to the same float64 limits instead
-    low, high = env.sim.action_low, env.sim.action_high
-    return lambda obs, t: np.clip(obs["environment_state"].astype(np.float64), low, high)
+    return lambda obs, t: obs["environment_state"]
 
 
 ADVERSARIES: dict[str, Adversary] = {a.name: a for a in (

@@ -4,7 +4,7 @@ Task Description:
     A desk bell stands out of the head camera's home view; find it, face it with the left arm and
     press its plunger with the closed gripper.
 Randomizations:
-    Bell at 0.32-0.48 m from the base, out of the home view on a random side (|theta - 90| >= 38.5
+    Bell at 0.35-0.48 m from the base, out of the home view on a random side (|theta - 90| >= 38.5
     deg, checked by projection), random yaw; clutter and (OOD) appearance from the sampler.
 Success Conditions:
     pressed: the plunger went below its pressed threshold while the LEFT gripper, closed, touched
@@ -31,7 +31,7 @@ class ClickBellRotateView(Task):
     max_episode_steps = 137
 
     def layout(self, draft):
-        draft.place("bell", "bell", "bell", Region(r=(0.32, 0.48), hidden=True), yaw="random", arms=("left",))
+        draft.place("bell", "bell", "bell", Region(r=(0.35, 0.48), hidden=True), yaw="random", arms=("left",))
 
     def evaluate(self, sim, scene, monitor):
         upright, in_place = P.upright(sim, "bell"), P.in_place(sim, "bell", 0.03)
