@@ -131,3 +131,20 @@ def test_subtask_marker_follows_declaration_order():
     with pytest.raises(ValueError, match="subtask 3 is not declared"):
         with ctx.subtask(3):
             pass
+
+
+def test_an_expert_that_crashes_fails_its_episode_in_the_env_not_the_run(monkeypatch, caplog):
+    from lerobot_activearena.tasks.inventory.click_bell_rotate_view import ClickBellRotateView
+
+    def broken(self, ctx, scene):
+        yield ctx.emit()
+        raise IndexError("a bug in a task script")
+
+    monkeypatch.setattr(ClickBellRotateView, "expert", broken)
+    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False, expert_channel=True, render_pixels=False)
+    obs, _ = env.reset(seed=2)
+    for _ in range(3):
+        obs, *_ = env.step(obs["environment_state"])
+    assert env._driver.failure == "expert crashed: IndexError: a bug in a task script"
+    assert "the click_bell_rotate_view expert crashed" in caplog.text
+    env.close()

@@ -161,7 +161,7 @@ class ActiveArenaEnv(gym.Env):
 
     # ---- privileged expert channel -------------------------------------------------------------
     def _start_expert(self) -> None:
-        self._driver = ExpertDriver(self.spec_task, self.scene, self.sim, self.recorder)
+        self._driver = ExpertDriver(self.spec_task, self.scene, self.sim, self.recorder, contain_errors=True)
         self._expert_action = self._driver.next_action()
         if self._expert_action is None:
             self._expert_action = self._home.copy()

@@ -5,6 +5,7 @@ Like an evaluation episode, it ends at the first reported success or irreversibl
 
 from __future__ import annotations
 
+import logging
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -19,6 +20,8 @@ from ..sim.simulator import ActiveArenaSim
 from .base import Task, TaskScene
 from .registry import get_task
 from .sampling import sample_scene
+
+log = logging.getLogger(__name__)
 
 PENETRATION_LIMIT = 0.01  # m
 WORLD_RADIUS = 2.5  # m; free objects beyond this (or below z = 0.3) have left the world
@@ -96,15 +99,19 @@ class ExpertDriver:
     """Steps a task's expert script. Call ``next_action()`` before each simulator step and
     ``observed()`` after the recorder has observed the new state. An expert that gives up
     (``ExpertError``: object never found, grasp lost) ends its script: ``failure`` says why and
-    ``next_action()`` returns None from then on, as it does when the script is finished."""
+    ``next_action()`` returns None from then on, as it does when the script is finished.
+    ``contain_errors`` (the env's expert channel): any other exception from the script is logged
+    with its traceback and fails the episode instead of the whole evaluation run."""
 
-    def __init__(self, task: Task, scene: TaskScene, sim: ActiveArenaSim, recorder: AnnotationRecorder):
+    def __init__(self, task: Task, scene: TaskScene, sim: ActiveArenaSim, recorder: AnnotationRecorder,
+                 contain_errors: bool = False):
         ik, gaze = shared_kinematics()
         self.task, self.recorder = task, recorder
         self.ctx = ExpertContext(sim, scene.objects, recorder, ik, gaze, n_subtasks=len(task.subtasks))
         self._script = task.expert(self.ctx, scene)
         self.finished = False
         self.failure: str | None = None
+        self.contain_errors = contain_errors
         self.ctx.update_memory()
 
     def next_action(self) -> np.ndarray | None:
@@ -116,6 +123,11 @@ class ExpertDriver:
             pass
         except ExpertError as exc:
             self.failure = f"expert: {exc}"
+        except Exception as exc:
+            if not self.contain_errors:
+                raise
+            log.exception("the %s expert crashed; its episode fails", self.task.name)
+            self.failure = f"expert crashed: {type(exc).__name__}: {exc}"
         self.finished = True
         return None
 
