@@ -158,7 +158,7 @@ def sweep_all(ctx: ExpertContext, targets: list[int]) -> Actions:
 
 
 # ---- arm ----------------------------------------------------------------------------------------
-def _solve(ctx: ExpertContext, side: str, q_seed, pos, rot) -> np.ndarray:
+def solve_ik(ctx: ExpertContext, side: str, q_seed, pos, rot) -> np.ndarray:
     """IK from ``q_seed``; on failure, once more from the home configuration with more iterations."""
     try:
         return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot)
@@ -188,7 +188,7 @@ def move_arm_joint(ctx: ExpertContext, side: str, q_goal, gripper: float | None 
 
 
 def arm_goto(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, max_vel: float = 1.5) -> Actions:
-    q_goal = _solve(ctx, side, arm_of(ctx.action, side), pos, rot)
+    q_goal = solve_ik(ctx, side, arm_of(ctx.action, side), pos, rot)
     yield from move_arm_joint(ctx, side, q_goal, gripper, max_vel)
 
 
@@ -202,7 +202,7 @@ def arm_line(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = No
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
         pk, Rk = interpolate_pose(p0, R0, pos, rot, s)
-        q = _solve(ctx, side, q, pk, Rk)
+        q = solve_ik(ctx, side, q, pk, Rk)
         ctx.action = with_arm(ctx.action, side, q, gripper)
         yield ctx.emit()
 
@@ -226,7 +226,7 @@ def top_down_rotation(ctx: ExpertContext, side: str, closing, *positions) -> np.
     for R in cands:
         try:
             for pos in positions:
-                _solve(ctx, side, arm_of(ctx.action, side), pos, R)
+                solve_ik(ctx, side, arm_of(ctx.action, side), pos, R)
             return R
         except ExpertError:
             continue
@@ -286,7 +286,7 @@ def _feasible_rotation(ctx: ExpertContext, side: str, R: np.ndarray, positions, 
         Rz = rot_z(th)
         try:
             for pos in positions:
-                _solve(ctx, side, arm_of(ctx.action, side), pos, Rz @ R)
+                solve_ik(ctx, side, arm_of(ctx.action, side), pos, Rz @ R)
             return Rz @ R
         except ExpertError:
             continue
@@ -348,7 +348,7 @@ def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: i
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
         th = s * angle
-        q = _solve(ctx, side, q, p, rot_z(th) @ R)
+        q = solve_ik(ctx, side, q, p, rot_z(th) @ R)
         ctx.action = with_arm(ctx.action, side, q)
         yield ctx.emit()
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+import mujoco
 import numpy as np
 
 from ..sim import action as A
@@ -103,14 +104,34 @@ def gripper_closed(sim: ActiveArenaSim, arm: str) -> bool:
     return bool(sim.state()[g] < GRIPPER_CLOSED_BELOW)
 
 
+TOUCH_DISTANCE = 0.002  # m: geoms this close count as touching (a pressing pad flickers in and out of contact)
+
+
+def _collision_geoms(sim: ActiveArenaSim, pred) -> list[int]:
+    m = sim.model
+    return [g for g in range(m.ngeom) if (m.geom_contype[g] or m.geom_conaffinity[g]) and pred(int(m.geom_bodyid[g]))]
+
+
 def gripper_contact_near(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float, radius_z: float) -> bool:
-    """A contact between ``arm``'s gripper and ``body`` within the cylinder (radius_xy, +/- radius_z)
-    around the world ``point``."""
+    """``arm``'s gripper touches ``body`` (or a part attached to it) within the cylinder (radius_xy,
+    +/- radius_z) around the world ``point``. Touching = geom distance below ``TOUCH_DISTANCE``
+    (``mj_geomDistance``), so a press is seen even at a physics substep without an active contact."""
+    m, d = sim.model, sim.data
+    key = ("gripper_contact_geoms", arm, body)
+    cache = sim.__dict__.setdefault("_predicate_cache", {})
+    if key not in cache:
+        root = m.body_rootid[m.body(body).id]
+        cache[key] = (_collision_geoms(sim, lambda b: _gripper_body(sim, b, arm)),
+                      _collision_geoms(sim, lambda b: m.body_rootid[b] == root))
+    grippers, parts = cache[key]
     point = np.asarray(point, float)
-    for other, pos in contacts_with(sim, body):
-        if _gripper_body(sim, other, arm):
-            if np.hypot(*(pos[:2] - point[:2])) <= radius_xy and abs(pos[2] - point[2]) <= radius_z:
-                return True
+    fromto = np.zeros(6)
+    for g1 in grippers:
+        for g2 in parts:
+            if mujoco.mj_geomDistance(m, d, g1, g2, 0.01, fromto) <= TOUCH_DISTANCE:
+                pos = 0.5 * (fromto[:3] + fromto[3:])
+                if np.hypot(*(pos[:2] - point[:2])) <= radius_xy and abs(pos[2] - point[2]) <= radius_z:
+                    return True
     return False
 
 

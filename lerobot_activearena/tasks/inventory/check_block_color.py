@@ -154,10 +154,10 @@ class CheckBlockColor(Task):
                 try:
                     q = P.arm_of(ctx.action, side)
                     for pos in path:
-                        q = P._solve(ctx, side, q, pos, R)
+                        q = P.solve_ik(ctx, side, q, pos, R)
                     for frac in np.linspace(0.0, 1.0, 9):
                         th = frac * angle
-                        q = P._solve(ctx, side, q, inspect, rot_z(th) @ R)
+                        q = P.solve_ik(ctx, side, q, inspect, rot_z(th) @ R)
                     return sign * Rb[:, 1], angle
                 except ExpertError:
                     continue
