@@ -135,9 +135,19 @@ def gripper_contact_near(sim: ActiveArenaSim, arm: str, body: str, point, radius
     return False
 
 
-def pressed_by(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03) -> bool:
+def tcp_over(sim: ActiveArenaSim, arm: str, point, radius_xy: float) -> bool:
+    """``arm``'s tool centre (between the fingertips) is within ``radius_xy`` of ``point``, horizontally."""
+    tcp = sim.data.site(E.TCP_SITES[arm]).xpos
+    return bool(np.hypot(*(tcp[:2] - np.asarray(point, float)[:2])) <= radius_xy)
+
+
+def pressed_by(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03,
+               centered_within: float | None = None) -> bool:
     """``arm``'s closed gripper touches ``body`` near ``point`` (the paper's release: closed gripper,
-    contact within 2.5 cm (xy) / 3 cm (z) of the press point)."""
+    contact within 2.5 cm (xy) / 3 cm (z) of the press point); with ``centered_within``, its tool
+    centre must also be that close to the point horizontally (a press *at* the point)."""
+    if centered_within is not None and not tcp_over(sim, arm, point, centered_within):
+        return False
     return gripper_closed(sim, arm) and gripper_contact_near(sim, arm, body, point, radius_xy, radius_z)
 
 

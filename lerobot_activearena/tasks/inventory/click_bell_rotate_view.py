@@ -8,8 +8,8 @@ Randomizations:
     deg, checked by projection), random yaw; clutter and (OOD) appearance from the sampler.
 Success Conditions:
     pressed: the plunger went below its pressed threshold while the LEFT gripper, closed, touched
-    the bell within 2.5 cm (xy) / 3 cm (z) of the top centre (paper's release), with the bell
-    upright and in place at that moment; bell_upright, bell_in_place: still true afterwards.
+    the bell within 2.5 cm (xy) / 3 cm (z) of the top centre (paper's release) with its tool centre
+    within 1 cm of the top centre (horizontally), the bell upright and in place at that moment; bell_upright, bell_in_place: still true afterwards.
     Failure: the bell knocked over or pushed out of place (irreversible). As for every task, the
     press counts only after the head camera has seen the bell (saw_task_objects).
 """
@@ -21,6 +21,8 @@ from ...sim.assets.task_props import BELL_PRESSED
 from .. import predicates as P
 from ..base import Subtask, Task
 from ..draft import Region
+
+CENTER_TOL = 0.01  # m: the gripper's centre over the top centre (the plunger cap's radius is 1.2 cm)
 
 
 class ClickBellRotateView(Task):
@@ -37,7 +39,8 @@ class ClickBellRotateView(Task):
         upright, in_place = P.upright(sim, "bell"), P.in_place(sim, "bell", 0.03)
         top = P.body_point(sim, "bell", scene.obj("bell").extra["press_point"])
         pressed = monitor.event("pressed", P.joint_below(sim, "bell_plunger_joint", BELL_PRESSED)
-                                and P.pressed_by(sim, "left", "bell", top) and upright and in_place)
+                                and P.pressed_by(sim, "left", "bell", top, centered_within=CENTER_TOL)
+                                and upright and in_place)
         return {"pressed_top_center_with_left_gripper": pressed, "bell_upright": upright, "bell_in_place": in_place}
 
     def failure(self, sim, scene, monitor):
