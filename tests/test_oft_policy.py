@@ -280,7 +280,7 @@ def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=0, think="subtask")
     batch = _batch(ds, pre, [len(ds) - 20])
     opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
-    for _ in range(60):
+    for _ in range(150):  # memorise this one sample's subtask text
         loss, _ = policy.forward(batch)
         opt.zero_grad()
         loss.backward()
