@@ -16,26 +16,12 @@ import numpy as np
 
 
 def visible_band(radius: float, angles: np.ndarray, height: float) -> tuple[float, float] | None:
-    import mujoco
+    """Smallest and largest angle whose tabletop point at ``height`` projects into the home image."""
+    from lerobot_activearena.tasks.draft import TABLE_TOP, in_home_view
 
-    from lerobot_activearena.sim import embodiment as E
-    from lerobot_activearena.sim.camera import extrinsic_cv, intrinsics, project
-    from lerobot_activearena.sim.scene import HEAD_HEIGHT, HEAD_WIDTH, SceneBuilder
-
-    global _MODEL
-    if "_MODEL" not in globals():
-        model, _ = SceneBuilder().compile()
-        data = mujoco.MjData(model)
-        data.qpos[model.joint(E.TORSO_YAW_JOINT).qposadr[0]] = E.HOME_TORSO_YAW
-        data.qpos[model.joint(E.HEAD_PITCH_JOINT).qposadr[0]] = E.HOME_HEAD_PITCH
-        mujoco.mj_forward(model, data)
-        cam = model.camera(E.HEAD_CAMERA).id
-        _MODEL = (intrinsics(float(model.cam_fovy[cam]), HEAD_WIDTH, HEAD_HEIGHT), extrinsic_cv(data, cam))
-    K, T = _MODEL
     a = np.radians(angles)
-    pts = np.stack([radius * np.cos(a), radius * np.sin(a), np.full_like(a, height)], axis=1)
-    uv, z = project(pts, K, T)
-    inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] <= HEAD_WIDTH) & (uv[:, 1] >= 0) & (uv[:, 1] <= HEAD_HEIGHT)
+    inside = np.array([in_home_view((radius * np.cos(x), radius * np.sin(x)), 0.0, heights=(height - TABLE_TOP,))
+                       for x in a])
     if not inside.any():
         return None
     return float(angles[inside].min()), float(angles[inside].max())

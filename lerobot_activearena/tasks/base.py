@@ -14,8 +14,6 @@ from typing import TYPE_CHECKING, ClassVar
 import mujoco
 import numpy as np
 
-from . import predicates as P
-
 if TYPE_CHECKING:
     from ..expert.context import ExpertContext
     from ..sim.scene import SceneInfo
@@ -104,13 +102,6 @@ class Task:
 
     def failure(self, sim: ActiveArenaSim, scene: TaskScene, monitor: SuccessMonitor) -> str | None:
         """An irreversible mistake that ends the episode as a failure (reason), else None."""
-        return None
-
-    def common_failure(self, sim: ActiveArenaSim, scene: TaskScene) -> str | None:
-        """Every task: a task object that left the table ends the episode."""
-        for name in scene.objects:
-            if P.is_free(sim, name) and P.off_table(sim, name):
-                return f"{name} fell off the table"
         return None
 
     def monitor(self, sim: ActiveArenaSim, scene: TaskScene) -> SuccessMonitor:

@@ -18,6 +18,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from . import predicates as P
+
 if TYPE_CHECKING:
     from ..sim.simulator import ActiveArenaSim
     from .base import Task, TaskScene
@@ -35,6 +37,7 @@ class SuccessMonitor:
         self.failure_reason: str | None = None
         self.info_seen = False  # the task's hidden information was seen (True for tasks without)
         self.informed = False  # every task-relevant object and the information were seen
+        self._free_objects = [n for n in scene.objects if P.is_free(sim, n)]
 
     def observe(self, discovered: np.ndarray) -> None:
         """After each observation: ``discovered`` = registered objects the head camera has seen so far."""
@@ -55,12 +58,19 @@ class SuccessMonitor:
         if not checks:
             raise ValueError(f"{self.task.name}.evaluate() returned no checks")
         self.checks = {"saw_task_objects": self.informed, **{k: bool(v) for k, v in checks.items()}}
-        self.failure_reason = self.task.failure(self.sim, self.scene, self) or self.task.common_failure(self.sim, self.scene)
+        self.failure_reason = self.task.failure(self.sim, self.scene, self) or self._object_off_table()
         if self.failure_reason:
             return False
         self.streak = self.streak + 1 if all(self.checks.values()) else 0
         self.success = self.streak >= STABLE_FRAMES
         return self.success
+
+    def _object_off_table(self) -> str | None:
+        """Every task: a free task object that left the table ends the episode."""
+        for name in self._free_objects:
+            if P.off_table(self.sim, name):
+                return f"{name} fell off the table"
+        return None
 
     @property
     def failed_checks(self) -> list[str]:
