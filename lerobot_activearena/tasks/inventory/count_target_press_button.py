@@ -16,36 +16,27 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import primitives as P
-from ...expert import routines as R
-from ...expert.context import ExpertError
-from ...sim.assets.task_props import BLOCK_COLORS, BUTTON_PRESSED
-from .. import predicates as Pr
-from ..base import Subtask, Task
-from ..draft import REACH, Region
+from ...sim.assets.task_props import BLOCK_COLORS
+from ..base import Subtask
+from ..counting import PRESS_SUBTASK, CountAndPressTask
+from ..draft import Region
 
 OTHER_COLORS = ("red", "blue", "yellow", "purple", "orange")
 BLOCK_R = (0.36, 0.8)
-ARMS = ("left", "right")
 
 
-class CountTargetPressButton(Task):
+class CountTargetPressButton(CountAndPressTask):
     name = "count_target_press_button"
     category = "MD"
     instruction = "Count the target blocks and press the matching button."
     subtasks = (
         Subtask(1, "count_green_target_blocks", "scan targets and distractors and infer the green-block count", 0),
-        Subtask(2, "press_matching_number_button", "localize and press the button corresponding to the inferred count", 1),
+        PRESS_SUBTASK,
     )
     max_episode_steps = 152
 
-    def layout(self, draft):
+    def place_counted(self, draft, count):
         rng = draft.rng
-        count = int(rng.integers(1, 4))
-        # Buttons anywhere in the band (not a fixed row): a memorised press lands on the right one
-        # only by chance.
-        for n in (1, 2, 3):
-            draft.place("button", f"button_{n}", f"button {n}", REACH, number=n, margin=0.02, arms=ARMS)
         for k in range(count):
             region = Region(r=BLOCK_R, hidden=True) if k == 0 else Region(r=BLOCK_R)
             draft.place("block", f"green_block_{k}", f"green block {k + 1}", region, yaw="random",
@@ -54,36 +45,9 @@ class CountTargetPressButton(Task):
             color = OTHER_COLORS[int(rng.integers(0, len(OTHER_COLORS)))]
             draft.place("block", f"{color}_block_{k}", f"{color} block", Region(r=BLOCK_R), yaw="random",
                         rgba=BLOCK_COLORS[color], half=(0.022,) * 3)
-        draft.params["count"] = count
 
-    def search_targets(self, scene):
-        greens = [i for i, n in enumerate(scene.objects) if n.startswith("green_block")]
-        return greens + [scene.objects.index(f"button_{scene.params['count']}")]
+    def counted_objects(self, scene):
+        return [i for i, n in enumerate(scene.objects) if n.startswith("green_block")]
 
-    def evaluate(self, sim, scene, monitor):
-        button = f"button_{scene.params['count']}"
-        point = Pr.body_point(sim, button, scene.obj(button).extra["press_point"])
-        pressed = monitor.event("pressed", Pr.joint_below(sim, f"{button}_joint", BUTTON_PRESSED)
-                                and Pr.pressed_by_either(sim, button, point))
-        return {"pressed_matching_button": pressed}
-
-    def failure(self, sim, scene, monitor):
-        for n in (1, 2, 3):
-            if n != scene.params["count"] and Pr.joint_below(sim, f"button_{n}_joint", BUTTON_PRESSED):
-                return f"pressed button {n}; the count was {scene.params['count']}"
-        return None
-
-    def expert(self, ctx, scene):
-        blocks = [i for i, n in enumerate(ctx.objects) if "_block" in n]
-        with ctx.subtask(1):
-            yield from P.sweep_all(ctx, blocks)
-            count = sum(1 for i in blocks if ctx.objects[i].startswith("green") and ctx.recorder.discovered[i])
-            ctx.notes["counted_green_blocks"] = count
-            if count == 0:
-                raise ExpertError("no green block was seen")
-        with ctx.subtask(2):
-            button = ctx.idx(f"button_{count}")
-            ctx.intent.search_targets = {button}
-            side = yield from R.find_and_face(ctx, button)
-            yield from R.press_object(ctx, side, button, depth=0.012)
-            yield from R.finish(ctx, side)
+    def count_seen(self, ctx, scene, seen):
+        return sum(1 for i in seen if ctx.objects[i].startswith("green_block"))
