@@ -151,3 +151,28 @@ def test_asset_sheet_cli_renders_a_labelled_grid(tmp_path):
     assert img[: THUMB[1], : THUMB[0]].std() > 5, "thumbnail is blank"
     with pytest.raises(SystemExit, match="unknown categories"):
         main(["--categories", "hammer,unicorn", "--out", str(out)])
+
+
+def test_arc_labels_read_left_to_right_from_outside():
+    """Texture u must grow to the viewer's right (+y for a viewer on +x looking at the can), and the
+    faces must face outward: a mirrored date would be unreadable."""
+    spec = mujoco.MjSpec()
+    build_asset(spec, "labeled_can", "can", (0.4, 0, 0.74), date="2024-06-17")
+    mesh = spec.mesh("can_label_mesh")
+    verts = np.asarray(mesh.uservert).reshape(-1, 3)
+    uv = np.asarray(mesh.usertexcoord).reshape(-1, 2)
+    assert np.corrcoef(verts[:, 1], uv[:, 0])[0, 1] > 0.99
+    for f in np.asarray(mesh.userface).reshape(-1, 3):
+        a, b, c = verts[f]
+        normal = np.cross(b - a, c - a)
+        assert normal @ np.array([a[0], a[1], 0.0]) > 0  # counter-clockwise seen from outside
+
+
+def test_mat_text_is_printed_only_when_asked():
+    spec = mujoco.MjSpec()
+    plain = build_asset(spec, "mat", "plain", (0.4, 0, 0.74), color_name="red")
+    printed = build_asset(spec, "mat", "printed", (0.4, 0.2, 0.74), color_name="green", text="VALID")
+    model = spec.compile()
+    names = {model.geom(i).name for i in range(model.ngeom)}
+    assert "printed_text" in names and "plain_text" not in names
+    assert (plain.extra["text"], printed.extra["text"]) == ("", "VALID")

@@ -32,6 +32,7 @@ class ExpertContext:
         self.memory: dict[int, np.ndarray] = {}  # object index -> centre when last seen
         self.explored: set[int] = set()  # sector ids swept so far
         self.notes: dict = {}  # what the expert inferred (colours, counts), for the sidecar
+        self.frame = 0  # index of the next emitted action (= the episode frame it is applied at)
 
     @contextmanager
     def subtask(self, k: int):
@@ -63,7 +64,9 @@ class ExpertContext:
         return float(self.center(i)[2] + self.obj(i).half_extents[2])
 
     def bottom_z(self, i: int) -> float:
-        return float(self.center(i)[2] - self.obj(i).half_extents[2])
+        """Lowest point of the object's bounding box (a carried object may hang tilted)."""
+        p, R = self.pose(i)
+        return float(self.center(i)[2] - np.abs(R[2]) @ np.asarray(self.obj(i).half_extents))
 
     def update_memory(self) -> None:
         for i in np.flatnonzero(self.recorder.visible):
@@ -79,4 +82,5 @@ class ExpertContext:
         return float(self.action[A.HEAD_PITCH])
 
     def emit(self) -> np.ndarray:
+        self.frame += 1
         return self.action.copy()

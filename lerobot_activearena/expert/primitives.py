@@ -158,14 +158,21 @@ def sweep_all(ctx: ExpertContext, targets: list[int]) -> Actions:
 
 
 # ---- arm ----------------------------------------------------------------------------------------
-def solve_ik(ctx: ExpertContext, side: str, q_seed, pos, rot) -> np.ndarray:
-    """IK from ``q_seed``; on failure, once more from the home configuration with more iterations."""
+MAX_PATH_STEP = 0.5  # rad: a joint may move this much between two waypoints of a continuous path
+
+
+def solve_ik(ctx: ExpertContext, side: str, q_seed, pos, rot, max_step: float | None = None) -> np.ndarray:
+    """IK from ``q_seed``; on failure, once more from the home configuration with more iterations
+    (along a continuous path, ``max_step``, only if that lands on the seed's branch: a jump to
+    another branch would whip the arm and what it holds)."""
     try:
         return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot)
     except IKFailed:
         pass
     try:
-        return ctx.ik.solve(side, E.HOME_ARM[side], ctx.yaw, pos, rot, max_iters=800)
+        q = ctx.ik.solve(side, E.HOME_ARM[side], ctx.yaw, pos, rot, max_iters=800)
+        if max_step is None or np.abs(q - np.asarray(q_seed)).max() <= max_step:
+            return q
     except IKFailed:
         pass
     try:  # near-converged (a few mm) is fine along a path; endpoints are re-checked by physics
@@ -202,7 +209,7 @@ def arm_line(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = No
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
         pk, Rk = interpolate_pose(p0, R0, pos, rot, s)
-        q = solve_ik(ctx, side, q, pk, Rk)
+        q = solve_ik(ctx, side, q, pk, Rk, max_step=MAX_PATH_STEP)
         ctx.action = with_arm(ctx.action, side, q, gripper)
         yield ctx.emit()
 
@@ -256,14 +263,24 @@ def start_action(ctx: ExpertContext, targets: set[int]) -> None:
     ctx.intent.camera_mode = CAMERA_HOLD
 
 
+def grasp_point(ctx: ExpertContext, i: int) -> np.ndarray:
+    """Where the TCP closes on object ``i``: its registered ``extra['grasp_point']`` (body frame; tall
+    objects are held high so the palm clears their top), else its centre kept high enough that the
+    open pads stay off the table."""
+    local = ctx.obj(i).extra.get("grasp_point")
+    if local is not None:
+        p, R = ctx.pose(i)
+        return p + R @ np.asarray(local, float)
+    c = ctx.center(i)
+    return np.array([c[0], c[1], max(c[2], ctx.bottom_z(i) + GRASP_Z_MIN_ABOVE_BOTTOM)])
+
+
 def pick(ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15, flip_ok: bool = True) -> Actions:
     """Top-down grasp of object ``i`` and lift; raises ExpertError if it did not come up.
     ``flip_ok=False`` keeps the finger order given by ``closing`` (no 180 deg wrist flip)."""
     start_action(ctx, {i})
-    c = ctx.center(i)
     closing = box_closing_axis(ctx, i) if closing is None else closing
-    z = max(c[2], ctx.bottom_z(i) + GRASP_Z_MIN_ABOVE_BOTTOM)
-    grasp = np.array([c[0], c[1], z])
+    grasp = grasp_point(ctx, i)
     if flip_ok:
         R = top_down_rotation(ctx, side, closing, grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift])
     else:
@@ -348,7 +365,23 @@ def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: i
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
         th = s * angle
-        q = solve_ik(ctx, side, q, p, rot_z(th) @ R)
+        q = solve_ik(ctx, side, q, p, rot_z(th) @ R, max_step=MAX_PATH_STEP)
+        ctx.action = with_arm(ctx.action, side, q)
+        yield ctx.emit()
+
+
+def carry_and_turn(ctx: ExpertContext, side: str, pos, angle: float, speed: float = 0.2,
+                   steps_per_rad: int = 12) -> Actions:
+    """Move the TCP in a straight line to ``pos`` while turning it about the vertical by ``angle``
+    rad (one smooth motion, as long as the slower of the two)."""
+    ctx.intent.camera_mode = CAMERA_HOLD
+    p0, R0 = tcp_pose(ctx, side)
+    dist = float(np.linalg.norm(np.asarray(pos) - p0))
+    n = max(4, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))), int(abs(angle) * steps_per_rad))
+    q = arm_of(ctx.action, side)
+    for k in range(1, n + 1):
+        s = 0.5 - 0.5 * math.cos(math.pi * k / n)
+        q = solve_ik(ctx, side, q, p0 + s * (np.asarray(pos) - p0), rot_z(s * angle) @ R0, max_step=MAX_PATH_STEP)
         ctx.action = with_arm(ctx.action, side, q)
         yield ctx.emit()
 

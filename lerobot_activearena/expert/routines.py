@@ -21,10 +21,26 @@ def find_and_face(ctx: ExpertContext, i: int, side: str | None = None, then=None
     return side
 
 
+def nearest_known(ctx: ExpertContext, candidates: list[int]) -> int:
+    """The candidate the expert has seen that is nearest the current heading (else the first):
+    where to go next without a detour."""
+    known = [i for i in candidates if i in ctx.memory]
+    if not known:
+        return candidates[0]
+    heading = np.pi / 2 + ctx.yaw
+    return min(known, key=lambda i: abs(np.arctan2(ctx.memory[i][1], ctx.memory[i][0]) - heading))
+
+
 def press_point(ctx: ExpertContext, i: int) -> np.ndarray:
-    """World position of object ``i``'s registered press point (its ``extra['press_point']``)."""
-    pos, R = ctx.pose(i)
-    return pos + R @ np.asarray(ctx.obj(i).extra["press_point"])
+    """World position of object ``i``'s registered press point (its ``extra['press_point']``, in the
+    frame of the moving part ``extra['press_body']`` when it has one: a rocker, a stapler arm)."""
+    extra = ctx.obj(i).extra
+    if "press_body" in extra:
+        body = ctx.sim.data.body(extra["press_body"])
+        pos, R = body.xpos.copy(), body.xmat.reshape(3, 3).copy()
+    else:
+        pos, R = ctx.pose(i)
+    return pos + R @ np.asarray(extra["press_point"])
 
 
 def press_object(ctx: ExpertContext, side: str, i: int, depth: float):

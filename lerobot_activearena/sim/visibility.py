@@ -3,7 +3,8 @@ unoccluded fraction of the object's surface samples (depth-aware ray casts with 
 
 An object is visible when ``visible_fraction = in_image x unoccluded >= 0.4`` (paper: at least 40 %
 of the projected bounding-box area inside the image and not occluded). Surface samples on the far
-side of the object count as unoccluded when the first thing the ray hits is the object itself.
+side of the object count as unoccluded when the first thing the ray hits is the object itself (or a
+part attached to it).
 """
 
 from __future__ import annotations
@@ -94,6 +95,7 @@ class VisibilityChecker:
         self._local = np.concatenate(local) if local else np.zeros((0, 3))
         self._owner = np.concatenate(owner) if owner else np.zeros(0, int)
         self._body_of_geom = model.geom_bodyid
+        self._root = model.body_rootid
         self._half = np.array([o.half_extents for o in objects], float).reshape(-1, 3)
         self._offset = np.array([o.center_offset for o in objects], float).reshape(-1, 3)
 
@@ -136,7 +138,8 @@ class VisibilityChecker:
                 mujoco.mj_multiRay(self.model, data, cam, vec.reshape(-1), _RENDERED_GROUPS, 1,
                                    self.exclude_body, geomid, dist, None, idx.size, 1e3)
                 hit_body = np.where(geomid >= 0, self._body_of_geom[np.maximum(geomid, 0)], -1)
-                own = hit_body == bid[self._owner[idx]]
+                # A ray that ends on the object's own moving part (a rocker, a plunger) sees the object.
+                own = (hit_body >= 0) & (self._root[np.maximum(hit_body, 0)] == self._root[bid[self._owner[idx]]])
                 clear = (geomid < 0) | (dist >= dist_target - 1e-3)
                 seen = own | clear
                 tot = np.bincount(self._owner[idx], minlength=n)

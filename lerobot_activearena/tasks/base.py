@@ -85,15 +85,22 @@ class Task:
         """Objects whose observation the task needs (design-principle checks, DM/CO/CR)."""
         return list(range(len(scene.objects)))
 
-    def information_hidden_at_start(self, scene: TaskScene) -> bool:
-        """True when the deciding information is hidden at reset by construction (e.g. a colour on
-        an object's back face); then principle (1) does not need an unseen object."""
-        return False
+    def information_faces(self, scene: TaskScene) -> list[str]:
+        """Objects whose hidden information face (``extra['face_*']``: a back patch, a date label)
+        the task needs read. Each must face away from the camera at reset and be seen before success."""
+        return []
 
-    def information_seen(self, sim: ActiveArenaSim, scene: TaskScene) -> bool:
-        """For tasks whose deciding information is hidden on an object: whether the head camera sees
-        it now (counts as a task-relevant observation in the DM/CO/CR failure states)."""
-        return True
+    def information_hidden_at_start(self, scene: TaskScene) -> bool:
+        """True when the deciding information is hidden at reset by construction (every information
+        face turned away from the home view); then principle (1) does not need an unseen object."""
+        faces = self.information_faces(scene)
+        if not faces:
+            return False
+        from .predicates import hidden_face_visible
+
+        data = mujoco.MjData(scene.model)
+        mujoco.mj_forward(scene.model, data)
+        return not any(hidden_face_visible(scene.model, data, scene.obj(n)) for n in faces)
 
     # ---- success -----------------------------------------------------------------------------
     def evaluate(self, sim: ActiveArenaSim, scene: TaskScene, monitor: SuccessMonitor) -> dict[str, bool]:

@@ -133,10 +133,10 @@ class SceneDraft:
 
     def place(self, category: str, name: str, label: str, region: Region = REACH, *, r=None, angle=None,
               yaw: float | str | None = None, arms: tuple[str, ...] = (), margin: float = 0.04,
-              register: bool = True, static: bool = False, tries: int = 200, **params):
+              register: bool = True, static: bool = False, tries: int = 200, yaw_jitter: float = 0.25, **params):
         """Sample a free spot in ``region`` (or the explicit ``r`` / ``angle``, a value or a range) and
-        add the object. ``yaw``: radians, ``'random'``, or None (body +x points radially outward, with
-        a little jitter). ``arms``: the arms that may touch it (checked reachable by the sampler).
+        add the object. ``yaw``: radians, ``'random'``, or None (body +x points radially outward, give or
+        take ``yaw_jitter`` rad). ``arms``: the arms that may touch it (checked reachable by the sampler).
         Returns (ObjectInfo, distance, angle_deg)."""
         foot = ASSETS[category].footprint
         side = region.side if region.side is not None or not region.hidden else self.side()
@@ -159,7 +159,7 @@ class SceneDraft:
         if yaw == "random":
             yaw = self.random_yaw()
         elif yaw is None:
-            yaw = math.radians(aa) + float(self.rng.uniform(-0.25, 0.25))
+            yaw = math.radians(aa) + float(self.rng.uniform(-yaw_jitter, yaw_jitter))
         info = self.builder.add_object(category, name, rr, aa, yaw=yaw, rng=self.rng, register=register,
                                        static=static or ASSETS[category].static, **params)
         self.discs.append((xy, foot))

@@ -13,7 +13,9 @@ import numpy as np
 
 from ..sim import action as A
 from ..sim import embodiment as E
+from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
+from ..sim.visibility import surface_point_visible
 from .draft import TABLE_TOP
 
 GRIPPER_CLOSED_BELOW = 0.3  # normalised gripper state (0 closed, 1 open)
@@ -97,6 +99,19 @@ def touched_by_robot(sim: ActiveArenaSim, body: str) -> bool:
 def released(sim: ActiveArenaSim, body: str) -> bool:
     """No robot link touches it (it rests by itself)."""
     return not touched_by_robot(sim, body)
+
+
+def held_by_gripper(sim: ActiveArenaSim, body: str) -> str | None:
+    """The arm whose gripper holds ``body`` up: it touches that gripper and nothing but the robot
+    (no table, no other object under it); None when it is not held."""
+    arm = None
+    for other, _ in contacts_with(sim, body):
+        if not _robot_body(sim, other):
+            return None
+        for side in ("left", "right"):
+            if _gripper_body(sim, other, side):
+                arm = side
+    return arm
 
 
 def gripper_closed(sim: ActiveArenaSim, arm: str) -> bool:
@@ -187,3 +202,15 @@ def right_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
 
 def ordered_left_to_right(sim: ActiveArenaSim, bodies: list[str]) -> bool:
     return all(left_of(sim, a, b) for a, b in zip(bodies, bodies[1:]))
+
+
+def hidden_face_visible(model: mujoco.MjModel, data: mujoco.MjData, info) -> bool:
+    """Whether the head camera sees object ``info``'s information face (its ``extra['face_*']``:
+    a back patch, a date label) right now: facing the camera, in the image and not occluded."""
+    body = data.body(info.body)
+    R = body.xmat.reshape(3, 3)
+    point = body.xpos + R @ np.asarray(info.extra["face_center_body"])
+    normal = R @ np.asarray(info.extra["face_normal_body"])
+    cam = model.camera(E.HEAD_CAMERA).id
+    return surface_point_visible(model, data, cam, point, normal, model.geom(info.extra["face_geom"]).id,
+                                 HEAD_WIDTH, HEAD_HEIGHT, exclude_body=model.body(f"{E.PREFIX}head_link_2").id)

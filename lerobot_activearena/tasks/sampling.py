@@ -49,7 +49,7 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
     does not show every task-relevant object; (2) each of them is visible from some search view and
     every object the arms must touch is reachable by an allowed arm; (3) with several, no single
     view shows them all (evidence must be remembered). Objects placed out of the home view must
-    not be visible there."""
+    not be visible there, nor any information face (a back patch, a date label)."""
     targets = scene.search_targets
     vis_all = sector_visibility(scene.model, scene.info)
     vis = vis_all[:, targets]
@@ -57,6 +57,8 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
     # With the deciding information hidden by construction (a back-face colour), (1) and (3) hold
     # through it: it is unseen at reset and must be remembered once the face is turned away again.
     hidden_info = task.information_hidden_at_start(scene)
+    if task.information_faces(scene) and not hidden_info:
+        problems.append("an information face is visible at home")
     if vis[0].all() and not hidden_info:
         problems.append("initial view already shows every task-relevant object")
     missing = [scene.objects[t] for t, seen in zip(targets, vis.any(axis=0)) if not seen]

@@ -35,14 +35,20 @@ class SuccessMonitor:
         self.streak = 0
         self.success = False
         self.failure_reason: str | None = None
-        self.info_seen = False  # the task's hidden information was seen (True for tasks without)
+        self.state: dict = {}  # per-episode memory a task's checks may keep (e.g. a motion history)
+        self._faces = {n: scene.obj(n) for n in task.information_faces(scene)}
+        self.faces_seen: set[str] = set()  # information faces the head camera has seen
+        self.info_seen = not self._faces  # every hidden information face was seen
         self.informed = False  # every task-relevant object and the information were seen
         self._free_objects = [n for n in scene.objects if P.is_free(sim, n)]
 
     def observe(self, discovered: np.ndarray) -> None:
         """After each observation: ``discovered`` = registered objects the head camera has seen so far."""
         if not self.info_seen:
-            self.info_seen = bool(self.task.information_seen(self.sim, self.scene))
+            model, data = self.sim.model, self.sim.data
+            self.faces_seen |= {n for n, o in self._faces.items()
+                                if n not in self.faces_seen and P.hidden_face_visible(model, data, o)}
+            self.info_seen = len(self.faces_seen) == len(self._faces)
         self.informed = bool(np.asarray(discovered)[self.scene.search_targets].all()) and self.info_seen
 
     def event(self, name: str, happened_now: bool) -> bool:

@@ -29,6 +29,12 @@ class ObjectInfo:
     extra: dict = field(default_factory=dict)
 
 
+def hidden_face(geom: str, center_body, normal_body) -> dict:
+    """``ObjectInfo.extra`` entries of a surface that carries task information (a colour patch, a
+    date label): its geom and its centre and outward normal in the body frame."""
+    return {"face_geom": geom, "face_center_body": tuple(center_body), "face_normal_body": tuple(normal_body)}
+
+
 def add_geom(body, gtype, size, pos=(0, 0, 0), rgba=(0.5, 0.5, 0.5, 1), mass=None, name=None, friction=None,
              quat=None, material=None, collide: bool = True):
     """Add a geom that collides with the world (or a visual-only one with ``collide=False``)."""

@@ -40,5 +40,7 @@ def add_bottle(spec, name, pos, yaw=0.0, radius=0.03, height=0.18, mass=0.25, rg
     neck_h = height - body_h
     _geom(b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius * 0.4, neck_h / 2, 0), (0, 0, body_h + neck_h / 2),
           (0.9, 0.9, 0.9, 1), mass * 0.1)
-    return ObjectInfo(name, "bottle", name, (radius, radius, height / 2), (0, 0, height / 2), mass)
+    # Held by the neck, just above the shoulder: the palm clears the cap.
+    return ObjectInfo(name, "bottle", name, (radius, radius, height / 2), (0, 0, height / 2), mass,
+                      {"grasp_point": (0.0, 0.0, body_h + 0.03)})
 

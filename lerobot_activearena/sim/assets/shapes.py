@@ -99,11 +99,17 @@ def cone_mesh(spec, name: str, radius: float, height: float, n: int = 16) -> str
     return name
 
 
-def text_texture(spec, name: str, text: str, bg=(240, 240, 235), fg=(20, 20, 20), size=(128, 64)) -> str:
-    """A texture material with ``text`` written on it (for labels and boxes)."""
+def text_texture(spec, name: str, text: str, bg=(240, 240, 235), fg=(20, 20, 20), size=(128, 64),
+                 fill: float = 0.42) -> str:
+    """A texture material with ``text`` written on it (for labels and boxes). ``fill``: font size
+    as a fraction of the height, shrunk if the text would not fit 90 % of the width."""
     img = Image.new("RGB", size, bg)
     draw = ImageDraw.Draw(img)
-    font = ImageFont.load_default(size=int(size[1] * 0.42))
+    px = int(size[1] * fill)
+    font = ImageFont.load_default(size=px)
+    width = draw.textlength(text, font=font)
+    if width > 0.9 * size[0]:
+        font = ImageFont.load_default(size=max(8, int(px * 0.9 * size[0] / width)))
     draw.text((size[0] / 2, size[1] / 2), text, fill=fg, font=font, anchor="mm")
     return add_texture_material(spec, name, np.asarray(img))
 
@@ -112,7 +118,7 @@ def arc_label(spec, body_name: str, name: str, material: str, radius: float, z0:
               arc_deg: float = 45.0, n: int = 8):
     """A visual-only curved label: a cylindrical strip of ``arc_deg`` centred on the body's +x side,
     texture u along the arc (left to right seen from outside), v up."""
-    a = np.radians(np.linspace(arc_deg / 2, -arc_deg / 2, n + 1))  # left to right seen from +x
+    a = np.radians(np.linspace(-arc_deg / 2, arc_deg / 2, n + 1))  # left to right seen from outside (+x)
     verts, uv, faces = [], [], []
     for k, t in enumerate(a):
         for j, z in enumerate((z0, z1)):
@@ -120,7 +126,7 @@ def arc_label(spec, body_name: str, name: str, material: str, radius: float, z0:
             uv.append([k / n, 1.0 - j])
     for k in range(n):
         b0, t0, b1, t1 = 2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3
-        faces += [[b0, t1, b1], [b0, t0, t1]]  # counter-clockwise seen from outside
+        faces += [[b0, b1, t1], [b0, t1, t0]]  # counter-clockwise seen from outside
     mesh = spec.add_mesh()
     mesh.name = name
     mesh.uservert = np.asarray(verts, float).reshape(-1)

@@ -12,7 +12,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from ..appearance import table_texture
-from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
+from .base import ObjectInfo, add_geom, add_texture_material, free_body, hidden_face, static_body
 from .registry import register_asset
 from .shapes import arc_label, compound, quat_axis_angle, text_texture
 
@@ -43,32 +43,66 @@ def add_hammer(spec, name, pos, yaw=0.0, handle=(0.6, 0.4, 0.2)):
     ], 0.35, extra={"handle_point": (-0.03, 0.0, 0.012), "head_point": (0.11, 0.0, 0.018)})
 
 
+def _hinge(body, name: str, lo: float, hi: float, damping: float, stiffness: float = 0.0, springref: float = 0.0,
+           frictionloss: float = 0.0):
+    """A hinge about the body's y axis limited to [lo, hi] rad."""
+    j = body.add_joint()
+    j.name, j.type, j.axis = name, mujoco.mjtJoint.mjJNT_HINGE, (0, 1, 0)
+    j.range, j.limited = (lo, hi), mujoco.mjtLimited.mjLIMITED_TRUE
+    j.damping[0], j.stiffness[0], j.springref, j.frictionloss = damping, stiffness, springref, frictionloss
+    return j
+
+
+STAPLER_OPEN = 0.14  # rad the top arm rests above closed
+STAPLER_PRESSED = 0.1  # rad of travel that counts as a press (of 0.14)
+
+
 @register_asset("stapler", footprint=0.09, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng))})
 def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
-    return compound(spec, name, "stapler", pos, yaw, [
-        ("box", (0.075, 0.02, 0.008), (0, 0, 0.008), (0.15, 0.15, 0.16, 1)),
-        ("box", (0.07, 0.018, 0.012), (0.005, 0, 0.028), rgba),
-    ], 0.25, extra={"press_point": (0.045, 0.0, 0.04)})
+    """Desk stapler: base plate, rear post and a spring-loaded top arm hinged at the rear
+    (``extra['joint']``: 0 = open, ``STAPLER_OPEN`` = pressed shut; press point at the front end
+    of the arm, in the arm body's frame)."""
+    b = free_body(spec, name, pos, yaw)
+    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.075, 0.02, 0.006), (0, 0, 0.006), (0.15, 0.15, 0.16, 1), 0.2,
+             f"{name}_body")
+    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.012, 0.016, 0.012), (-0.062, 0, 0.024), (0.15, 0.15, 0.16, 1), 0.03,
+             f"{name}_post")
+    arm = b.add_body()
+    arm.name = f"{name}_arm"
+    arm.pos = (-0.062, 0, 0.036)
+    arm.quat = quat_axis_angle([0, 1, 0], -STAPLER_OPEN)  # front end raised
+    arm.gravcomp = 1.0
+    _hinge(arm, f"{name}_joint", 0.0, STAPLER_OPEN, damping=0.05, stiffness=0.6, springref=-0.15)
+    add_geom(arm, mujoco.mjtGeom.mjGEOM_BOX, (0.068, 0.017, 0.008), (0.066, 0, 0.0), rgba, 0.05, f"{name}_arm_geom")
+    return ObjectInfo(name, "stapler", name, (0.075, 0.02, 0.03), (0, 0, 0.03), 0.28,
+                      {"joint": f"{name}_joint", "press_body": f"{name}_arm", "press_point": (0.115, 0.0, 0.008),
+                       "pressed_above": STAPLER_PRESSED, "grasp_point": (0.0, 0.0, 0.03)})
 
 
-@register_asset("switch", footprint=0.06, role="task", static=True)
+SWITCH_TILT = 0.25  # rad the rocker rests tilted to each side of flat
+SWITCH_ON = 2 * SWITCH_TILT  # joint value when the rocker is fully over to "on"
+
+
+@register_asset("switch", footprint=0.055, role="task")
 def add_switch(spec, name, pos, yaw=0.0, rgba=(0.92, 0.92, 0.9, 1)):
-    """Static switch box with a toggle lever on a hinge (``extra['joint']``; on when the angle > 0.2)."""
-    info = compound(spec, name, "switch", pos, yaw, [("box", (0.04, 0.03, 0.02), (0, 0, 0.02), rgba)], 0.0, static=True)
-    lever = spec.body(name).add_body()
-    lever.name = f"{name}_lever"
-    lever.pos = (0, 0, 0.04)
-    j = lever.add_joint()
-    j.name, j.type, j.axis = f"{name}_joint", mujoco.mjtJoint.mjJNT_HINGE, (0, 1, 0)
-    j.range, j.limited = (-0.4, 0.4), mujoco.mjtLimited.mjLIMITED_TRUE
-    j.damping[0] = 0.02
-    j.ref = 0.0
-    add_geom(lever, mujoco.mjtGeom.mjGEOM_CAPSULE, (0.006, 0.015, 0), (0, 0, 0.015), (0.85, 0.1, 0.1, 1), 0.01,
-             f"{name}_lever_geom").quat = quat_axis_angle([0, 1, 0], -0.35)
-    info.half_extents = (0.04, 0.03, 0.035)
-    info.center_offset = (0.0, 0.0, 0.035)
-    info.extra.update(joint=f"{name}_joint", on_above=0.2)
-    return info
+    """Rocker switch on a small heavy base: the red rocker rests tilted with its +x end (white
+    mark) up; pressing that end down rocks it over to on (``extra['joint']``: 0 = off,
+    ``SWITCH_ON`` = on; it stays where it is put)."""
+    b = free_body(spec, name, pos, yaw)
+    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.045, 0.03, 0.012), (0, 0, 0.012), rgba, 0.45, f"{name}_body")
+    rocker = b.add_body()
+    rocker.name = f"{name}_rocker"
+    rocker.pos = (0, 0, 0.029)
+    rocker.quat = quat_axis_angle([0, 1, 0], -SWITCH_TILT)  # +x end up: off
+    rocker.gravcomp = 1.0
+    _hinge(rocker, f"{name}_joint", 0.0, SWITCH_ON, damping=0.02, frictionloss=0.01)
+    add_geom(rocker, mujoco.mjtGeom.mjGEOM_BOX, (0.038, 0.02, 0.005), (0, 0, 0), (0.8, 0.1, 0.1, 1), 0.015,
+             f"{name}_rocker_geom")
+    add_geom(rocker, mujoco.mjtGeom.mjGEOM_BOX, (0.008, 0.012, 0.0005), (0.026, 0, 0.005), (1, 1, 1, 1),
+             name=f"{name}_mark", collide=False)
+    return ObjectInfo(name, "switch", name, (0.045, 0.03, 0.022), (0, 0, 0.022), 0.465,
+                      {"joint": f"{name}_joint", "press_body": f"{name}_rocker", "press_point": (0.026, 0.0, 0.005),
+                       "on_limit": SWITCH_ON})
 
 
 @register_asset("pill_bottle", footprint=0.03, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.5, 0.95))})
@@ -211,13 +245,23 @@ def add_seal(spec, name, pos, yaw=0.0, rgba=(0.55, 0.25, 0.15, 1)):
 
 @register_asset("mat", footprint=0.085, role="task", static=True,
                 randomize=lambda rng: {"color_name": str(rng.choice(sorted(MAT_COLORS)))})
-def add_mat(spec, name, pos, yaw=0.0, color_name: str = "black", half=(0.075, 0.06)):
+def add_mat(spec, name, pos, yaw=0.0, color_name: str = "black", half=(0.075, 0.06), text: str = ""):
+    """Thin static mat in a named colour; ``text`` (e.g. 'EXPIRED') is printed across it in white,
+    reading upright for a viewer on the body's -x side (the sampler yaws +x outward)."""
     if color_name not in MAT_COLORS:
         raise ValueError(f"unknown mat colour {color_name!r}; choose from {sorted(MAT_COLORS)}")
     b = static_body(spec, name, pos, yaw)
     add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (*half, 0.002), (0, 0, 0.002), _rgba(MAT_COLORS[color_name]), None,
              f"{name}_body")
-    return ObjectInfo(name, "mat", name, (*half, 0.002), (0, 0, 0.002), 0.0, {"color_name": color_name, "top": 0.004})
+    if text:
+        bg = tuple(int(255 * c) for c in MAT_COLORS[color_name])
+        mat = text_texture(spec, f"{name}_text", text, bg=bg, fg=(250, 250, 250), size=(256, 96), fill=0.8)
+        # Texture u runs along the box's x: turned -90 deg about z, the word runs along the mat's -y.
+        add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.95 * half[1], 0.36 * half[1], 0.0005), (0, 0, 0.0045),
+                 (1, 1, 1, 1), name=f"{name}_text", quat=quat_axis_angle([0, 0, 1], -np.pi / 2), material=mat,
+                 collide=False)
+    return ObjectInfo(name, "mat", name, (*half, 0.002), (0, 0, 0.002), 0.0,
+                      {"color_name": color_name, "top": 0.004, "text": text})
 
 
 def random_date(rng: np.random.Generator) -> dt.date:
@@ -225,14 +269,16 @@ def random_date(rng: np.random.Generator) -> dt.date:
     return DATE_RANGE[0] + dt.timedelta(days=int(rng.integers(0, span + 1)))
 
 
-def date_label_image(date: str, size: int = 128) -> np.ndarray:
-    """White label: 'PROD' then the production date as year over month-day (fits the narrow arc)."""
+def date_label_image(date: str, size: tuple[int, int] = (128, 176)) -> np.ndarray:
+    """White label with the production date in two large lines, year over month-day (readable at
+    the inspection view: ~30 px wide in the 512x384 head image)."""
     year, rest = date[:4], date[5:]
-    img = Image.new("RGB", (size, size), (245, 245, 240))
+    w, h = size
+    img = Image.new("RGB", size, (245, 245, 240))
     d = ImageDraw.Draw(img)
-    d.text((size / 2, size * 0.16), "PROD", fill=(90, 90, 90), font=ImageFont.load_default(size=size // 6), anchor="mm")
-    d.text((size / 2, size * 0.46), year, fill=(10, 10, 10), font=ImageFont.load_default(size=size // 3), anchor="mm")
-    d.text((size / 2, size * 0.8), rest, fill=(10, 10, 10), font=ImageFont.load_default(size=size // 3), anchor="mm")
+    font = ImageFont.load_default(size=int(w * 0.44))
+    d.text((w / 2, h * 0.3), year, fill=(10, 10, 10), font=font, anchor="mm")
+    d.text((w / 2, h * 0.72), rest, fill=(10, 10, 10), font=font, anchor="mm")
     return np.asarray(img)
 
 
@@ -240,8 +286,9 @@ def date_label_image(date: str, size: int = 128) -> np.ndarray:
                 randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.9))})
 def add_labeled_can(spec, name, pos, yaw=0.0, label_kind: str = "date", date: str = "2024-06-01",
                     label_color: str = "red", rgba=(0.8, 0.1, 0.1, 1)):
-    """A can (radius 0.0285 m) with an information label on a 45 deg cylindrical arc of radius
-    0.029 m centred on the body's +x face (paper: can-inspection assets)."""
+    """A can (radius 0.0285 m) with an information label on a cylindrical arc of radius 0.029 m
+    centred on the body's +x face: a colour on a 45 deg arc 3.6 cm high (paper: can-inspection
+    assets), or a production date on a 100 deg arc 7 cm high (large enough to read at 512x384)."""
     if label_kind not in ("date", "color"):
         raise ValueError(f"label_kind must be 'date' or 'color', got {label_kind!r}")
     b = free_body(spec, name, pos, yaw)
@@ -255,9 +302,10 @@ def add_labeled_can(spec, name, pos, yaw=0.0, label_kind: str = "date", date: st
             raise ValueError(f"unknown label colour {label_color!r}; choose from {sorted(MAT_COLORS)}")
         img = np.tile(np.asarray([int(255 * c) for c in MAT_COLORS[label_color]], np.uint8), (16, 16, 1))
     mat = add_texture_material(spec, f"{name}_label", img)
-    arc_label(spec, name, f"{name}_label_mesh", mat, 0.029, 0.042, 0.078)
-    extra = {"label_kind": label_kind, "label_normal_body": (1.0, 0.0, 0.0), "label_center_body": (0.029, 0.0, 0.06),
-             "label_geom": f"{name}_label_mesh_geom"}
+    (z0, z1), arc = ((0.018, 0.088), 100.0) if label_kind == "date" else ((0.042, 0.078), 45.0)
+    arc_label(spec, name, f"{name}_label_mesh", mat, 0.029, z0, z1, arc_deg=arc)
+    extra = {"label_kind": label_kind, "grasp_point": (0.0, 0.0, 0.095),  # the palm clears the top
+             **hidden_face(f"{name}_label_mesh_geom", (0.029, 0.0, (z0 + z1) / 2), (1.0, 0.0, 0.0))}
     if label_kind == "date":
         extra["production_date"] = date
     else:

@@ -7,7 +7,7 @@ import mujoco
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
+from .base import ObjectInfo, add_geom, add_texture_material, free_body, hidden_face, static_body
 from .registry import register_asset
 
 G = mujoco.mjtGeom
@@ -16,6 +16,7 @@ BLOCK_COLORS = {  # named colours shared by blocks, patches and pads
     "yellow": (0.95, 0.82, 0.1, 1), "purple": (0.55, 0.2, 0.7, 1), "orange": (0.95, 0.5, 0.1, 1),
 }
 GRAY = (0.55, 0.55, 0.56, 1)
+NEUTRAL_PAD = (0.95, 0.95, 0.93, 1)
 # Paper (App. "Button asset"): pressed below -0.005 m, reset above -0.001 m.
 BUTTON_PRESSED, BUTTON_RESET, BUTTON_TRAVEL = -0.005, -0.001, 0.012
 BELL_PRESSED = -0.004
@@ -124,15 +125,15 @@ def add_patch_block(spec, name, pos, yaw=0.0, patch_color: str = "red"):
     add_geom(b, G.mjGEOM_BOX, (0.0015, 0.012, 0.012), (h + 0.00005 - 0.0015, 0, h), BLOCK_COLORS[patch_color],
              name=f"{name}_patch", collide=False)
     return ObjectInfo(name, "patch_block", name, (h, h, h), (0, 0, h), 0.08,
-                      {"patch_color": patch_color, "patch_geom": f"{name}_patch", "patch_normal_body": (1.0, 0.0, 0.0),
-                       "patch_center_body": (h, 0.0, h)})
+                      {"patch_color": patch_color, **hidden_face(f"{name}_patch", (h, 0.0, h), (1.0, 0.0, 0.0))})
 
 
 @register_asset("color_pad", footprint=0.07, role="task", static=True)
 def add_color_pad(spec, name, pos, yaw=0.0, color: str = "red", half: float = 0.06):
-    """Thin static coloured pad (placement target)."""
-    if color not in BLOCK_COLORS:
-        raise ValueError(f"unknown pad colour {color!r}; choose from {sorted(BLOCK_COLORS)}")
+    """Thin static pad (placement target) in one of the block colours or ``'neutral'`` (white)."""
+    colors = {**BLOCK_COLORS, "neutral": NEUTRAL_PAD}
+    if color not in colors:
+        raise ValueError(f"unknown pad colour {color!r}; choose from {sorted(colors)}")
     b = static_body(spec, name, pos, yaw)
-    add_geom(b, G.mjGEOM_BOX, (half, half, 0.002), (0, 0, 0.002), BLOCK_COLORS[color], None, f"{name}_body")
+    add_geom(b, G.mjGEOM_BOX, (half, half, 0.002), (0, 0, 0.002), colors[color], None, f"{name}_body")
     return ObjectInfo(name, "color_pad", name, (half, half, 0.002), (0, 0, 0.002), 0.0, {"color": color, "top": 0.004})

@@ -1,0 +1,30 @@
+"""shake_bottle_horizontally_rotate_view (SS): find the bottle, pick it up and shake it sideways.
+
+Task Description:
+    A bottle stands out of the head camera's home view. Find it, pick it up and shake it
+    horizontally.
+Randomizations:
+    Bottle at 0.30-0.45 m, out of the home view on a random side, random yaw and colour; clutter
+    and (OOD) appearance.
+Success Conditions:
+    shaken_horizontally_while_held: while a gripper held the bottle at least 5 cm above where it
+    stood, the bottle reversed direction at least 3 times, each swing at least 3 cm, within 3 s,
+    along a horizontal axis, moving less than 2 cm vertically meanwhile (a vertical shake does not
+    count); bottle_not_dropped: it is still on the table or in the hand.
+"""
+
+from __future__ import annotations
+
+from ..base import Subtask
+from ..shaking import ShakeBottleTask
+
+
+class ShakeBottleHorizontallyRotateView(ShakeBottleTask):
+    name = "shake_bottle_horizontally_rotate_view"
+    category = "SS"
+    instruction = "Pick up the bottle and shake it horizontally."
+    subtasks = (Subtask(1, "_shake_bottle_horizontally",
+                        "locate and grasp the bottle, then execute horizontal shaking", 0),)
+    max_episode_steps = 298
+    horizontal = True
+    bottle_r = (0.30, 0.45)

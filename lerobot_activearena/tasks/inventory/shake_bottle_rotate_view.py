@@ -1,0 +1,27 @@
+"""shake_bottle_rotate_view (SS): find the bottle, pick it up and shake it.
+
+Task Description:
+    A bottle stands out of the head camera's home view. Find it, pick it up and shake it.
+Randomizations:
+    Bottle at 0.35-0.45 m, out of the home view on a random side, random yaw and colour; clutter
+    and (OOD) appearance.
+Success Conditions:
+    shaken_while_held: while a gripper held the bottle at least 5 cm above where it stood, the
+    bottle reversed direction at least 3 times, each swing at least 3 cm, within 3 s, along one
+    axis (measured on the bottle, not on the arm); bottle_not_dropped: it is still on the table or
+    in the hand. Lifting and holding still, or slow waving, does not count.
+"""
+
+from __future__ import annotations
+
+from ..base import Subtask
+from ..shaking import ShakeBottleTask
+
+
+class ShakeBottleRotateView(ShakeBottleTask):
+    name = "shake_bottle_rotate_view"
+    category = "SS"
+    instruction = "Pick up the bottle and shake it."
+    subtasks = (Subtask(1, "_shake_bottle", "locate and grasp the bottle, then execute the shaking motion", 0),)
+    max_episode_steps = 249
+    bottle_r = (0.35, 0.45)

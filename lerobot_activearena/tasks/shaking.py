@@ -1,0 +1,116 @@
+"""Shared shape of the shake tasks (SS): find the bottle, pick it up and shake it while holding it.
+
+Success is a motion, judged from the bottle's own trajectory (not the arm's commands): while a
+gripper holds it at least 5 cm above where it stood, it must reverse direction at least 3 times,
+each swing at least 3 cm, within 3 s, along one axis (``ShakeDetector``). The release only checks
+the bottle's height; this is stricter: lifting and holding still, or waving it slowly, does not count.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+
+import numpy as np
+
+from ..expert import primitives as P
+from ..expert import routines as R
+from ..expert.motion import CONTROL_DT
+from . import predicates as Pr
+from .base import Task
+
+BOTTLE = "bottle"
+LIFT = 0.05  # m above its spawn height while shaking
+SWING = 0.03  # m: the least swing between two reversals
+REVERSALS = 3
+WINDOW_S = 3.0
+MAX_VERTICAL_TRAVEL = 0.02  # m, horizontal shakes only
+BOTTLE_PARAMS = {"height": 0.16, "mass": 0.15}  # a half-litre plastic bottle, half full
+
+
+def reversals(signal: np.ndarray, swing: float) -> int:
+    """Direction reversals in a 1-D trajectory, counting only swings of at least ``swing`` (a
+    hysteresis zigzag: jitter smaller than ``swing`` is no reversal)."""
+    count, direction, extreme = 0, 0, float(signal[0])
+    for x in signal[1:]:
+        if direction >= 0 and x > extreme:
+            extreme = float(x)
+            direction = direction or (1 if x - signal[0] >= swing else 0)
+        elif direction <= 0 and x < extreme:
+            extreme = float(x)
+            direction = direction or (-1 if signal[0] - x >= swing else 0)
+        if direction == 1 and extreme - x >= swing:
+            count, direction, extreme = count + 1, -1, float(x)
+        elif direction == -1 and x - extreme >= swing:
+            count, direction, extreme = count + 1, 1, float(x)
+    return count
+
+
+class ShakeDetector:
+    """Latches once the held, lifted object has been shaken (see the module docstring).
+    ``horizontal``: only horizontal axes count and the object must not travel more than 2 cm
+    vertically during the shake."""
+
+    def __init__(self, horizontal: bool):
+        self.horizontal = horizontal
+        self.track: deque[np.ndarray] = deque(maxlen=int(round(WINDOW_S / CONTROL_DT)))
+        angles = np.radians(np.arange(0.0, 180.0, 22.5))
+        self.axes = [np.array([math.cos(a), math.sin(a), 0.0]) for a in angles]
+        if not horizontal:
+            self.axes.append(np.array([0.0, 0.0, 1.0]))
+        self.shaken = False
+
+    def update(self, position, held_up: bool) -> bool:
+        if self.shaken:
+            return True
+        if not held_up:  # the shake must happen in one hold
+            self.track.clear()
+            return False
+        self.track.append(np.asarray(position, float).copy())
+        if len(self.track) < 2 * REVERSALS:
+            return False
+        pts = np.array(self.track)
+        for start in range(len(pts) - 1):
+            seg = pts[start:]
+            if self.horizontal and np.ptp(seg[:, 2]) > MAX_VERTICAL_TRAVEL:
+                continue
+            if any(reversals(seg @ ax, SWING) >= REVERSALS for ax in self.axes):
+                self.shaken = True
+                return True
+            if not self.horizontal:
+                break  # the whole window already holds every sub-window's reversals
+        return False
+
+
+class ShakeBottleTask(Task):
+    """Base class (not registered: it defines no ``name``)."""
+
+    horizontal: bool = False
+    bottle_r: tuple[float, float] = (0.35, 0.45)
+
+    def layout(self, draft):
+        from .draft import Region
+
+        draft.place("bottle", BOTTLE, "bottle", Region(r=self.bottle_r, hidden=True), yaw="random",
+                    arms=("left", "right"), **BOTTLE_PARAMS)
+
+    def evaluate(self, sim, scene, monitor):
+        detector = monitor.state.setdefault("shake", ShakeDetector(self.horizontal))
+        held_up = Pr.held_by_gripper(sim, BOTTLE) is not None and Pr.lifted(sim, BOTTLE, LIFT)
+        shaken = monitor.event("shaken", detector.update(Pr.position(sim, BOTTLE), held_up))
+        name = "shaken_horizontally_while_held" if self.horizontal else "shaken_while_held"
+        return {name: shaken, "bottle_not_dropped": not Pr.off_table(sim, BOTTLE)}
+
+    def expert(self, ctx, scene):
+        bottle = ctx.idx(BOTTLE)
+        with ctx.subtask(1):
+            side = yield from R.find_and_face(ctx, bottle)
+            home = ctx.center(bottle)
+            yield from P.pick(ctx, side, bottle, closing=P.radial_tangent(home), lift=0.12)
+            p, rot = P.tcp_pose(ctx, side)
+            axis = np.array([0.0, 0.0, 1.0]) if not self.horizontal else P.radial_tangent(p)
+            for k in range(REVERSALS + 2):  # swings of 8 cm, a little over 3 per second
+                yield from P.arm_line(ctx, side, p + (0.04 if k % 2 == 0 else -0.04) * axis, rot, 0.0, speed=0.45)
+            yield from P.arm_line(ctx, side, p, rot, 0.0, speed=0.3)
+            yield from P.place(ctx, side, bottle, home[:2], 0.74, yaw_free=False)
+            yield from R.finish(ctx, side)
