@@ -3,7 +3,7 @@
     python benchmarks/oft_train_step.py                      # tiny random Qwen3-VL on the CPU
     python benchmarks/oft_train_step.py --vlm-path Qwen/Qwen3-VL-2B-Instruct --device cuda --batch-size 7
     activearena-make-tiny-vlm /tmp/qwen3vl_2b_random --architecture qwen3-vl-2b   # 2B dimensions, random
-    python benchmarks/oft_train_step.py --vlm-path /tmp/qwen3vl_2b_random --steps 0 --dtype bfloat16 --skip-uncached --decode-tokens 8   # CPU inference
+    python benchmarks/oft_train_step.py --vlm-path /tmp/qwen3vl_2b_random --steps 0 --weights-dtype bfloat16 --skip-uncached --decode-tokens 8   # CPU inference
 
 Builds a small ActiveArena dataset (or uses --root), runs the real LeRobot factories
 (make_policy, make_pre_post_processors, the dataset with the config's delta_timestamps), and times
@@ -53,7 +53,8 @@ def main() -> None:
     p.add_argument("--gradient-checkpointing", action="store_true")
     p.add_argument("--decode-tokens", type=int, default=32, help="greedy <think> tokens per chunk (subtask_max_tokens)")
     p.add_argument("--skip-uncached", action="store_true", help="do not time the re-encoding reference decoder")
-    p.add_argument("--dtype", default="auto", help="backbone dtype: auto (bfloat16 on CUDA) | float32 | bfloat16")
+    p.add_argument("--dtype", default="auto", help="compute: auto (bfloat16 autocast on CUDA) | float32 | bfloat16")
+    p.add_argument("--weights-dtype", default="float32", help="parameters: float32 (master weights) | bfloat16")
     args = p.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="aa_oft_bench_"))
     vlm = args.vlm_path or str(make_tiny_vlm(tmp / "tiny_vlm"))
@@ -66,6 +67,7 @@ def main() -> None:
     meta = LeRobotDatasetMetadata(args.repo_id, root=root)
     cfg = ActiveArenaOFTConfig(vlm_path=vlm, device=args.device, memory=args.memory, history=args.history,
                                think=args.think, gradient_checkpointing=args.gradient_checkpointing, dtype=args.dtype,
+                               weights_dtype=args.weights_dtype,
                                subtask_max_tokens=args.decode_tokens)
     policy = make_policy(cfg, ds_meta=meta)
     pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
@@ -74,13 +76,17 @@ def main() -> None:
     loader = iter(torch.utils.data.DataLoader(ds, batch_size=args.batch_size, shuffle=True, generator=g, drop_last=True))
     opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
     cuda = args.device.startswith("cuda")
-    times, images = [], 0
+    policy.train()  # from_pretrained leaves the backbone in eval mode, where gradient checkpointing is off
+    times, prep, images = [], [], 0
     for step in range(args.steps + 1 if args.steps else 0):  # --steps 0: inference only
         raw = next(loader)
         if cuda:
             torch.cuda.synchronize()
         t0 = time.perf_counter()
         batch = pre(raw)
+        if cuda:
+            torch.cuda.synchronize()
+        t1 = time.perf_counter()
         loss, _ = policy.forward(batch)
         opt.zero_grad()
         loss.backward()
@@ -90,14 +96,20 @@ def main() -> None:
             torch.cuda.synchronize()
         if step:  # the first step includes lazy initialisation
             times.append(time.perf_counter() - t0)
+            prep.append(t1 - t0)
         images = int(batch["observation.vlm.frame_valid"].sum())
     n_params = sum(p.numel() for p in policy.parameters())
     peak = peak_memory(cuda)
     print(f"model {vlm}: {n_params / 1e6:.1f} M parameters, device {args.device}, batch {args.batch_size}, "
           f"K={args.history} ({args.memory} memory), think={args.think}")
+    print(f"precision: {'bfloat16 autocast' if cfg.autocast_bfloat16 else 'float32'} compute, "
+          f"{next(policy.vlm.parameters()).dtype} weights; gradient checkpointing "
+          f"{'on' if policy.vlm.is_gradient_checkpointing and policy.vlm.training else 'off'}")
     if times:
-        print(f"train step (preprocess + forward + backward + AdamW): {sum(times) / len(times):.3f} s mean over "
-              f"{len(times)} steps; images in the last batch: {images}; peak memory: {peak}")
+        step_s, prep_s = sum(times) / len(times), sum(prep) / len(prep)
+        print(f"train step (preprocess + forward + backward + AdamW): {step_s:.3f} s mean over {len(times)} steps "
+              f"(preprocessing {prep_s:.3f} s of it, in the main process); {args.batch_size / step_s:.2f} samples/s; "
+              f"images in the last batch: {images}; peak memory: {peak}")
     policy.eval()
     policy.reset()
     item = {k: v for k, v in ds[len(ds) // 2].items()}

@@ -412,3 +412,41 @@ def test_lerobot_train_then_lerobot_eval(vlm, root, tmp_path):
     info = json.loads((out / "eval_info.json").read_text())
     assert info["overall"]["n_episodes"] == 1
     assert list(out.glob("videos/*/*.mp4"))
+
+
+def _changed_fraction(vlm, root, **precision):
+    """Fraction of backbone weights that 10 AdamW steps at the paper's lr (1e-5) change."""
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none", **precision)
+    policy.train()
+    batch = _batch(ds, pre, [20, 90])
+    before = [p.detach().clone() for p in policy.vlm.parameters()]
+    opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
+    for _ in range(10):
+        loss, _ = policy.forward(batch)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+    changed = sum(int((p.detach() != b).sum()) for p, b in zip(policy.vlm.parameters(), before))
+    return changed / sum(b.numel() for b in before), policy
+
+
+def test_bfloat16_compute_keeps_float32_master_weights_so_small_updates_apply(vlm, root):
+    """bfloat16 autocast (the CUDA default) over float32 weights applies lr-1e-5 updates; pure bfloat16
+    weights (only by an explicit flag, with a warning) round most of them away."""
+    mixed, policy = _changed_fraction(vlm, root, dtype="bfloat16")
+    assert policy.config.autocast_bfloat16 and next(policy.vlm.parameters()).dtype == torch.float32
+    with pytest.warns(UserWarning, match="weights_dtype=bfloat16"):
+        pure, policy = _changed_fraction(vlm, root, dtype="bfloat16", weights_dtype="bfloat16")
+    assert next(policy.vlm.parameters()).dtype == torch.bfloat16
+    assert mixed > 0.9 and pure < 0.5 * mixed, (mixed, pure)
+
+
+def test_precision_defaults_follow_the_device():
+    feats = {"observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512))}
+    cpu = ActiveArenaOFTConfig(device="cpu", input_features=feats)
+    assert cpu.dtype == "auto" and cpu.weights_dtype == "float32" and not cpu.autocast_bfloat16
+    cuda = ActiveArenaOFTConfig(device="cpu", input_features=feats)
+    cuda.device = "cuda"
+    assert cuda.autocast_bfloat16
+    with pytest.raises(ValueError, match="weights_dtype must be one of"):
+        ActiveArenaOFTConfig(device="cpu", weights_dtype="float16")

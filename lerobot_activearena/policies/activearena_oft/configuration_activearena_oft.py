@@ -17,6 +17,8 @@ from ...annotations.keyframes import STRIDE, WRITE_POLICIES
 
 IMAGE_KEY = "observation.images.head"
 THINK_TARGETS = ("none", "instruction", "subtask")
+DTYPES = ("auto", "float32", "bfloat16")
+WEIGHT_DTYPES = ("float32", "bfloat16")
 ACTION_DIM = 18
 
 
@@ -42,7 +44,12 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
     # filled by lerobot-train from the dataset, unused at evaluation.
     dataset_root: str | None = None
     gradient_checkpointing: bool = False
-    dtype: str = "auto"  # backbone dtype: auto (bfloat16 on CUDA, float32 elsewhere) | float32 | bfloat16
+    # Compute precision: auto (bfloat16 autocast on CUDA, float32 elsewhere) | float32 | bfloat16. The
+    # parameters stay float32 (master weights: AdamW's small updates are kept, as DeepSpeed ZeRO-2 does
+    # in the paper's run) unless weights_dtype=bfloat16, which halves their memory but rounds most
+    # updates at lr 1e-5 away (warned).
+    dtype: str = "auto"
+    weights_dtype: str = "float32"
     push_to_hub: bool = False  # LeRobot's default (True) needs a repo id; opt in with --policy.push_to_hub=true
     # Optimiser (paper: AdamW (0.9, 0.95), eps 1e-8, wd 1e-8, backbone 1e-5, heads 1e-4,
     # 5k-step linear warm-up, cosine to 5e-7, clip 1.0).
@@ -66,6 +73,9 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
             raise ValueError(f"--policy.memory must be one of {WRITE_POLICIES}, got {self.memory!r}")
         if self.think not in THINK_TARGETS:
             raise ValueError(f"--policy.think must be one of {THINK_TARGETS}, got {self.think!r}")
+        for name, allowed in (("dtype", DTYPES), ("weights_dtype", WEIGHT_DTYPES)):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")
         if self.history < 0:
             raise ValueError(f"--policy.history must be >= 0, got {self.history}")
         if self.memory == "none":
@@ -77,6 +87,11 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
             value = getattr(self, name)
             if value and Path(value).expanduser().is_dir():
                 setattr(self, name, str(Path(value).expanduser().resolve()))
+
+    @property
+    def autocast_bfloat16(self) -> bool:
+        """Whether the forward passes run under bfloat16 autocast."""
+        return self.dtype == "bfloat16" or (self.dtype == "auto" and str(self.device).startswith("cuda"))
 
     @property
     def uses_history(self) -> bool:

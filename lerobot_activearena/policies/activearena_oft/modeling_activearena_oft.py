@@ -9,6 +9,8 @@ policy's memory bank, written causally and reset per episode), so both see ident
 
 from __future__ import annotations
 
+import functools
+import warnings
 from collections import deque
 
 import numpy as np
@@ -29,10 +31,24 @@ from .processor_activearena_oft import (FRAME_VALID, GRID, PIXELS, PREFIX_IDS, P
 TEXT, IMAGE, STATE, QUERY, THINK = 0, 1, 2, 3, 4
 
 
-def _dtype(config: ActiveArenaOFTConfig) -> torch.dtype:
-    if config.dtype == "auto":
-        return torch.bfloat16 if str(config.device).startswith("cuda") else torch.float32
-    return {"float32": torch.float32, "bfloat16": torch.bfloat16}[config.dtype]
+def _weights_dtype(config: ActiveArenaOFTConfig) -> torch.dtype:
+    if config.weights_dtype == "bfloat16":
+        warnings.warn("weights_dtype=bfloat16: the backbone's parameters are bfloat16, so AdamW updates smaller "
+                      "than their last bit (most of them at lr 1e-5) round away. Keep the default float32 master "
+                      "weights (bfloat16 compute comes from dtype=auto/bfloat16) unless memory forces this.",
+                      UserWarning, stacklevel=3)
+        return torch.bfloat16
+    return torch.float32
+
+
+def _in_precision(method):
+    """Run ``method`` under the policy's autocast (bfloat16 compute over float32 weights when enabled)."""
+    @functools.wraps(method)
+    def wrapper(self, *args, **kwargs):
+        with torch.autocast(device_type=self.action_queries.device.type, dtype=torch.bfloat16,
+                            enabled=self.config.autocast_bfloat16):
+            return method(self, *args, **kwargs)
+    return wrapper
 
 
 class ActiveArenaOFTPolicy(PreTrainedPolicy):
@@ -46,7 +62,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         from transformers import Qwen3VLForConditionalGeneration
 
         self.vlm = load_from_vlm_path(Qwen3VLForConditionalGeneration.from_pretrained, config.vlm_path, "model",
-                                      dtype=_dtype(config))
+                                      dtype=_weights_dtype(config))
         if config.gradient_checkpointing:
             self.vlm.gradient_checkpointing_enable()
         vc = self.vlm.config
@@ -180,6 +196,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         return actions, F.cross_entropy(logits, input_ids[tgt])
 
     # ----- training -----
+    @_in_precision
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
         state = batch.get(OBS_STATE) if self.state_encoder is not None else None
         if state is not None and state.dim() == 2:
@@ -187,7 +204,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         think = batch.get(THINK_IDS) if self.config.think != "none" else None
         pred, lm_loss = self._encode(batch[PIXELS], batch[GRID], batch[FRAME_VALID], state, batch[PREFIX_IDS],
                                      batch[PROMPT_IDS], batch[PROMPT_MASK], think, batch.get(THINK_MASK))
-        target = batch[ACTION]
+        pred, target = pred.float(), batch[ACTION]
         keep = ~batch["action_is_pad"] if "action_is_pad" in batch else torch.ones(target.shape[:2], dtype=torch.bool,
                                                                                    device=target.device)
         l1 = (pred - target).abs().mean(-1)
@@ -247,6 +264,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         return pixels, grid, valid, state, cache
 
     @torch.no_grad()
+    @_in_precision
     def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         """A chunk for the batch's current frames. A dataset batch carries its own history (T > 1);
         an env batch (T = 1) gets it from the memory bank."""
@@ -271,7 +289,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         if cache is not None:  # the current frames' features, for a memory write at this step
             self._current_vision = {b: entry.get("vision") for (b, slot), entry in cache.items()
                                     if slot == valid.shape[1] - 1}
-        return pred
+        return pred.float()
 
     def _start(self, batch: dict[str, Tensor]) -> None:
         if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
@@ -305,6 +323,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         tokens, _, actions = self._greedy_think(encode_args, vision_cache=vision_cache)
         return tokens, actions
 
+    @_in_precision
     def _greedy_think(self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
                       ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
         """Greedy decoding after ``<think>``; returns the tokens, each step's (B, vocab) logits and the
