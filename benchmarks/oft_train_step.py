@@ -1,6 +1,7 @@
 """activearena_oft training-step time, peak memory and inference latency per chunk.
 
     python benchmarks/oft_train_step.py                      # tiny random Qwen3-VL on the CPU
+    python benchmarks/oft_train_step.py --synthetic          # no dataset: random batches shaped like it
     python benchmarks/oft_train_step.py --vlm-path Qwen/Qwen3-VL-2B-Instruct --device cuda --batch-size 7
     activearena-make-tiny-vlm /tmp/qwen3vl_2b_random --architecture qwen3-vl-2b   # 2B dimensions, random
     python benchmarks/oft_train_step.py --vlm-path /tmp/qwen3vl_2b_random --steps 0 --weights-dtype bfloat16 --skip-uncached --decode-tokens 8   # CPU inference
@@ -39,6 +40,40 @@ def peak_memory(cuda: bool) -> str:
     return f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS"
 
 
+def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: int, all_valid: bool):
+    """The policy, its preprocessor and an endless iterator of dataset-shaped random batches: K
+    stride-16 history frames + the current one, the history present as at a uniformly drawn frame of
+    an ``episode_frames`` long episode (``all_valid``: all of it); padded frames are dropped by the
+    policy, so they cost nothing."""
+    from lerobot.configs.types import FeatureType, PolicyFeature
+
+    from lerobot_activearena.annotations.keyframes import STRIDE
+    from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
+
+    dim, K = 18, cfg.history
+    cfg.input_features = {"observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
+                          "observation.state": PolicyFeature(FeatureType.STATE, (dim,))}
+    cfg.output_features = {"action": PolicyFeature(FeatureType.ACTION, (dim,))}
+    policy = ActiveArenaOFTPolicy(cfg).to(cfg.device)
+    unit = {"mean": torch.zeros(dim), "std": torch.ones(dim), "min": -torch.ones(dim), "max": torch.ones(dim)}
+    pre, _ = make_pre_post_processors(cfg, dataset_stats={"observation.state": unit, "action": unit})
+    g = torch.Generator().manual_seed(0)
+
+    def batches():
+        while True:
+            t = torch.randint(0, episode_frames, (batch_size,), generator=g)
+            present = torch.full_like(t, K) if all_valid else torch.clamp(t // STRIDE, max=K)
+            slot = torch.arange(K + 1)[None]
+            yield {"observation.images.head": torch.rand(batch_size, K + 1, 3, 384, 512, generator=g),
+                   "observation.images.head_is_pad": slot < (K - present)[:, None],
+                   "observation.state": torch.randn(batch_size, K + 1, dim, generator=g),
+                   "action": torch.randn(batch_size, cfg.chunk_size, dim, generator=g),
+                   "action_is_pad": torch.zeros(batch_size, cfg.chunk_size, dtype=torch.bool),
+                   "task": ["Press the bell's top center using the left arm."] * batch_size}
+
+    return policy, pre, batches()
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--vlm-path", help="default: a tiny random Qwen3-VL written to a temp dir")
@@ -55,25 +90,42 @@ def main() -> None:
     p.add_argument("--skip-uncached", action="store_true", help="do not time the re-encoding reference decoder")
     p.add_argument("--dtype", default="auto", help="compute: auto (bfloat16 autocast on CUDA) | float32 | bfloat16")
     p.add_argument("--weights-dtype", default="float32", help="parameters: float32 (master weights) | bfloat16")
+    p.add_argument("--synthetic", action="store_true",
+                   help="random batches shaped like the dataset's (no dataset build: runs on a bare GPU machine), "
+                        "history frames present as at a random frame of an --episode-frames long episode")
+    p.add_argument("--episode-frames", type=int, default=166, help="synthetic episodes' length (paper data: 166)")
+    p.add_argument("--all-valid", action="store_true", help="synthetic worst case: every history frame present")
     args = p.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="aa_oft_bench_"))
     vlm = args.vlm_path or str(make_tiny_vlm(tmp / "tiny_vlm"))
-    root = args.root
-    if root is None:
-        root = tmp / "ds"
-        plan = BuildPlan(repo_id=args.repo_id, split="id", tasks=["click_bell_rotate_view", "count_target_press_button"],
-                         episodes=1, episodes_per_shard=1)
-        build_dataset(plan, root, workers=2, progress=False)
-    meta = LeRobotDatasetMetadata(args.repo_id, root=root)
+    think = args.think
+    if args.synthetic and think == "subtask":
+        think = "instruction"  # no annotations to read the subtask from; a think span of similar length
+        print("synthetic batches: think=instruction stands in for think=subtask (same loss, similar length)")
     cfg = ActiveArenaOFTConfig(vlm_path=vlm, device=args.device, memory=args.memory, history=args.history,
-                               think=args.think, gradient_checkpointing=args.gradient_checkpointing, dtype=args.dtype,
-                               weights_dtype=args.weights_dtype,
-                               subtask_max_tokens=args.decode_tokens)
-    policy = make_policy(cfg, ds_meta=meta)
-    pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    ds = LeRobotDataset(args.repo_id, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta))
-    g = torch.Generator().manual_seed(0)
-    loader = iter(torch.utils.data.DataLoader(ds, batch_size=args.batch_size, shuffle=True, generator=g, drop_last=True))
+                               think=think, gradient_checkpointing=args.gradient_checkpointing, dtype=args.dtype,
+                               weights_dtype=args.weights_dtype, subtask_max_tokens=args.decode_tokens)
+    if args.synthetic:
+        if args.memory != "chunk":
+            raise SystemExit("--synthetic draws chunk-memory batches; use --memory chunk (or a dataset via --root)")
+        policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
+        ds = None
+    else:
+        root = args.root
+        if root is None:
+            root = tmp / "ds"
+            plan = BuildPlan(repo_id=args.repo_id, split="id", tasks=["click_bell_rotate_view", "count_target_press_button"],
+                             episodes=1, episodes_per_shard=1)
+            build_dataset(plan, root, workers=2, progress=False)
+        meta = LeRobotDatasetMetadata(args.repo_id, root=root)
+        policy = make_policy(cfg, ds_meta=meta)
+        pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
+        ds = LeRobotDataset(args.repo_id, root=root, video_backend="pyav",
+                            delta_timestamps=resolve_delta_timestamps(cfg, meta))
+        g = torch.Generator().manual_seed(0)
+        batches = iter(torch.utils.data.DataLoader(ds, batch_size=args.batch_size, shuffle=True, generator=g,
+                                                   drop_last=True))
+    loader = batches
     opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
     cuda = args.device.startswith("cuda")
     policy.train()  # from_pretrained leaves the backbone in eval mode, where gradient checkpointing is off
@@ -112,7 +164,8 @@ def main() -> None:
               f"images in the last batch: {images}; peak memory: {peak}")
     policy.eval()
     policy.reset()
-    item = {k: v for k, v in ds[len(ds) // 2].items()}
+    item = ({k: v for k, v in ds[len(ds) // 2].items()} if ds is not None else
+            {k: (v[0] if k != "task" else v[0]) for k, v in next(loader).items()})
     image, state = item["observation.images.head"], item["observation.state"]
     obs = {"observation.images.head": (image[-1] if image.dim() == 4 else image)[None],  # the current frame,
            "observation.state": (state[-1] if state.dim() == 2 else state)[None],       # as an env batch of 1

@@ -119,13 +119,21 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         img = obs.pop(IMAGE_KEY)
         img = img[:, None] if img.dim() == 4 else img
         B, T = img.shape[:2]
-        frames = (img.detach().float().clamp(0, 1) * 255).round().to(torch.uint8).cpu().flatten(0, 1)
+        valid = ~_pad_flag(comp, B, T)
+        # Padded history frames (before the episode start) are never read: only present frames go
+        # through the image processor, the others stay zeros (all frames share one size and grid).
+        keep = valid.flatten()
+        frames = (img.detach().float().clamp(0, 1) * 255).round().to(torch.uint8).cpu().flatten(0, 1)[keep]
         out = self._processor.image_processor(images=list(frames), return_tensors="pt",
                                               max_pixels=self.image_max_pixels, min_pixels=16 * 16 * 4)
-        pv = out["pixel_values"]
-        obs[PIXELS] = pv.reshape(B, T, -1, pv.shape[-1])
-        obs[GRID] = out["image_grid_thw"].reshape(B, T, 3)
-        obs[FRAME_VALID] = ~_pad_flag(comp, B, T)
+        pv, grid = out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]), out["image_grid_thw"]
+        pixels = pv.new_zeros((B * T, *pv.shape[1:]))
+        pixels[keep] = pv
+        grids = grid[:1].repeat(B * T, 1)
+        grids[keep] = grid
+        obs[PIXELS] = pixels.reshape(B, T, *pv.shape[1:])
+        obs[GRID] = grids.reshape(B, T, 3)
+        obs[FRAME_VALID] = valid
         if OBS_STATE in obs:
             obs[RAW_STATE] = obs[OBS_STATE].clone()
         tasks = comp.get("task")
