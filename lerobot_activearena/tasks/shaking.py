@@ -8,6 +8,7 @@ the bottle's height; this is stricter: lifting and holding still, or waving it s
 
 from __future__ import annotations
 
+import colorsys
 import math
 from collections import deque
 
@@ -18,6 +19,7 @@ from ..expert import routines as R
 from ..expert.motion import CONTROL_DT
 from . import predicates as Pr
 from .base import Task
+from .draft import Region
 
 BOTTLE = "bottle"
 LIFT = 0.05  # m above its spawn height while shaking
@@ -25,7 +27,8 @@ SWING = 0.03  # m: the least swing between two reversals
 REVERSALS = 3
 WINDOW_S = 3.0
 MAX_VERTICAL_TRAVEL = 0.02  # m, horizontal shakes only
-BOTTLE_PARAMS = {"height": 0.16, "mass": 0.15}  # a half-litre plastic bottle, half full
+BOTTLE_HEIGHT = (0.13, 0.19)  # m: bottles of different sizes (the grasp height differs: a memorised
+BOTTLE_RADIUS = (0.026, 0.034)  # grasp closes on air or on the shoulder of another seed's bottle)
 
 
 def reversals(signal: np.ndarray, swing: float) -> int:
@@ -89,10 +92,13 @@ class ShakeBottleTask(Task):
     bottle_r: tuple[float, float] = (0.35, 0.45)
 
     def layout(self, draft):
-        from .draft import Region
-
+        rng = draft.rng
+        height, radius = float(rng.uniform(*BOTTLE_HEIGHT)), float(rng.uniform(*BOTTLE_RADIUS))
+        rgba = (*colorsys.hsv_to_rgb(float(rng.uniform()), 0.7, 0.75), 1.0)
+        mass = 0.15 * (height / 0.16) * (radius / 0.03) ** 2  # half-full plastic: 150 g at 16 x 6 cm
         draft.place("bottle", BOTTLE, "bottle", Region(r=self.bottle_r, hidden=True), yaw="random",
-                    arms=("left", "right"), **BOTTLE_PARAMS)
+                    arms=("left", "right"), height=height, radius=radius, mass=mass, rgba=rgba)
+        draft.params["bottle"] = {"height": round(height, 4), "radius": round(radius, 4)}
 
     def evaluate(self, sim, scene, monitor):
         detector = monitor.state.setdefault("shake", ShakeDetector(self.horizontal))

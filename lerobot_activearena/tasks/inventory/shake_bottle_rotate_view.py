@@ -3,7 +3,8 @@
 Task Description:
     A bottle stands out of the head camera's home view. Find it, pick it up and shake it.
 Randomizations:
-    Bottle at 0.35-0.45 m, out of the home view on a random side, random yaw and colour; clutter
+    Bottle at 0.35-0.45 m, out of the home view on a random side, random yaw, colour, height
+    (0.13-0.19 m) and radius (2.6-3.4 cm); clutter
     and (OOD) appearance.
 Success Conditions:
     shaken_while_held: while a gripper held the bottle at least 5 cm above where it stood, the
