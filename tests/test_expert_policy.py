@@ -45,8 +45,9 @@ def test_policy_refuses_to_run_without_the_channel():
 
 def test_lerobot_eval_runs_the_oracle_on_manifest_seeds(tmp_path):
     exe = shutil.which("lerobot-eval", path=str(Path(sys.executable).parent)) or shutil.which("lerobot-eval")
-    out = subprocess.run([exe, "--policy.type=activearena_expert", "--env.type=activearena", "--env.task=SS",
-                          "--env.expert_channel=true", "--eval.n_episodes=3", "--eval.batch_size=2",
+    out = subprocess.run([exe, "--policy.type=activearena_expert", "--env.type=activearena",
+                          "--env.task=click_bell_rotate_view", "--env.expert_channel=true", "--eval.n_episodes=3",
+                          "--eval.batch_size=2",
                           f"--env.episode_log_dir={tmp_path / 'eval' / 'episodes'}",
                           "--policy.device=cpu", f"--output_dir={tmp_path / 'eval'}"],
                          capture_output=True, text=True, timeout=900)

@@ -85,9 +85,9 @@ def test_idle_episode_ends_as_dm_when_the_target_was_never_seen(tmp_path):
 
 
 def test_config_builds_category_suites_of_task_envs():
-    cfg = ActiveArenaEnvConfig(task="MD,SS", split="ood")
+    cfg = ActiveArenaEnvConfig(task="count_target_press_button,click_bell_rotate_view", split="ood")
     suites = cfg.create_envs(n_envs=2)
-    assert set(suites) == {"MD", "SS"}
+    assert set(suites) == {"MD", "SS"}  # grouped by the paper's category
     assert list(suites["SS"]) == ["click_bell_rotate_view"] and list(suites["MD"]) == ["count_target_press_button"]
     vec = suites["SS"]["click_bell_rotate_view"]
     assert vec.num_envs == 2

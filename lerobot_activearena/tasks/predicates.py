@@ -150,6 +150,14 @@ def gripper_contact_near(sim: ActiveArenaSim, arm: str, body: str, point, radius
     return False
 
 
+def tcp_on_axis(sim: ActiveArenaSim, arm: str, body: str, radius: float) -> bool:
+    """``arm``'s tool centre is within ``radius`` of ``body``'s vertical axis (in the body's frame, so
+    a tilted object is measured along its own axis): a grasp centred on it."""
+    b = sim.data.body(body)
+    local = b.xmat.reshape(3, 3).T @ (sim.data.site(E.TCP_SITES[arm]).xpos - b.xpos)
+    return bool(np.hypot(local[0], local[1]) <= radius)
+
+
 def tcp_over(sim: ActiveArenaSim, arm: str, point, radius_xy: float) -> bool:
     """``arm``'s tool centre (between the fingertips) is within ``radius_xy`` of ``point``, horizontally."""
     tcp = sim.data.site(E.TCP_SITES[arm]).xpos

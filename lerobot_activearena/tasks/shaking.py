@@ -1,7 +1,8 @@
 """Shared shape of the shake tasks (SS): find the bottle, pick it up and shake it while holding it.
 
 Success is a motion, judged from the bottle's own trajectory (not the arm's commands): while a
-gripper holds it at least 5 cm above where it stood, it must reverse direction at least 3 times,
+gripper holds it at least 5 cm above where it stood, with the gripper's centre within 0.8 cm of the
+bottle's axis (a grasp of the bottle, not of its edge), it must reverse direction at least 3 times,
 each swing at least 3 cm, within 3 s, along one axis (``ShakeDetector``). The release only checks
 the bottle's height; this is stricter: lifting and holding still, or waving it slowly, does not count.
 """
@@ -27,6 +28,7 @@ SWING = 0.03  # m: the least swing between two reversals
 REVERSALS = 3
 WINDOW_S = 3.0
 MAX_VERTICAL_TRAVEL = 0.02  # m, horizontal shakes only
+GRASP_CENTRED = 0.008  # m: the gripper's tool centre from the bottle's axis while it shakes (expert: < 2 mm)
 BOTTLE_HEIGHT = (0.13, 0.19)  # m: bottles of different sizes (the grasp height differs: a memorised
 BOTTLE_RADIUS = (0.026, 0.034)  # grasp closes on air or on the shoulder of another seed's bottle)
 
@@ -102,7 +104,8 @@ class ShakeBottleTask(Task):
 
     def evaluate(self, sim, scene, monitor):
         detector = monitor.state.setdefault("shake", ShakeDetector(self.horizontal))
-        held_up = Pr.held_by_gripper(sim, BOTTLE) is not None and Pr.lifted(sim, BOTTLE, LIFT)
+        arm = Pr.held_by_gripper(sim, BOTTLE)
+        held_up = arm is not None and Pr.lifted(sim, BOTTLE, LIFT) and Pr.tcp_on_axis(sim, arm, BOTTLE, GRASP_CENTRED)
         shaken = monitor.event("shaken", detector.update(Pr.position(sim, BOTTLE), held_up))
         name = "shaken_horizontally_while_held" if self.horizontal else "shaken_while_held"
         return {name: shaken, "bottle_not_dropped": not Pr.off_table(sim, BOTTLE)}
