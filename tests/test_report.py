@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from lerobot_activearena.cli.report import main
-from lerobot_activearena.eval.report import chunk_jump_deg
+from lerobot_activearena.eval.report import chunk_jump_deg, mean_chunk_jump
 
 
 def _run(root, split, results, failures):
@@ -28,13 +28,28 @@ def _run(root, split, results, failures):
     return root
 
 
-def test_chunk_jump_is_the_median_boundary_jump_in_degrees():
+def test_chunk_jump_is_the_per_joint_median_boundary_jump_in_degrees():
     v = np.zeros((49, 2))
-    v[16:, 0] = np.radians(3.0)  # jump of 3 deg at t=16, none at t=32 or t=48
-    assert chunk_jump_deg(v) == pytest.approx(0.0)
-    v[32:, 1] += np.radians(5.0)
-    v[48:, 0] += np.radians(4.0)
-    assert chunk_jump_deg(v) == pytest.approx(4.0)
+    v[16:, 0] = np.radians(3.0)  # torso: 3 deg at t=16, none at t=32 or t=48
+    assert chunk_jump_deg(v) == pytest.approx((0.0, 0.0))
+    v[32:, 1] += np.radians(5.0)  # head: 5 deg at t=32 only
+    v[48:, 0] += np.radians(4.0)  # torso: 3, 0, 4 -> median 3
+    assert chunk_jump_deg(v) == pytest.approx((3.0, 0.0))
+    v[48:, 1] += np.radians(1.0)  # head: 0, 5, 1 -> median 1
+    assert chunk_jump_deg(v) == pytest.approx((3.0, 1.0))
+    assert all(np.isnan(chunk_jump_deg(v[:10])))  # shorter than one chunk
+
+
+def test_chunk_jump_is_the_mean_over_episodes_of_the_episode_medians():
+    a = np.zeros((33, 2))
+    a[16:, 0] = np.radians(2.0)  # medians: torso 2 (one boundary at 16; 32 has no jump -> median 1)
+    b = np.zeros((33, 2))
+    b[16:, 0] = np.radians(6.0)
+    b[32:, 0] += np.radians(6.0)  # torso 6, 6 -> median 6
+    short = np.zeros((5, 2))  # no boundary: left out of the mean
+    torso, head = mean_chunk_jump([{"view_targets": a.tolist()}, {"view_targets": b.tolist()},
+                                   {"view_targets": short.tolist()}])
+    assert torso == pytest.approx((1.0 + 6.0) / 2) and head == pytest.approx(0.0)
 
 
 def test_report_tables_match_hand_computed_values(tmp_path):
@@ -53,10 +68,15 @@ def test_report_tables_match_hand_computed_values(tmp_path):
     fails = (tmp_path / "rep" / "failures.csv").read_text().splitlines()
     id_row = dict(zip(fails[0].split(","), fails[1].split(",")))
     assert id_row["failures"] == "4" and float(id_row["DM %"]) == 50.0 and float(id_row["CR %"]) == 25.0
-    assert float(id_row["chunk jump median (deg)"]) == pytest.approx(2.0)
+    assert float(id_row["torso chunk jump (deg)"]) == pytest.approx(2.0)
+    assert float(id_row["head chunk jump (deg)"]) == pytest.approx(0.0)
+    per_task = (tmp_path / "rep" / "per_task.csv").read_text().splitlines()
+    assert per_task[0] == "category,task,oracle ID,oracle OOD"
+    assert per_task[1] == "SS,click_bell_rotate_view,75.0,25.0" and per_task[2] == "MD,count_target_press_button,25.0,0.0"
     md = (tmp_path / "rep" / "report.md").read_text()
     assert "| oracle |" in md and "leaderboard.png" in md and "click_bell_rotate_view_0.mp4" in md
     assert (tmp_path / "rep" / "leaderboard.png").stat().st_size > 1000
+    assert (tmp_path / "rep" / "per_task.png").stat().st_size > 1000
 
 
 def test_report_needs_a_split_it_can_tell(tmp_path):

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import gymnasium as gym
 from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.envs.configs import EnvConfig
+from lerobot.envs.utils import _LazyAsyncVectorEnv, freeze_after_episode_end
 from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 from ..sim.action import ACTION_DIM
@@ -33,6 +34,7 @@ class ActiveArenaEnvConfig(EnvConfig):
     episode_log_dir: str | None = None  # one JSON line per finished episode (failure states, view targets)
     fps: int = CONTROL_HZ
     episode_length: int | None = None  # None: each task's own step limit
+    render_pixels: bool = True  # false: black head images, for policies that read none (the oracle); videos still render
     features: dict[str, PolicyFeature] = field(default_factory=lambda: {
         ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(ACTION_DIM,)),
         "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(ACTION_DIM,)),
@@ -55,7 +57,7 @@ class ActiveArenaEnvConfig(EnvConfig):
     def gym_kwargs(self) -> dict:
         return {"split": self.split, "fixed_view": self.fixed_view, "use_manifest": self.use_manifest,
                 "seed_base": self.seed_base, "expert_channel": self.expert_channel,
-                "episode_log_dir": self.episode_log_dir}
+                "episode_log_dir": self.episode_log_dir, "render_pixels": self.render_pixels}
 
     def create_envs(self, n_envs: int, use_async_envs: bool = False) -> dict[str, dict[str, gym.vector.VectorEnv]]:
         """``{category: {task: VectorEnv}}``: lerobot-eval reports per task and per category."""
@@ -77,10 +79,9 @@ class ActiveArenaEnvConfig(EnvConfig):
 
             fns = [make for _ in range(n_envs)]
             if use_async_envs and n_envs > 1:
-                from lerobot.envs.utils import _LazyAsyncVectorEnv  # workers (and GL contexts) start on first use
-
-                vec = _LazyAsyncVectorEnv(fns)
+                vec = _LazyAsyncVectorEnv(fns)  # workers (and GL contexts) start on first use
             else:
-                vec = gym.vector.SyncVectorEnv(fns)
+                # A sub-env whose episode ended waits for the batch (no autoreset into an unplanned scene).
+                vec = gym.vector.SyncVectorEnv([freeze_after_episode_end(fn) for fn in fns])
             suites.setdefault(get_task(name).category, {})[name] = vec
         return suites

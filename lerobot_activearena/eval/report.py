@@ -33,15 +33,38 @@ class Run:
     episodes: list[dict] = field(default_factory=list)
 
 
-def chunk_jump_deg(view_targets, chunk: int = CHUNK) -> float:
-    """Episode-level median jump (degrees) of the commanded torso/head targets across chunk
-    boundaries: max over the two joints of |target[t] - target[t-1]| at t = chunk, 2*chunk, ..."""
-    v = np.asarray(view_targets, float)
+def chunk_jump_deg(view_targets, chunk: int = CHUNK) -> tuple[float, float]:
+    """The paper's chunk-boundary discontinuity of one episode: the median over boundaries
+    t = chunk, 2*chunk, ... of |target[t] - target[t-1]| in degrees, for the torso yaw and the head
+    pitch targets separately. NaN for an episode shorter than one chunk."""
+    v = np.asarray(view_targets, float).reshape(-1, 2)
     ts = np.arange(chunk, len(v), chunk)
     if len(ts) == 0:
-        return float("nan")
-    jumps = np.abs(v[ts] - v[ts - 1]).max(axis=1)
-    return float(np.degrees(np.median(jumps)))
+        return float("nan"), float("nan")
+    jumps = np.degrees(np.abs(v[ts] - v[ts - 1]))
+    return float(np.median(jumps[:, 0])), float(np.median(jumps[:, 1]))
+
+
+def mean_chunk_jump(episodes: list[dict]) -> tuple[float, float]:
+    """Mean over episodes of the episode-level median jumps (torso, head), in degrees."""
+    per = np.array([chunk_jump_deg(e["view_targets"]) for e in episodes] or [[np.nan, np.nan]])
+    ok = ~np.isnan(per[:, 0])
+    return (float(per[ok, 0].mean()), float(per[ok, 1].mean())) if ok.any() else (float("nan"), float("nan"))
+
+
+def expand_specs(specs: list[str]) -> list[str]:
+    """An activearena-eval run folder (with run.json) stands for its merged splits, under its label."""
+    out = []
+    for spec in specs:
+        label, _, path = spec.rpartition("=")
+        run_file = Path(path) / "run.json"
+        if run_file.is_file():
+            plan = json.loads(run_file.read_text())
+            name = label.split(":")[0] if label else plan["label"]
+            out += [f"{name}:{s}={Path(path) / s}" for s in plan["splits"]]
+        else:
+            out.append(spec)
+    return out
 
 
 def load_run(spec: str) -> Run:
@@ -107,25 +130,24 @@ def leaderboard(runs: list[Run]) -> tuple[list[str], list[list]]:
 
 
 def failure_table(runs: list[Run]) -> tuple[list[str], list[list]]:
-    header = ["policy", "split", "failures", "DM %", "CO %", "CR %", "chunk jump median (deg)"]
+    header = ["policy", "split", "failures", "DM %", "CO %", "CR %", "torso chunk jump (deg)", "head chunk jump (deg)"]
     rows = []
     for r in runs:
         fails = [e["failure_state"] for e in r.episodes if not e["success"]]
         n = len(fails)
         pct = [100.0 * fails.count(k) / n if n else float("nan") for k in ("DM", "CO", "CR")]
-        jumps = [chunk_jump_deg(e["view_targets"]) for e in r.episodes]
-        jumps = [j for j in jumps if not math.isnan(j)]
-        rows.append([r.label, r.split.upper(), n, *pct, float(np.median(jumps)) if jumps else float("nan")])
+        rows.append([r.label, r.split.upper(), n, *pct, *mean_chunk_jump(r.episodes)])
     return header, rows
 
 
 def per_task_table(runs: list[Run]) -> tuple[list[str], list[list]]:
-    header = ["policy", "split", "category", "task", "episodes", "success %"]
+    """One row per task, one column per policy and split: policies side by side."""
+    cols = [(r.label, r.split) for r in runs]
+    header = ["category", "task"] + [f"{label} {split.upper()}" for label, split in cols]
+    cats = {t: c for r in runs for t, c in r.task_category.items()}
     rows = []
-    for r in runs:
-        for t in sorted(r.task_success, key=lambda t: (r.task_category[t], t)):
-            rows.append([r.label, r.split.upper(), r.task_category[t], t, len(r.task_success[t]),
-                         _rate(r.task_success[t])])
+    for t in sorted(cats, key=lambda t: (list(CATEGORIES).index(cats[t]) if cats[t] in CATEGORIES else 99, t)):
+        rows.append([cats[t], t] + [_rate(r.task_success[t]) if t in r.task_success else float("nan") for r in runs])
     return header, rows
 
 
@@ -148,7 +170,7 @@ def write_csv(path: Path, header, rows) -> None:
         w.writerows([[("" if isinstance(x, float) and math.isnan(x) else x) for x in row] for row in rows])
 
 
-def bar_chart(path: Path, header, rows) -> None:
+def bar_chart(path: Path, header, rows, title: str = "ActiveArena success by category (task-macro)") -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -164,7 +186,7 @@ def bar_chart(path: Path, header, rows) -> None:
     ax.set_xticks(x, cols, rotation=45, ha="right")
     ax.set_ylabel("success %")
     ax.set_ylim(0, 100)
-    ax.set_title("ActiveArena success by category (task-macro)")
+    ax.set_title(title)
     ax.legend()
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -172,13 +194,16 @@ def bar_chart(path: Path, header, rows) -> None:
 
 
 def build_report(run_specs: list[str], out: Path) -> dict:
-    runs = [load_run(s) for s in run_specs]
+    runs = [load_run(s) for s in expand_specs(run_specs)]
     out.mkdir(parents=True, exist_ok=True)
     lb, fl, pt = leaderboard(runs), failure_table(runs), per_task_table(runs)
     write_csv(out / "leaderboard.csv", *lb)
     write_csv(out / "failures.csv", *fl)
     write_csv(out / "per_task.csv", *pt)
     bar_chart(out / "leaderboard.png", *lb)
+    bar_chart(out / "per_task.png", [""] + [f"{r[1]}" for r in pt[1]], [[h] + [r[2 + k] for r in pt[1]]
+                                                                   for k, h in enumerate(pt[0][2:])],
+              title="ActiveArena success by task")
     videos = []
     for r in runs:
         for t, paths in sorted(r.videos.items()):
@@ -187,8 +212,9 @@ def build_report(run_specs: list[str], out: Path) -> dict:
           "", markdown(*lb), "", "![leaderboard](leaderboard.png)", "",
           "## Failure states among failed episodes", "",
           "DM: a task-relevant object was never observed; CO: all observed, the final view misses some; "
-          "CR: the final view covers all, the task still failed. Chunk jump: episode-level median jump of "
-          f"the torso/head targets at {CHUNK}-step chunk boundaries.", "", markdown(*fl), "",
-          "## Per task", "", markdown(*pt), "", "## Rollout videos", "", *(videos or ["(none saved)"]), ""]
+          "CR: the final view covers all, the task still failed. Chunk jump (the paper's action-continuity "
+          f"metric): per episode the median jump of the commanded target at the {CHUNK}-step chunk boundaries, "
+          "then the mean over episodes; torso yaw and head pitch separately.", "", markdown(*fl), "",
+          "## Per task (success %)", "", markdown(*pt), "", "![per task](per_task.png)", "", "## Rollout videos", "", *(videos or ["(none saved)"]), ""]
     (out / "report.md").write_text("\n".join(md))
     return {"leaderboard": lb, "failures": fl, "per_task": pt}

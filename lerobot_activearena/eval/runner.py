@@ -1,0 +1,151 @@
+"""Run an evaluation plan as datatrove tasks (one per shard; local processes or Slurm array jobs with a
+dependent merge job). Datatrove skips shards it completed; a shard killed half way replays only its
+unfinished episodes, so re-running the same command resumes."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import threading
+from pathlib import Path
+
+from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
+from datatrove.pipeline.base import PipelineStep
+from tqdm import tqdm
+
+from .merge import merge_run
+from .protocol import RUN_FILE, EvalPlan
+from .shard import read_records, records_dir, run_shard
+
+
+class EvalShardStep(PipelineStep):
+    """datatrove step: rank r evaluates shard r of the plan."""
+
+    name = "ActiveArena eval shard"
+    type = "EVAL"
+
+    def __init__(self, plan: EvalPlan, run_dir: str, batch_size: int, use_async_envs: bool, videos: int,
+                 one_thread: bool):
+        super().__init__()
+        self.plan, self.run_dir = plan, run_dir
+        self.batch_size, self.use_async_envs, self.videos, self.one_thread = batch_size, use_async_envs, videos, one_thread
+
+    def run(self, data=None, rank: int = 0, world_size: int = 1):
+        if self.one_thread:  # one shard per core: keep Mesa's rasteriser and torch on it
+            os.environ.setdefault("LP_NUM_THREADS", "1")
+            import torch
+
+            torch.set_num_threads(1)
+        out = run_shard(self.plan, self.plan.shards[rank], Path(self.run_dir), self.batch_size,
+                        self.use_async_envs, self.videos)
+        self.stat_update("episodes_run", value=out["ran"])
+        return iter(())
+
+
+class MergeStep(PipelineStep):
+    """datatrove step (one task): the merge, as the Slurm job that depends on the shard jobs."""
+
+    name = "ActiveArena eval merge"
+    type = "MERGE"
+
+    def __init__(self, plan: EvalPlan, run_dir: str):
+        super().__init__()
+        self.plan, self.run_dir = plan, run_dir
+
+    def run(self, data=None, rank: int = 0, world_size: int = 1):
+        merge_run(self.plan, Path(self.run_dir))
+        return iter(())
+
+
+class _Progress(threading.Thread):
+    """An overall bar and one bar per running shard, fed by the shards' episode records."""
+
+    def __init__(self, plan: EvalPlan, run_dir: Path):
+        super().__init__(daemon=True)
+        self.plan, self.run_dir, self.stop = plan, run_dir, threading.Event()
+
+    def run(self):
+        total = tqdm(total=self.plan.n_episodes, desc="episodes", unit="ep", position=0)
+        bars: dict[str, tqdm] = {}
+        finished: set[str] = set()
+        while True:
+            n = wins = 0
+            for shard in self.plan.shards:
+                if shard.name in finished:
+                    n += len(shard.episodes)
+                    continue
+                recs = read_records(records_dir(self.run_dir, shard)) if records_dir(self.run_dir, shard).is_dir() else {}
+                n += len(recs)
+                wins += sum(bool(r["success"]) for r in recs.values())
+                if len(recs) == len(shard.episodes):
+                    finished.add(shard.name)
+                    if shard.name in bars:
+                        bars.pop(shard.name).close()
+                elif recs and shard.name not in bars:
+                    bars[shard.name] = tqdm(total=len(shard.episodes), desc=shard.name, unit="ep", leave=False,
+                                            position=1 + len(bars))
+                if shard.name in bars:
+                    bars[shard.name].update(len(recs) - bars[shard.name].n)
+            total.update(n - total.n)
+            if self.stop.is_set():
+                for b in bars.values():
+                    b.close()
+                total.close()
+                return
+            self.stop.wait(1.0)
+
+
+def prepare_run(plan: EvalPlan, run_dir: Path, policy_config: dict, overwrite: bool = False) -> bool:
+    """Create or check the run folder. Returns True when it resumes an earlier run of this plan;
+    refuses a folder that holds another configuration."""
+    run_file = run_dir / RUN_FILE
+    if overwrite:
+        shutil.rmtree(run_dir, ignore_errors=True)
+    elif run_file.is_file():
+        diff = plan.differences(json.loads(run_file.read_text()))
+        if diff:
+            raise FileExistsError(f"{run_dir} holds an evaluation with another configuration (it differs in: "
+                                  f"{', '.join(diff)}); its episodes cannot be mixed with this one. Re-run that "
+                                  "command to resume it, pass another --out, or --overwrite to start fresh")
+        return True
+    elif run_dir.exists() and any(run_dir.iterdir()):
+        raise FileExistsError(f"{run_dir} exists and is not an activearena-eval run; pass another --out "
+                              "(or --overwrite to replace it)")
+    (run_dir / "policy").mkdir(parents=True, exist_ok=True)
+    (run_dir / "policy" / "config.json").write_text(json.dumps(policy_config, indent=2))
+    run_file.write_text(json.dumps(plan.to_json(), indent=1))
+    return False
+
+
+def run_eval(plan: EvalPlan, run_dir: Path, policy_config: dict, workers: int = 1, batch_size: int = 1,
+             use_async_envs: bool = False, videos: int = 1, executor: str = "local", slurm: dict | None = None,
+             overwrite: bool = False, progress: bool = True) -> dict | None:
+    """Run (or resume) the plan in ``run_dir``; returns the merged overall metrics per split, or None
+    when the jobs were submitted to Slurm (the merge job writes the results)."""
+    run_dir = Path(run_dir).resolve()
+    prepare_run(plan, run_dir, policy_config, overwrite)
+    workers = max(1, min(workers, len(plan.shards)))
+    step = EvalShardStep(plan, str(run_dir), batch_size, use_async_envs, videos, one_thread=workers > 1)
+    if executor == "slurm":
+        opts = dict(slurm or {})
+        shards = SlurmPipelineExecutor(pipeline=[step], tasks=len(plan.shards), logging_dir=str(run_dir / "logs"),
+                                       job_name="activearena-eval", **opts)
+        merge = SlurmPipelineExecutor(pipeline=[MergeStep(plan, str(run_dir))], tasks=1,
+                                      logging_dir=str(run_dir / "logs-merge"), job_name="activearena-eval-merge",
+                                      depends=shards, **{k: v for k, v in opts.items() if k not in ("workers", "gpus_per_task")})
+        merge.run()
+        return None
+    if executor != "local":
+        raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
+    bar = _Progress(plan, run_dir) if progress else None
+    if bar:
+        bar.start()
+    try:
+        LocalPipelineExecutor(pipeline=[step], tasks=len(plan.shards), workers=workers,
+                              logging_dir=str(run_dir / "logs")).run()
+    finally:
+        if bar:
+            bar.stop.set()
+            bar.join()
+    return merge_run(plan, run_dir)

@@ -1,0 +1,119 @@
+"""Evaluate one shard: LeRobot's own rollout loop (``lerobot.scripts.lerobot_eval.rollout``) over the
+shard's manifest episodes with N vector envs. The env appends one record per finished episode to
+``records/<shard>/`` the moment it ends, so a killed shard keeps its finished episodes and a re-run
+plays only the others."""
+
+from __future__ import annotations
+
+import json
+import logging
+from contextlib import nullcontext
+from pathlib import Path
+
+import numpy as np
+
+from .protocol import EvalPlan, EvalShard
+
+log = logging.getLogger(__name__)
+RECORD_KEYS = ("task", "split", "episode", "scene_seed", "success", "failure_state", "failure_reason", "steps",
+               "view_targets")
+
+
+def records_dir(run_dir: Path, shard: EvalShard) -> Path:
+    return Path(run_dir) / "records" / shard.name
+
+
+def read_records(folder: Path) -> dict[tuple[str, str, int], dict]:
+    """Finished episodes under ``folder`` keyed by (task, split, manifest index); the first record of
+    an episode wins, and a line cut short by a kill is ignored."""
+    out: dict[tuple[str, str, int], dict] = {}
+    for f in sorted(Path(folder).rglob("*.jsonl")):
+        for line in f.read_text().splitlines():
+            try:
+                rec = json.loads(line)
+            except ValueError:
+                continue
+            if rec.get("episode") is None:
+                continue
+            out.setdefault((rec["task"], rec["split"], int(rec["episode"])), rec)
+    return out
+
+
+def env_config(plan: EvalPlan, task: str, split: str, log_dir: Path | None):
+    from ..envs.configs import ActiveArenaEnvConfig
+
+    options = dict(plan.env)
+    return ActiveArenaEnvConfig(task=task, split=split, fixed_view=plan.fixed_view, seed_base=plan.seed_base,
+                                expert_channel=plan.policy.get("type") == "activearena_expert",
+                                episode_log_dir=None if log_dir is None else str(log_dir), **options)
+
+
+def video_path(run_dir: Path, shard: EvalShard, episode: int) -> Path:
+    return Path(run_dir) / "videos" / f"{shard.task}_{shard.split}_{episode:03d}.mp4"
+
+
+def run_shard(plan: EvalPlan, shard: EvalShard, run_dir: Path, batch_size: int = 1, use_async_envs: bool = False,
+              videos: int = 1) -> dict:
+    """Play the shard's unfinished episodes; returns {"episodes": n finished, "ran": n played now}."""
+    import torch
+    from lerobot.configs.policies import PreTrainedConfig
+    from lerobot.envs.factory import make_env_pre_post_processors
+    from lerobot.envs.utils import close_envs
+    from lerobot.policies import make_policy, make_pre_post_processors
+    from lerobot.scripts import lerobot_eval
+    from lerobot.utils.device_utils import get_safe_torch_device
+    from lerobot.utils.io_utils import write_video
+    from tqdm import trange
+
+    run_dir = Path(run_dir)
+    folder = records_dir(run_dir, shard)
+    folder.mkdir(parents=True, exist_ok=True)
+    done = read_records(folder)
+    pending = [k for k in shard.episodes if (shard.task, shard.split, k) not in done]
+    if not pending:
+        return {"episodes": len(shard.episodes), "ran": 0}
+    # the run shows its own per-shard and overall bars instead of one per rollout
+    lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})
+
+    cfg = PreTrainedConfig.from_pretrained(run_dir / "policy")
+    cfg.pretrained_path = Path(plan.policy_path) if plan.policy_path else None  # a Hub id or a folder, as lerobot-eval
+    env_cfg = env_config(plan, shard.task, shard.split, folder)
+    device = get_safe_torch_device(cfg.device)
+    policy = make_policy(cfg=cfg, env_cfg=env_cfg)
+    policy.eval()
+    preprocessor, postprocessor = make_pre_post_processors(
+        policy_cfg=cfg, pretrained_path=cfg.pretrained_path,
+        preprocessor_overrides={"device_processor": {"device": str(policy.config.device)}})
+    env_pre, env_post = make_env_pre_post_processors(env_cfg=env_cfg, policy_cfg=cfg)
+    want_video = set(shard.episodes[:videos])
+    fps = env_cfg.fps
+    ran = 0
+    for start in range(0, len(pending), batch_size):
+        batch = pending[start:start + batch_size]
+        envs = env_cfg.create_envs(n_envs=len(batch), use_async_envs=use_async_envs)
+        vec = next(iter(next(iter(envs.values())).values()))
+        record = batch[0] in want_video and not video_path(run_dir, shard, batch[0]).exists()
+        frames: list[np.ndarray] = []
+
+        def render(env, frames=frames):
+            frames.append(env.envs[0].render() if hasattr(env, "envs") else env.call("render")[0])
+
+        try:
+            with torch.no_grad(), (torch.autocast(device_type=device.type) if cfg.use_amp else nullcontext()):
+                data = lerobot_eval.rollout(vec, policy, env_pre, env_post, preprocessor, postprocessor,
+                                            seeds=[plan.seed_base + k for k in batch],
+                                            render_callback=render if record else None)
+        finally:
+            close_envs(envs)
+        if record:
+            last = int(torch.argmax(data["done"][0].to(int)))
+            path = video_path(run_dir, shard, batch[0])
+            path.parent.mkdir(parents=True, exist_ok=True)
+            write_video(str(path), np.stack(frames[:last + 2]), fps)
+        got = read_records(folder)
+        missing = [k for k in batch if (shard.task, shard.split, k) not in got]
+        if missing:
+            raise RuntimeError(f"{shard.name}: episodes {missing} ended without an episode record in {folder}")
+        ran += len(batch)
+        log.info("%s: %d/%d episodes", shard.name, len(shard.episodes) - len(pending) + ran, len(shard.episodes))
+    return {"episodes": len(shard.episodes), "ran": ran}
