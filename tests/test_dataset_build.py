@@ -24,6 +24,8 @@ from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.datasets_build.record import record_episode
 from lerobot_activearena.tasks.rollout import run_expert_episode
 
+from fake_slurm import install_fake_slurm, submitted_jobs
+
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one
 
@@ -249,43 +251,13 @@ def test_lerobot_dataset_viz_saves_a_recording(built, tmp_path):
     assert rrd and rrd[0].stat().st_size > 100_000
 
 
-FAKE_SBATCH = r'''#!/usr/bin/env python3
-"""Stand-in for Slurm's sbatch: logs the submission and runs every array task at once, in order."""
-import json, os, pathlib, re, subprocess, sys
-log = pathlib.Path(os.environ["FAKE_SLURM_LOG"])
-args, script = sys.argv[1:-1], sys.argv[-1]
-text = open(script).read()
-job = 100 + (len(log.read_text().splitlines()) if log.exists() else 0)
-with log.open("a") as f:
-    f.write(json.dumps({"job": job, "args": args, "script": text}) + "\n")
-m = re.search(r"#SBATCH --array=(\d+)-(\d+)", text)
-env = dict(os.environ, SLURM_JOB_ID=str(job), SLURM_NODELIST="localhost", SLURM_NODEID="0")
-for a in args:
-    if a.startswith("--export="):
-        env.update(kv.split("=", 1) for kv in a[len("--export="):].split(",") if "=" in kv)
-for i in range(int(m.group(1)), int(m.group(2)) + 1) if m else [None]:
-    if i is not None:
-        env["SLURM_ARRAY_TASK_ID"] = str(i)
-    subprocess.run(["bash", script], env=env, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-print(f"Submitted batch job {job}")
-'''
-
-
 def test_slurm_executor_builds_through_array_jobs_and_a_dependent_merge(tmp_path, monkeypatch):
-    bin_dir = tmp_path / "bin"
-    bin_dir.mkdir()
-    (bin_dir / "sbatch").write_text(FAKE_SBATCH)
-    (bin_dir / "srun").write_text('#!/bin/bash\nwhile [[ "$1" == -* ]]; do [[ "$1" == -n ]] && shift; shift; done\nexec "$@"\n')
-    (bin_dir / "scontrol").write_text("#!/bin/bash\necho localhost\n")
-    for f in bin_dir.iterdir():
-        f.chmod(0o755)
-    monkeypatch.setenv("PATH", f"{bin_dir}:{Path(sys.executable).parent}:{os.environ['PATH']}")
-    monkeypatch.setenv("FAKE_SLURM_LOG", str(tmp_path / "slurm.jsonl"))
+    install_fake_slurm(tmp_path, monkeypatch)
     plan = BuildPlan(repo_id="local/slurm", split="id", tasks=[BELL], episodes=2, episodes_per_shard=1)
     out = build_dataset(plan, tmp_path / "slurm", executor="slurm", slurm={"partition": "cpu", "time": "00:30:00"},
                         progress=False)
     assert out is None  # submitted; the merge job writes the dataset
-    jobs = [json.loads(line) for line in (tmp_path / "slurm.jsonl").read_text().splitlines()]
+    jobs = submitted_jobs(tmp_path)
     shards = next(j for j in jobs if "activearena-shards" in j["script"] and "--array=0-1" in j["script"])
     merge = next(j for j in jobs if "activearena-merge" in j["script"] and "merge_stats" not in j["script"])
     assert "#SBATCH --partition=cpu" in shards["script"]
