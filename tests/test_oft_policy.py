@@ -409,12 +409,22 @@ def test_lerobot_train_then_lerobot_eval(vlm, root, tmp_path):
     out = tmp_path / "eval"
     ev = subprocess.run([
         _exe("lerobot-eval"), f"--policy.path={ckpt}", "--env.type=activearena", "--env.task=click_bell_rotate_view",
-        "--eval.n_episodes=1", "--eval.batch_size=1", "--policy.device=cpu", f"--output_dir={out}"],
-        capture_output=True, text=True, timeout=600)
+        "--eval.n_episodes=1", "--eval.batch_size=1", "--policy.device=cpu", f"--output_dir={out}",
+        f"--env.episode_log_dir={out / 'episodes'}"], capture_output=True, text=True, timeout=600)
     assert ev.returncode == 0, ev.stderr[-3000:]
     info = json.loads((out / "eval_info.json").read_text())
     assert info["overall"]["n_episodes"] == 1
     assert list(out.glob("videos/*/*.mp4"))
+    # the same checkpoint through activearena-eval's shards plays the same episode step for step
+    run = tmp_path / "protocol"
+    ours = subprocess.run([
+        _exe("activearena-eval"), f"--policy.path={ckpt}", "--policy.device=cpu", "--tasks=click_bell_rotate_view",
+        "--splits=id", "--episodes=1", "--videos=0", f"--out={run}"], capture_output=True, text=True, timeout=600)
+    assert ours.returncode == 0, ours.stderr[-3000:]
+    theirs = json.loads(next((out / "episodes").glob("*.jsonl")).read_text().splitlines()[0])
+    mine = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
+    for key in ("scene_seed", "steps", "success", "failure_state", "view_targets"):
+        assert mine[key] == theirs[key], key
 
 
 def _changed_fraction(vlm, root, **precision):

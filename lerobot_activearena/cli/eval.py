@@ -108,6 +108,7 @@ def config_file_defaults(paths: list[Path]) -> dict:
 def check_features(cfg, env_options: dict, fixed_view: bool) -> None:
     """A pretrained policy's input / output features must be what the activearena env provides."""
     from lerobot.envs.utils import env_to_policy_features
+    from lerobot.utils.constants import ACTION
 
     if not cfg.input_features and not cfg.output_features:
         return  # built from scratch: make_policy fills them from the env
@@ -115,7 +116,8 @@ def check_features(cfg, env_options: dict, fixed_view: bool) -> None:
                                    **env_options)
     provided = env_to_policy_features(env_cfg)
     problems = []
-    for key, feat in {**cfg.input_features, **cfg.output_features}.items():
+    acted = {k: v for k, v in cfg.output_features.items() if k == ACTION}  # other outputs are training targets
+    for key, feat in {**cfg.input_features, **acted}.items():
         have = provided.get(key)
         if have is None:
             problems.append(f"{key} {tuple(feat.shape)} is not provided")
