@@ -258,8 +258,8 @@ def test_slurm_executor_builds_through_array_jobs_and_a_dependent_merge(tmp_path
                         progress=False)
     assert out is None  # submitted; the merge job writes the dataset
     jobs = submitted_jobs(tmp_path)
-    shards = next(j for j in jobs if "activearena-shards" in j["script"] and "--array=0-1" in j["script"])
-    merge = next(j for j in jobs if "activearena-merge" in j["script"] and "merge_stats" not in j["script"])
+    shards = next(j for j in jobs if "activearena-build" in j["script"] and "--array=0-1" in j["script"])
+    merge = next(j for j in jobs if "activearena-build-merge" in j["script"] and "merge_stats" not in j["script"])
     assert "#SBATCH --partition=cpu" in shards["script"]
     assert f"--dependency=afterok:{shards['job']}" in merge["args"]
     meta = LeRobotDatasetMetadata("local/slurm", root=tmp_path / "slurm")

@@ -10,10 +10,10 @@ import shutil
 import threading
 from pathlib import Path
 
-from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
 from datatrove.pipeline.base import PipelineStep
 from tqdm import tqdm
 
+from ..sharding import run_local, submit_slurm
 from .merge import merge_shards, read_build
 from .plan import BuildPlan
 from .shard import build_shard, is_complete, shard_dir
@@ -124,26 +124,12 @@ def build_dataset(plan: BuildPlan, root: Path, work_dir: Path | None = None, wor
         threads = 1 if workers > 1 else None
         step = BuildShardStep(plan, str(work_dir), encoder_threads=threads)
         if executor == "slurm":
-            opts = dict(slurm or {})
-            shards = SlurmPipelineExecutor(pipeline=[step], tasks=len(plan.shards), logging_dir=str(work_dir / "logs"),
-                                           job_name="activearena-shards", **opts)
-            merge = SlurmPipelineExecutor(pipeline=[MergeStep(plan, str(work_dir), str(root))], tasks=1,
-                                          logging_dir=str(work_dir / "logs-merge"), job_name="activearena-merge",
-                                          depends=shards, **{k: v for k, v in opts.items() if k != "workers"})
-            merge.run()
+            submit_slurm(step, len(plan.shards), MergeStep(plan, str(work_dir), str(root)), work_dir,
+                         "activearena-build", slurm)
             return None
         if executor != "local":
             raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
-        bar = _Progress(plan, work_dir) if progress else None
-        if bar:
-            bar.start()
-        try:
-            LocalPipelineExecutor(pipeline=[step], tasks=len(plan.shards), workers=workers,
-                                  logging_dir=str(work_dir / "logs")).run()
-        finally:
-            if bar:
-                bar.stop.set()
-                bar.join()
+        run_local(step, len(plan.shards), workers, work_dir / "logs", _Progress(plan, work_dir) if progress else None)
         summary = merge_shards(plan, work_dir, root)
         if not keep_shards:
             shutil.rmtree(work_dir, ignore_errors=True)

@@ -10,10 +10,10 @@ import shutil
 import threading
 from pathlib import Path
 
-from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
 from datatrove.pipeline.base import PipelineStep
 from tqdm import tqdm
 
+from ..sharding import run_local, submit_slurm
 from .merge import merge_run
 from .protocol import RUN_FILE, EvalPlan
 from .shard import records_dir, run_shard
@@ -132,24 +132,9 @@ def run_eval(plan: EvalPlan, run_dir: Path, policy_config: dict, workers: int = 
     workers = max(1, min(workers, len(plan.shards)))
     step = EvalShardStep(plan, str(run_dir), batch_size, use_async_envs, videos, one_thread=workers > 1)
     if executor == "slurm":
-        opts = dict(slurm or {})
-        shards = SlurmPipelineExecutor(pipeline=[step], tasks=len(plan.shards), logging_dir=str(run_dir / "logs"),
-                                       job_name="activearena-eval", **opts)
-        merge = SlurmPipelineExecutor(pipeline=[MergeStep(plan, str(run_dir))], tasks=1,
-                                      logging_dir=str(run_dir / "logs-merge"), job_name="activearena-eval-merge",
-                                      depends=shards, **{k: v for k, v in opts.items() if k not in ("workers", "gpus_per_task")})
-        merge.run()
+        submit_slurm(step, len(plan.shards), MergeStep(plan, str(run_dir)), run_dir, "activearena-eval", slurm)
         return None
     if executor != "local":
         raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
-    bar = _Progress(plan, run_dir) if progress else None
-    if bar:
-        bar.start()
-    try:
-        LocalPipelineExecutor(pipeline=[step], tasks=len(plan.shards), workers=workers,
-                              logging_dir=str(run_dir / "logs")).run()
-    finally:
-        if bar:
-            bar.stop.set()
-            bar.join()
+    run_local(step, len(plan.shards), workers, run_dir / "logs", _Progress(plan, run_dir) if progress else None)
     return merge_run(plan, run_dir)

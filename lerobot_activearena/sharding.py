@@ -1,0 +1,38 @@
+"""Shared datatrove plumbing of the sharded jobs (dataset builds, evaluations): shards as local
+processes while a progress thread draws bars, or as a Slurm array job followed by a dependent
+one-task merge job."""
+
+from __future__ import annotations
+
+import threading
+from pathlib import Path
+
+from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
+from datatrove.pipeline.base import PipelineStep
+
+SLURM_ONLY_FOR_SHARDS = ("workers", "gpus_per_task")  # the merge job needs neither a GPU nor an array limit
+
+
+def run_local(step: PipelineStep, tasks: int, workers: int, logging_dir: Path,
+              progress: threading.Thread | None = None) -> None:
+    """Run ``tasks`` ranks of ``step`` in ``workers`` processes (datatrove skips completed ranks)."""
+    if progress is not None:
+        progress.start()
+    try:
+        LocalPipelineExecutor(pipeline=[step], tasks=tasks, workers=workers, logging_dir=str(logging_dir)).run()
+    finally:
+        if progress is not None:
+            progress.stop.set()
+            progress.join()
+
+
+def submit_slurm(step: PipelineStep, tasks: int, merge: PipelineStep, logging_dir: Path, job_name: str,
+                 options: dict | None) -> None:
+    """Submit ``tasks`` array tasks of ``step`` and a merge job that runs once they all succeeded."""
+    opts = dict(options or {})
+    shards = SlurmPipelineExecutor(pipeline=[step], tasks=tasks, logging_dir=str(logging_dir / "logs"),
+                                   job_name=job_name, **opts)
+    merge_job = SlurmPipelineExecutor(pipeline=[merge], tasks=1, logging_dir=str(logging_dir / "logs-merge"),
+                                      job_name=f"{job_name}-merge", depends=shards,
+                                      **{k: v for k, v in opts.items() if k not in SLURM_ONLY_FOR_SHARDS})
+    merge_job.run()
