@@ -22,6 +22,7 @@ from lerobot_activearena.eval.protocol import EvalPlan
 from lerobot_activearena.eval.runner import run_eval
 from lerobot_activearena.eval.shard import read_records
 from lerobot_activearena.policies.activearena_expert.configuration_activearena_expert import ActiveArenaExpertConfig
+from lerobot_activearena.tasks import get_task
 
 ROOT = Path(__file__).resolve().parents[1]
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
@@ -161,7 +162,10 @@ def test_shards_depend_on_the_selection_not_on_workers():
                     splits=["id", "ood"], episodes=list(range(5)), episodes_per_shard=2)
     n_tasks = len(plan.tasks)
     assert len(plan.shards) == 2 * n_tasks * 3 and plan.n_episodes == 2 * n_tasks * 5
-    assert [s.episodes for s in plan.shards[:3]] == [(0, 1), (2, 3), (4,)]
-    assert {s.split for s in plan.shards[: 3 * n_tasks]} == {"id"}
+    first = [s for s in plan.shards if s.task == plan.shards[0].task]
+    assert [(s.split, s.episodes) for s in first] == [("id", (0, 1)), ("id", (2, 3)), ("id", (4,)),
+                                                       ("ood", (0, 1)), ("ood", (2, 3)), ("ood", (4,))]
+    limits = [get_task(s.task).max_episode_steps for s in plan.shards]
+    assert limits == sorted(limits, reverse=True)  # longest tasks start first
     again = EvalPlan.from_json(plan.to_json())
     assert again.shards == plan.shards and again.differences(plan.to_json()) == []

@@ -2,8 +2,9 @@
 (one per datatrove rank), for one policy, and the run folder that holds it.
 
 The protocol is every task x {ID, OOD} x the first 50 episodes of each seed manifest. A shard is
-one task and split and a block of ``episodes_per_shard`` manifest episodes; the layout depends only
-on the selection, never on the number of workers, so a run can resume on another machine.
+one task and split and a block of ``episodes_per_shard`` manifest episodes, longest tasks first; the
+layout depends only on the selection, never on the number of workers, so a run can resume on another
+machine.
 
 Run folder::
 
@@ -73,10 +74,13 @@ class EvalPlan:
         self.shards = self._make_shards()
 
     def _make_shards(self) -> list[EvalShard]:
+        """Longest tasks first (by step limit), so the last shards to start are short ones and the
+        workers finish together."""
         shards: list[EvalShard] = []
         size = self.episodes_per_shard
-        for split in self.splits:
-            for task in self.tasks:
+        longest_first = sorted(self.tasks, key=lambda t: (-get_task(t).max_episode_steps, t))
+        for task in longest_first:
+            for split in self.splits:
                 for j in range(0, len(self.episodes), size):
                     shards.append(EvalShard(len(shards), task, split, tuple(self.episodes[j:j + size])))
         return shards
