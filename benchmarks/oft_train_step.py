@@ -160,7 +160,8 @@ def main() -> None:
     if times:
         step_s, prep_s = sum(times) / len(times), sum(prep) / len(prep)
         print(f"train step (preprocess + forward + backward + AdamW): {step_s:.3f} s mean over {len(times)} steps "
-              f"(preprocessing {prep_s:.3f} s of it, in the main process); {args.batch_size / step_s:.2f} samples/s; "
+              f"(preprocessing {prep_s:.3f} s of it: the training loop's own process, images on {args.device}); "
+              f"{args.batch_size / step_s:.2f} samples/s; "
               f"images in the last batch: {images}; peak memory: {peak}")
     policy.eval()
     policy.reset()

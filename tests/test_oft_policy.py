@@ -518,3 +518,27 @@ def test_padded_history_frames_are_never_processed(vlm, root):
     assert (batch[PIXELS][~valid] == 0).all() and (batch[PIXELS][valid].abs().sum((-1, -2)) > 0).all()
     loss, _ = policy.forward(batch)
     assert torch.isfinite(loss)
+
+
+def test_images_are_processed_on_the_policy_device(vlm, root):
+    """The image processor runs where the policy runs (on a GPU: off the training loop's CPU); a
+    checkpoint saved on CUDA still evaluates on a machine without it."""
+    cfg, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none")
+    step = next(s for s in pre.steps if type(s).__name__ == "ActiveArenaVLMInputsStep")
+    assert step.device == cfg.device and step.get_config()["device"] == cfg.device
+    calls = []
+    real = step._processor.image_processor
+
+    class Recording:
+        def __call__(self, images, **kw):
+            calls.append((kw.get("device"), {im.device for im in images}))
+            return real(images=images, **kw)
+
+    step._processor.image_processor = Recording()
+    try:
+        step.device = "cuda"
+        _batch(ds, pre, [20])
+    finally:
+        step._processor.image_processor = real
+    expected = torch.device("cuda") if torch.cuda.is_available() else torch.device("cpu")
+    assert calls == [(expected, {expected})]

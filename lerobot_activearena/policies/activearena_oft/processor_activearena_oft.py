@@ -99,6 +99,9 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
     vlm_path: str = "Qwen/Qwen3-VL-2B-Instruct"
     think: str = "none"
     image_max_pixels: int = 512 * 384
+    # Where the image processor runs: the policy's device, so on a GPU the resizing and patching of
+    # the 13 frames per sample happen there and do not hold up the training loop's CPU.
+    device: str = "cpu"
     _processor: Any = field(default=None, init=False, repr=False)
 
     def __post_init__(self):
@@ -123,12 +126,15 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         # Padded history frames (before the episode start) are never read: only present frames go
         # through the image processor, the others stay zeros (all frames share one size and grid).
         keep = valid.flatten()
-        frames = (img.detach().float().clamp(0, 1) * 255).round().to(torch.uint8).cpu().flatten(0, 1)[keep]
-        out = self._processor.image_processor(images=list(frames), return_tensors="pt",
+        device = self._device()
+        frames = img.detach().to(device).flatten(0, 1)[keep.to(device)]
+        frames = (frames.float().clamp(0, 1) * 255).round().to(torch.uint8)
+        out = self._processor.image_processor(images=list(frames), return_tensors="pt", device=device,
                                               max_pixels=self.image_max_pixels, min_pixels=16 * 16 * 4)
         pv, grid = out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]), out["image_grid_thw"]
         pixels = pv.new_zeros((B * T, *pv.shape[1:]))
-        pixels[keep] = pv
+        pixels[keep.to(pv.device)] = pv
+        grid = grid.cpu()
         grids = grid[:1].repeat(B * T, 1)
         grids[keep] = grid
         obs[PIXELS] = pixels.reshape(B, T, *pv.shape[1:])
@@ -155,8 +161,17 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
         return out
 
+    def _device(self) -> torch.device:
+        """The configured device, or the CPU where it does not exist (a CUDA checkpoint evaluated on a
+        CPU machine with --policy.device=cpu)."""
+        dev = torch.device(self.device)
+        if dev.type == "cuda" and not torch.cuda.is_available():
+            return torch.device("cpu")
+        return dev
+
     def get_config(self) -> dict[str, Any]:
-        return {"vlm_path": self.vlm_path, "think": self.think, "image_max_pixels": self.image_max_pixels}
+        return {"vlm_path": self.vlm_path, "think": self.think, "image_max_pixels": self.image_max_pixels,
+                "device": self.device}
 
     def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
         return features
@@ -175,7 +190,7 @@ def make_activearena_oft_pre_post_processors(
         dataset_root=config.dataset_root, repo_id=getattr(dataset_meta, "repo_id", None) or "local/activearena",
         memory=config.memory, history=config.history, think=config.think)
     inputs = ActiveArenaVLMInputsStep(vlm_path=config.vlm_path, think=config.think,
-                                      image_max_pixels=config.image_max_pixels)
+                                      image_max_pixels=config.image_max_pixels, device=config.device or "cpu")
     return make_policy_processor_pipelines(
         input_steps=[s.rename_observations, s.add_batch_dim, annotations, inputs, s.normalize, s.to_device],
         output_steps=[s.unnormalize, s.to_cpu],
