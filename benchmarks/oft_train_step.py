@@ -40,6 +40,36 @@ def peak_memory(cuda: bool) -> str:
     return f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS"
 
 
+def attention_kernels(vlm) -> str:
+    """The backbone's attention implementation and, on CUDA, the SDPA kernels eligible for its text
+    attention shapes in bfloat16 without and with a padding mask (PyTorch runs the first eligible of
+    flash, memory-efficient, cuDNN, math)."""
+    impl = vlm.config._attn_implementation
+    if impl != "sdpa" or not torch.cuda.is_available():
+        return impl
+    from torch.nn.attention import SDPBackend, sdpa_kernel
+
+    tc = vlm.config.text_config
+    heads, kv, dim = tc.num_attention_heads, tc.num_key_value_heads, tc.head_dim
+    q = torch.randn(2, heads, 512, dim, device="cuda", dtype=torch.bfloat16)
+    k = torch.randn(2, kv, 512, dim, device="cuda", dtype=torch.bfloat16)
+    mask = torch.ones(2, 1, 512, 512, device="cuda", dtype=torch.bool).tril()
+    mask[1, ..., 400:] = False  # a shorter (padded) sequence
+    out = []
+    for name, m in (("causal", None), ("padded", mask)):
+        ok = []
+        for b in (SDPBackend.FLASH_ATTENTION, SDPBackend.EFFICIENT_ATTENTION, SDPBackend.CUDNN_ATTENTION, SDPBackend.MATH):
+            try:
+                with sdpa_kernel(b):
+                    torch.nn.functional.scaled_dot_product_attention(q, k, k, attn_mask=m, is_causal=m is None,
+                                                                     enable_gqa=kv != heads)
+                ok.append(b.name.lower())
+            except RuntimeError:
+                pass
+        out.append(f"{name}: {ok[0] if ok else 'none'} (eligible: {', '.join(ok)})")
+    return f"sdpa; {'; '.join(out)}"
+
+
 def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: int, all_valid: bool):
     """The policy, its preprocessor and an endless iterator of dataset-shaped random batches: K
     stride-16 history frames + the current one, the history present as at a uniformly drawn frame of
@@ -157,6 +187,7 @@ def main() -> None:
     print(f"precision: {'bfloat16 autocast' if cfg.autocast_bfloat16 else 'float32'} compute, "
           f"{next(policy.vlm.parameters()).dtype} weights; gradient checkpointing "
           f"{'on' if policy.vlm.is_gradient_checkpointing and policy.vlm.training else 'off'}")
+    print(f"attention: {attention_kernels(policy.vlm)}")
     if times:
         step_s, prep_s = sum(times) / len(times), sum(prep) / len(prep)
         print(f"train step (preprocess + forward + backward + AdamW): {step_s:.3f} s mean over {len(times)} steps "

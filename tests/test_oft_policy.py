@@ -332,6 +332,8 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(think="plan", device="cpu")
     with pytest.raises(ValueError, match="n_action_steps"):
         ActiveArenaOFTConfig(n_action_steps=20, device="cpu")
+    with pytest.raises(ValueError, match="attn_implementation must be one of .*sdpa"):
+        ActiveArenaOFTConfig(attn_implementation="flash3", device="cpu")
 
 
 def test_local_vlm_and_dataset_paths_are_stored_absolute(vlm, tmp_path, monkeypatch):

@@ -18,6 +18,7 @@ from ...annotations.keyframes import STRIDE, WRITE_POLICIES
 IMAGE_KEY = "observation.images.head"
 THINK_TARGETS = ("none", "instruction", "subtask")
 DTYPES = ("auto", "float32", "bfloat16")
+ATTENTION = ("sdpa", "flash_attention_2", "eager")
 WEIGHT_DTYPES = ("float32", "bfloat16")
 ACTION_DIM = 18
 
@@ -50,6 +51,9 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
     # updates at lr 1e-5 away (warned).
     dtype: str = "auto"
     weights_dtype: str = "float32"
+    # The backbone's attention kernel: sdpa (PyTorch's fused scaled-dot-product attention: flash or
+    # memory-efficient kernels on CUDA) | flash_attention_2 (needs the flash-attn package) | eager.
+    attn_implementation: str = "sdpa"
     push_to_hub: bool = False  # LeRobot's default (True) needs a repo id; opt in with --policy.push_to_hub=true
     # Optimiser (paper: AdamW (0.9, 0.95), eps 1e-8, wd 1e-8, backbone 1e-5, heads 1e-4,
     # 5k-step linear warm-up, cosine to 5e-7, clip 1.0).
@@ -73,7 +77,7 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
             raise ValueError(f"--policy.memory must be one of {WRITE_POLICIES}, got {self.memory!r}")
         if self.think not in THINK_TARGETS:
             raise ValueError(f"--policy.think must be one of {THINK_TARGETS}, got {self.think!r}")
-        for name, allowed in (("dtype", DTYPES), ("weights_dtype", WEIGHT_DTYPES)):
+        for name, allowed in (("dtype", DTYPES), ("weights_dtype", WEIGHT_DTYPES), ("attn_implementation", ATTENTION)):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")
         if self.history < 0:

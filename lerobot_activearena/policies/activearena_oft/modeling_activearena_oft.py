@@ -62,7 +62,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         from transformers import Qwen3VLForConditionalGeneration
 
         self.vlm = load_from_vlm_path(Qwen3VLForConditionalGeneration.from_pretrained, config.vlm_path, "model",
-                                      dtype=_weights_dtype(config))
+                                      dtype=_weights_dtype(config), attn_implementation=config.attn_implementation)
         if config.gradient_checkpointing:
             self.vlm.gradient_checkpointing_enable()
         vc = self.vlm.config
