@@ -1,6 +1,7 @@
 """`activearena-report`: leaderboard, failure-state decomposition, per-task tables, chunk-boundary
 metric (Markdown, CSV, PNG) from one or more lerobot-eval output folders.
 
+    activearena-report outputs/protocol/expert outputs/protocol/oft --out outputs/report   # activearena-eval runs
     activearena-report expert:id=outputs/eval/expert_id expert:ood=outputs/eval/expert_ood --out outputs/report
 """
 
@@ -14,11 +15,11 @@ from ..eval.report import build_report
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("runs", nargs="+", help="[label[:split]=]path of a lerobot-eval output folder")
+    p.add_argument("runs", nargs="+", help="an activearena-eval run folder, or [label[:split]=]path of a lerobot-eval output folder")
     p.add_argument("--out", type=Path, default=Path("outputs/report"))
     args = p.parse_args(argv)
     build_report(args.runs, args.out)
-    print(f"wrote {args.out}/report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png")
+    print(f"wrote {args.out}/report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png, per_task.png")
 
 
 if __name__ == "__main__":

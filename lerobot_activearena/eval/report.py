@@ -151,15 +151,16 @@ def per_task_table(runs: list[Run]) -> tuple[list[str], list[list]]:
     return header, rows
 
 
-def _fmt(x) -> str:
+def _fmt(x, digits: int = 1) -> str:
     if isinstance(x, float):
-        return "-" if math.isnan(x) else f"{x:.1f}"
+        return "-" if math.isnan(x) else f"{x:.{digits}f}"
     return str(x)
 
 
 def markdown(header, rows) -> str:
+    digits = [2 if "(deg)" in h else 1 for h in header]  # chunk jumps: the paper reports hundredths
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(_fmt(x) for x in row) + " |" for row in rows]
+    lines += ["| " + " | ".join(_fmt(x, d) for x, d in zip(row, digits)) + " |" for row in rows]
     return "\n".join(lines)
 
 
@@ -187,7 +188,7 @@ def bar_chart(path: Path, header, rows, title: str = "ActiveArena success by cat
     ax.set_ylabel("success %")
     ax.set_ylim(0, 100)
     ax.set_title(title)
-    ax.legend()
+    ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize="small")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
