@@ -73,6 +73,17 @@ def test_rerunning_a_finished_run_plays_nothing_and_refuses_another_configuratio
     assert "another configuration" in err and "episodes" in err and "tasks" in err and "--overwrite" in err
 
 
+def test_env_processes_play_the_same_episodes_as_one_process(protocol_run, tmp_path):
+    eval_main([*EXPERT, "--tasks", BELL, "--splits", "id", "--episodes", "2", "--batch-size", "2", "--async-envs",
+               "--videos", "0", "--out", str(tmp_path / "async")])
+    ours = read_records(tmp_path / "async" / "records")
+    assert len({f.name for f in (tmp_path / "async" / "records").rglob("*.jsonl")}) == 2  # one file per env process
+    one = read_records(protocol_run / "records")
+    for key, rec in ours.items():
+        assert {k: rec[k] for k in ("scene_seed", "steps", "success", "view_targets")} == \
+               {k: one[key][k] for k in ("scene_seed", "steps", "success", "view_targets")}
+
+
 def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
     out = tmp_path / "run"
     cmd = [_exe("activearena-eval"), *EXPERT, "--tasks", COUNT, "--splits", "id", "--episodes", "6",
