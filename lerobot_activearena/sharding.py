@@ -13,8 +13,31 @@ from datatrove.pipeline.base import PipelineStep
 SLURM_ONLY_FOR_SHARDS = ("workers", "gpus_per_task")  # the merge job needs neither a GPU nor an array limit
 
 
+class ProgressBars(threading.Thread):
+    """Redraws progress bars about once a second, from files the workers write, until ``stop`` is
+    set; subclasses implement ``refresh()`` (and ``close()`` for their bars)."""
+
+    def __init__(self):
+        super().__init__(daemon=True)
+        self.stop = threading.Event()
+
+    def run(self):
+        while True:
+            self.refresh()
+            if self.stop.is_set():
+                self.close()
+                return
+            self.stop.wait(1.0)
+
+    def refresh(self) -> None:
+        raise NotImplementedError
+
+    def close(self) -> None:
+        pass
+
+
 def run_local(step: PipelineStep, tasks: int, workers: int, logging_dir: Path,
-              progress: threading.Thread | None = None) -> None:
+              progress: ProgressBars | None = None) -> None:
     """Run ``tasks`` ranks of ``step`` in ``workers`` processes (datatrove skips completed ranks)."""
     if progress is not None:
         progress.start()

@@ -7,13 +7,12 @@ import json
 import logging
 import os
 import shutil
-import threading
 from pathlib import Path
 
 from datatrove.pipeline.base import PipelineStep
 from tqdm import tqdm
 
-from ..sharding import run_local, submit_slurm
+from ..sharding import ProgressBars, run_local, submit_slurm
 from .merge import merge_shards, read_build
 from .plan import BuildPlan
 from .shard import build_shard, is_complete, shard_dir
@@ -62,31 +61,30 @@ class MergeStep(PipelineStep):
         return iter(())
 
 
-class _Progress(threading.Thread):
+class _Progress(ProgressBars):
     """Episode and shard progress bars fed by the workers' progress files."""
 
     def __init__(self, plan: BuildPlan, work_dir: Path):
-        super().__init__(daemon=True)
-        self.plan, self.work_dir, self.stop = plan, work_dir, threading.Event()
+        super().__init__()
+        self.plan, self.work_dir = plan, work_dir
+        self.shards = tqdm(total=len(plan.shards), desc="shards", unit="shard", position=0)
+        self.eps = tqdm(total=sum(s.quota for s in plan.shards), desc="episodes", unit="ep", position=1)
 
-    def run(self):
-        total = sum(s.quota for s in self.plan.shards)
-        with tqdm(total=len(self.plan.shards), desc="shards", unit="shard", position=0) as shards, \
-                tqdm(total=total, desc="episodes", unit="ep", position=1) as eps:
-            while True:
-                done = sum(is_complete(shard_dir(self.work_dir, s)) for s in self.plan.shards)
-                kept = 0
-                for s in self.plan.shards:
-                    p = self.work_dir / "progress" / f"{s.name}.json"
-                    try:
-                        kept += json.loads(p.read_text())["kept"] if p.is_file() else 0
-                    except (OSError, ValueError):  # being rewritten
-                        pass
-                shards.update(done - shards.n)
-                eps.update(kept - eps.n)
-                if self.stop.is_set():
-                    return
-                self.stop.wait(1.0)
+    def refresh(self) -> None:
+        done = sum(is_complete(shard_dir(self.work_dir, s)) for s in self.plan.shards)
+        kept = 0
+        for s in self.plan.shards:
+            p = self.work_dir / "progress" / f"{s.name}.json"
+            try:
+                kept += json.loads(p.read_text())["kept"] if p.is_file() else 0
+            except (OSError, ValueError):  # being rewritten
+                pass
+        self.shards.update(done - self.shards.n)
+        self.eps.update(kept - self.eps.n)
+
+    def close(self) -> None:
+        self.shards.close()
+        self.eps.close()
 
 
 def _prepare(plan: BuildPlan, root: Path, work_dir: Path, overwrite: bool) -> bool:

@@ -7,13 +7,12 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import threading
 from pathlib import Path
 
 from datatrove.pipeline.base import PipelineStep
 from tqdm import tqdm
 
-from ..sharding import run_local, submit_slurm
+from ..sharding import ProgressBars, run_local, submit_slurm
 from .merge import merge_run
 from .protocol import RUN_FILE, EvalPlan
 from .shard import records_dir, run_shard
@@ -58,41 +57,39 @@ class MergeStep(PipelineStep):
         return iter(())
 
 
-class _Progress(threading.Thread):
+class _Progress(ProgressBars):
     """An overall bar and one bar per running shard, fed by the shards' episode records."""
 
     def __init__(self, plan: EvalPlan, run_dir: Path):
-        super().__init__(daemon=True)
-        self.plan, self.run_dir, self.stop = plan, run_dir, threading.Event()
+        super().__init__()
+        self.plan, self.run_dir = plan, run_dir
+        self.total = tqdm(total=plan.n_episodes, desc="episodes", unit="ep", position=0)
+        self.bars: dict[str, tqdm] = {}
+        self.finished: set[str] = set()
 
-    def run(self):
-        total = tqdm(total=self.plan.n_episodes, desc="episodes", unit="ep", position=0)
-        bars: dict[str, tqdm] = {}
-        finished: set[str] = set()
-        while True:
-            n = 0
-            for shard in self.plan.shards:
-                if shard.name in finished:
-                    n += len(shard.episodes)
-                    continue
-                done = min(len(shard.episodes), _count_lines(records_dir(self.run_dir, shard)))
-                n += done
-                if done == len(shard.episodes):
-                    finished.add(shard.name)
-                    if shard.name in bars:
-                        bars.pop(shard.name).close()
-                elif done and shard.name not in bars:
-                    bars[shard.name] = tqdm(total=len(shard.episodes), desc=shard.name, unit="ep", leave=False,
-                                            position=1 + len(bars))
-                if shard.name in bars:
-                    bars[shard.name].update(done - bars[shard.name].n)
-            total.update(n - total.n)
-            if self.stop.is_set():
-                for b in bars.values():
-                    b.close()
-                total.close()
-                return
-            self.stop.wait(1.0)
+    def refresh(self) -> None:
+        n = 0
+        for shard in self.plan.shards:
+            if shard.name in self.finished:
+                n += len(shard.episodes)
+                continue
+            done = min(len(shard.episodes), _count_lines(records_dir(self.run_dir, shard)))
+            n += done
+            if done == len(shard.episodes):
+                self.finished.add(shard.name)
+                if shard.name in self.bars:
+                    self.bars.pop(shard.name).close()
+            elif done and shard.name not in self.bars:
+                self.bars[shard.name] = tqdm(total=len(shard.episodes), desc=shard.name, unit="ep", leave=False,
+                                             position=1 + len(self.bars))
+            if shard.name in self.bars:
+                self.bars[shard.name].update(done - self.bars[shard.name].n)
+        self.total.update(n - self.total.n)
+
+    def close(self) -> None:
+        for b in self.bars.values():
+            b.close()
+        self.total.close()
 
 
 def _count_lines(folder: Path) -> int:
