@@ -4,6 +4,7 @@ one-task merge job."""
 
 from __future__ import annotations
 
+import os
 import threading
 from pathlib import Path
 
@@ -11,6 +12,15 @@ from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
 from datatrove.pipeline.base import PipelineStep
 
 SLURM_ONLY_FOR_SHARDS = ("workers", "gpus_per_task")  # the merge job needs neither a GPU nor an array limit
+
+
+def one_core() -> None:
+    """For a worker that shares the machine one process per core: keep Mesa's rasteriser and
+    torch's threads on its core."""
+    os.environ.setdefault("LP_NUM_THREADS", "1")
+    import torch
+
+    torch.set_num_threads(1)
 
 
 class ProgressBars(threading.Thread):

@@ -11,19 +11,9 @@ import logging
 from pathlib import Path
 
 from ..datasets_build.features import MAX_OBJECTS
+from .args import int_ranges
 from ..datasets_build.pipeline import build_dataset
 from ..datasets_build.plan import BuildPlan
-
-
-def _seeds(text: str) -> list[int]:
-    out: list[int] = []
-    for part in text.split(","):
-        if "-" in part.strip()[1:]:
-            a, b = part.split("-", 1)
-            out += list(range(int(a), int(b) + 1))
-        elif part.strip():
-            out.append(int(part))
-    return out
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -34,7 +24,7 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--split", default="id", choices=["id", "ood"])
     g = p.add_mutually_exclusive_group()
     g.add_argument("--episodes", type=int, help="kept (solved) episodes per task (default 100, the paper's ID set)")
-    g.add_argument("--seeds", type=_seeds, help="explicit scene seeds, e.g. 0-9,42 (failures are skipped and recorded)")
+    g.add_argument("--seeds", type=int_ranges, help="explicit scene seeds, e.g. 0-9,42 (failures are skipped and recorded)")
     p.add_argument("--seed-start", type=int, default=0, help="first seed with --episodes (default 0)")
     p.add_argument("--episodes-per-shard", type=int, default=10, help="episodes per shard (the unit of resume)")
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")

@@ -26,19 +26,10 @@ import draccus
 from lerobot.configs.policies import PreTrainedConfig
 
 from ..envs.configs import ActiveArenaEnvConfig
+from ..eval.protocol import uses_expert_channel
+from .args import int_ranges
 
 RESERVED_ENV = {"type", "task", "split", "fixed_view", "seed_base", "expert_channel", "episode_log_dir", "use_manifest"}
-
-
-def _indices(text: str) -> list[int]:
-    out: list[int] = []
-    for part in [p.strip() for p in text.split(",") if p.strip()]:
-        if "-" in part[1:]:
-            a, b = part.split("-", 1)
-            out += list(range(int(a), int(b) + 1))
-        else:
-            out.append(int(part))
-    return out
 
 
 @dataclass
@@ -112,7 +103,7 @@ def check_features(cfg, env_options: dict, fixed_view: bool) -> None:
 
     if not cfg.input_features and not cfg.output_features:
         return  # built from scratch: make_policy fills them from the env
-    env_cfg = ActiveArenaEnvConfig(fixed_view=fixed_view, expert_channel=cfg.type == "activearena_expert",
+    env_cfg = ActiveArenaEnvConfig(fixed_view=fixed_view, expert_channel=uses_expert_channel(cfg.type),
                                    **env_options)
     provided = env_to_policy_features(env_cfg)
     problems = []
@@ -140,7 +131,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--splits", default=None, help="comma list of id, ood (default id,ood)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--episodes", type=int, default=None, help="the first N manifest episodes per task and split (default 50)")
-    g.add_argument("--episode-indices", type=_indices, default=None, help="explicit manifest indices, e.g. 0-9,20")
+    g.add_argument("--episode-indices", type=int_ranges, default=None, help="explicit manifest indices, e.g. 0-9,20")
     p.add_argument("--fixed-view", action="store_true", default=None, help="ActiveArena-Fixed: head and torso held at home")
     p.add_argument("--label", default=None, help="the policy's name in the report (default: policy type, + '-fixed')")
     p.add_argument("--out", type=Path, required=True, help="run folder (re-run the same command to resume)")

@@ -12,7 +12,7 @@ from pathlib import Path
 from datatrove.pipeline.base import PipelineStep
 from tqdm import tqdm
 
-from ..sharding import ProgressBars, run_local, submit_slurm
+from ..sharding import ProgressBars, one_core, run_local, submit_slurm
 from .merge import merge_shards, read_build
 from .plan import BuildPlan
 from .shard import build_shard, is_complete, shard_dir
@@ -32,11 +32,8 @@ class BuildShardStep(PipelineStep):
 
     def run(self, data=None, rank: int = 0, world_size: int = 1):
         spec = self.plan.shards[rank]
-        if self.encoder_threads == 1:  # one worker per core: keep Mesa's rasteriser and torch on it too
-            os.environ.setdefault("LP_NUM_THREADS", "1")
-            import torch
-
-            torch.set_num_threads(1)
+        if self.encoder_threads == 1:  # one worker per core
+            one_core()
         work = Path(self.work_dir)
         (work / "progress").mkdir(parents=True, exist_ok=True)
         summary = build_shard(spec, self.plan.split, self.plan.repo_id, work, self.plan.max_objects,

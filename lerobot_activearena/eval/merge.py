@@ -41,8 +41,8 @@ def merge_run(plan: EvalPlan, run_dir: Path, report: bool = True) -> dict:
         for task in plan.tasks:
             recs = [records[(task, split, k)] for k in plan.episodes]
             succ = [bool(r["success"]) for r in recs]
-            videos = [str(p) for k in plan.episodes for s in plan.shards if s.task == task and s.split == split
-                      and k in s.episodes and (p := video_path(run_dir, s, k)).exists()]
+            videos = [str(p) for s in plan.shards if (s.task, s.split) == (task, split)
+                      for k in s.episodes if (p := video_path(run_dir, s, k)).exists()]
             cat = plan.category(task)
             per_task.append({"task_group": cat, "task_id": task, "metrics": {
                 "sum_rewards": [float(x) for x in succ], "max_rewards": [float(x) for x in succ],

@@ -30,6 +30,11 @@ from ..tasks import get_task, task_names
 RUN_FILE = "run.json"
 
 
+def uses_expert_channel(policy_type: str | None) -> bool:
+    """Only the scripted oracle gets the env's privileged expert channel."""
+    return policy_type == "activearena_expert"
+
+
 @dataclass(frozen=True)
 class EvalShard:
     rank: int

@@ -202,9 +202,9 @@ def build_report(run_specs: list[str], out: Path) -> dict:
     write_csv(out / "failures.csv", *fl)
     write_csv(out / "per_task.csv", *pt)
     bar_chart(out / "leaderboard.png", *lb)
-    bar_chart(out / "per_task.png", [""] + [f"{r[1]}" for r in pt[1]], [[h] + [r[2 + k] for r in pt[1]]
-                                                                   for k, h in enumerate(pt[0][2:])],
-              title="ActiveArena success by task")
+    tasks = [row[1] for row in pt[1]]  # the chart's groups are tasks, its bars the policy / split columns
+    bars = [[col] + [row[2 + k] for row in pt[1]] for k, col in enumerate(pt[0][2:])]
+    bar_chart(out / "per_task.png", ["", *tasks], bars, title="ActiveArena success by task")
     videos = []
     for r in runs:
         for t, paths in sorted(r.videos.items()):

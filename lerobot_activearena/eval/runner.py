@@ -5,14 +5,13 @@ unfinished episodes, so re-running the same command resumes."""
 from __future__ import annotations
 
 import json
-import os
 import shutil
 from pathlib import Path
 
 from datatrove.pipeline.base import PipelineStep
 from tqdm import tqdm
 
-from ..sharding import ProgressBars, run_local, submit_slurm
+from ..sharding import ProgressBars, one_core, run_local, submit_slurm
 from .merge import merge_run
 from .protocol import RUN_FILE, EvalPlan
 from .shard import records_dir, run_shard
@@ -31,11 +30,8 @@ class EvalShardStep(PipelineStep):
         self.batch_size, self.use_async_envs, self.videos, self.one_thread = batch_size, use_async_envs, videos, one_thread
 
     def run(self, data=None, rank: int = 0, world_size: int = 1):
-        if self.one_thread:  # one shard per core: keep Mesa's rasteriser and torch on it
-            os.environ.setdefault("LP_NUM_THREADS", "1")
-            import torch
-
-            torch.set_num_threads(1)
+        if self.one_thread:  # one worker per core
+            one_core()
         out = run_shard(self.plan, self.plan.shards[rank], Path(self.run_dir), self.batch_size,
                         self.use_async_envs, self.videos)
         self.stat_update("episodes_run", value=out["ran"])

@@ -12,11 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .protocol import EvalPlan, EvalShard
+from .protocol import EvalPlan, EvalShard, uses_expert_channel
 
 log = logging.getLogger(__name__)
-RECORD_KEYS = ("task", "split", "episode", "scene_seed", "success", "failure_state", "failure_reason", "steps",
-               "view_targets")
 
 
 def records_dir(run_dir: Path, shard: EvalShard) -> Path:
@@ -44,7 +42,7 @@ def env_config(plan: EvalPlan, task: str, split: str, log_dir: Path | None):
 
     options = dict(plan.env)
     return ActiveArenaEnvConfig(task=task, split=split, fixed_view=plan.fixed_view, seed_base=plan.seed_base,
-                                expert_channel=plan.policy.get("type") == "activearena_expert",
+                                expert_channel=uses_expert_channel(plan.policy.get("type")),
                                 episode_log_dir=None if log_dir is None else str(log_dir), **options)
 
 
