@@ -26,9 +26,15 @@ HISTORY = [-16 * k / FPS for k in range(12, -1, -1)]
 
 
 def measure(ds: LeRobotDataset, workers: int, batch: int, batches: int) -> float:
-    loader = torch.utils.data.DataLoader(ds, batch_size=batch, shuffle=True, num_workers=workers,
-                                         generator=torch.Generator().manual_seed(0),
-                                         persistent_workers=False, drop_last=True)
+    loader = torch.utils.data.DataLoader(
+        ds,
+        batch_size=batch,
+        shuffle=True,
+        num_workers=workers,
+        generator=torch.Generator().manual_seed(0),
+        persistent_workers=False,
+        drop_last=True,
+    )
     it = iter(loader)
     next(it)  # worker start-up and the first decode are not throughput
     t0 = time.perf_counter()
@@ -50,14 +56,25 @@ def main() -> None:
     root = args.root
     if root is None:
         root = Path(tempfile.mkdtemp(prefix="aa_loader_")) / "ds"
-        plan = BuildPlan(repo_id=args.repo_id, split="id", tasks=["click_bell_rotate_view", "count_target_press_button"],
-                         episodes=2, episodes_per_shard=2)
+        plan = BuildPlan(
+            repo_id=args.repo_id,
+            split="id",
+            tasks=["click_bell_rotate_view", "count_target_press_button"],
+            episodes=2,
+            episodes_per_shard=2,
+        )
         build_dataset(plan, root, workers=2, progress=False)
-    ds = LeRobotDataset(args.repo_id, root=root, video_backend="pyav",
-                        delta_timestamps={IMAGE_KEY: HISTORY, "observation.state": HISTORY})
+    ds = LeRobotDataset(
+        args.repo_id,
+        root=root,
+        video_backend="pyav",
+        delta_timestamps={IMAGE_KEY: HISTORY, "observation.state": HISTORY},
+    )
     item = ds[len(ds) // 2]
-    print(f"dataset {root}: {ds.num_episodes} episodes, {len(ds)} frames; sample {IMAGE_KEY} "
-          f"{tuple(item[IMAGE_KEY].shape)}, observation.state {tuple(item['observation.state'].shape)}")
+    print(
+        f"dataset {root}: {ds.num_episodes} episodes, {len(ds)} frames; sample {IMAGE_KEY} "
+        f"{tuple(item[IMAGE_KEY].shape)}, observation.state {tuple(item['observation.state'].shape)}"
+    )
     for w in [int(x) for x in args.workers.split(",")]:
         sps = measure(ds, w, args.batch_size, args.batches)
         print(f"workers {w}, batch {args.batch_size}: {sps:.1f} samples/s ({13 * sps:.0f} decoded frames/s)")

@@ -33,16 +33,28 @@ def main() -> None:
     p.add_argument("--tasks", default="all")
     p.add_argument("--episodes", type=int, default=2, help="kept episodes per task")
     p.add_argument("--split", default="id")
-    p.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)), help="worker processes (default: all cores)")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=len(os.sched_getaffinity(0)),
+        help="worker processes (default: all cores)",
+    )
     args = p.parse_args()
-    plan = BuildPlan(repo_id="bench/throughput", split=args.split, tasks=args.tasks.split(","),
-                     episodes=args.episodes, episodes_per_shard=args.episodes)
+    plan = BuildPlan(
+        repo_id="bench/throughput",
+        split=args.split,
+        tasks=args.tasks.split(","),
+        episodes=args.episodes,
+        episodes_per_shard=args.episodes,
+    )
     tmp = Path(tempfile.mkdtemp(prefix="aa_build_"))
     try:
         t0 = time.perf_counter()
         summary = build_dataset(plan, tmp / "ds", workers=args.workers, progress=False)
         wall = time.perf_counter() - t0
-        episodes = [json.loads(line) for line in (tmp / "ds/meta/activearena/episodes.jsonl").read_text().splitlines()]
+        episodes = [
+            json.loads(line) for line in (tmp / "ds/meta/activearena/episodes.jsonl").read_text().splitlines()
+        ]
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     n, frames = summary["episodes"], summary["frames"]
@@ -53,15 +65,23 @@ def main() -> None:
     eph_core = 3600 * n / wall / cores
     s_per_frame = wall * cores / frames
     at_paper_length = 3600 / (s_per_frame * PAPER_FRAMES_PER_EPISODE)
-    print(f"tasks {len(plan.tasks)}, kept episodes {n} (skipped {summary['skipped']}), frames {frames} "
-          f"({frames / n:.0f}/episode), workers {args.workers}, cores available {cores}, wall {wall:.1f} s")
-    print(f"expert + render + annotation: {expert_s:.1f} s ({frames / expert_s:.0f} frames/s per core); "
-          f"encoding + writing + merge: the remaining {wall * cores - expert_s:.1f} core-s")
-    print(f"episodes/hour/core: {eph_core:.0f} at {frames / n:.0f} frames/episode; "
-          f"{at_paper_length:.0f} at the paper's {PAPER_FRAMES_PER_EPISODE} frames/episode "
-          f"(target {TARGET_EPS_PER_HOUR_CORE}: ratio {at_paper_length / TARGET_EPS_PER_HOUR_CORE:.2f})")
+    print(
+        f"tasks {len(plan.tasks)}, kept episodes {n} (skipped {summary['skipped']}), frames {frames} "
+        f"({frames / n:.0f}/episode), workers {args.workers}, cores available {cores}, wall {wall:.1f} s"
+    )
+    print(
+        f"expert + render + annotation: {expert_s:.1f} s ({frames / expert_s:.0f} frames/s per core); "
+        f"encoding + writing + merge: the remaining {wall * cores - expert_s:.1f} core-s"
+    )
+    print(
+        f"episodes/hour/core: {eph_core:.0f} at {frames / n:.0f} frames/episode; "
+        f"{at_paper_length:.0f} at the paper's {PAPER_FRAMES_PER_EPISODE} frames/episode "
+        f"(target {TARGET_EPS_PER_HOUR_CORE}: ratio {at_paper_length / TARGET_EPS_PER_HOUR_CORE:.2f})"
+    )
     hours = 35 * 100 * PAPER_FRAMES_PER_EPISODE * s_per_frame / 2 / 3600  # core-seconds over 2 cores
-    print(f"paper-scale ID set (3500 episodes x {PAPER_FRAMES_PER_EPISODE} frames) on 2 cores: ~{hours:.1f} h")
+    print(
+        f"paper-scale ID set (3500 episodes x {PAPER_FRAMES_PER_EPISODE} frames) on 2 cores: ~{hours:.1f} h"
+    )
 
 
 if __name__ == "__main__":

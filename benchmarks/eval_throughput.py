@@ -26,9 +26,18 @@ def _exe(name: str) -> str:
 
 def run_activearena_eval(tasks: str, episodes: int, workers: int, pixels: bool, splits: str) -> dict:
     out = Path(tempfile.mkdtemp(prefix="aa_eval_")) / "run"
-    cmd = [_exe("activearena-eval"), "--policy.type=activearena_expert", "--policy.device=cpu",
-           f"--env.render_pixels={'true' if pixels else 'false'}", f"--tasks={tasks}", f"--splits={splits}",
-           f"--episodes={episodes}", f"--workers={workers}", "--videos=0", f"--out={out}"]
+    cmd = [
+        _exe("activearena-eval"),
+        "--policy.type=activearena_expert",
+        "--policy.device=cpu",
+        f"--env.render_pixels={'true' if pixels else 'false'}",
+        f"--tasks={tasks}",
+        f"--splits={splits}",
+        f"--episodes={episodes}",
+        f"--workers={workers}",
+        "--videos=0",
+        f"--out={out}",
+    ]
     t0 = time.perf_counter()
     p = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.perf_counter() - t0
@@ -45,9 +54,19 @@ def run_activearena_eval(tasks: str, episodes: int, workers: int, pixels: bool, 
 
 def run_lerobot_eval(tasks: str, episodes: int, pixels: bool, split: str) -> dict:
     out = Path(tempfile.mkdtemp(prefix="aa_eval_")) / "eval"
-    cmd = [_exe("lerobot-eval"), "--policy.type=activearena_expert", "--env.type=activearena", f"--env.task={tasks}",
-           f"--env.split={split}", "--env.expert_channel=true", f"--env.render_pixels={'true' if pixels else 'false'}",
-           f"--eval.n_episodes={episodes}", "--eval.batch_size=1", "--policy.device=cpu", f"--output_dir={out}"]
+    cmd = [
+        _exe("lerobot-eval"),
+        "--policy.type=activearena_expert",
+        "--env.type=activearena",
+        f"--env.task={tasks}",
+        f"--env.split={split}",
+        "--env.expert_channel=true",
+        f"--env.render_pixels={'true' if pixels else 'false'}",
+        f"--eval.n_episodes={episodes}",
+        "--eval.batch_size=1",
+        "--policy.device=cpu",
+        f"--output_dir={out}",
+    ]
     t0 = time.perf_counter()
     p = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.perf_counter() - t0
@@ -65,7 +84,9 @@ def main() -> None:
     p.add_argument("--splits", default="id")
     p.add_argument("--workers", default="1,2")
     p.add_argument("--pixels", choices=["true", "false", "both"], default="false")
-    p.add_argument("--lerobot-eval", action="store_true", help="also time one plain lerobot-eval process (first split)")
+    p.add_argument(
+        "--lerobot-eval", action="store_true", help="also time one plain lerobot-eval process (first split)"
+    )
     args = p.parse_args()
     pix = {"true": [True], "false": [False], "both": [False, True]}[args.pixels]
     print("| runner | head images | episodes | success % | wall s | episodes/hour |")
@@ -73,14 +94,25 @@ def main() -> None:
     for pixels in pix:
         rows = []
         if args.lerobot_eval:
-            rows.append(("lerobot-eval, 1 process", run_lerobot_eval(args.tasks, args.episodes, pixels,
-                                                                      args.splits.split(",")[0])))
+            rows.append(
+                (
+                    "lerobot-eval, 1 process",
+                    run_lerobot_eval(args.tasks, args.episodes, pixels, args.splits.split(",")[0]),
+                )
+            )
         for w in [int(x) for x in args.workers.split(",")]:
-            rows.append((f"activearena-eval, {w} worker{'s' if w > 1 else ''}",
-                         run_activearena_eval(args.tasks, args.episodes, w, pixels, args.splits)))
+            rows.append(
+                (
+                    f"activearena-eval, {w} worker{'s' if w > 1 else ''}",
+                    run_activearena_eval(args.tasks, args.episodes, w, pixels, args.splits),
+                )
+            )
         for name, r in rows:
-            print(f"| {name} | {'rendered' if pixels else 'not rendered'} | {r['episodes']} | {r['success']:.0f} | "
-                  f"{r['wall_s']:.0f} | {3600 * r['episodes'] / r['wall_s']:.0f} |", flush=True)
+            print(
+                f"| {name} | {'rendered' if pixels else 'not rendered'} | {r['episodes']} | {r['success']:.0f} | "
+                f"{r['wall_s']:.0f} | {3600 * r['episodes'] / r['wall_s']:.0f} |",
+                flush=True,
+            )
 
 
 if __name__ == "__main__":

@@ -25,11 +25,27 @@ def _run(job):
     cb = (lambda t, sim, frame, action: sim.render_head()) if render else None
     try:
         r = run_expert_episode(task, seed, split, on_frame=cb)
-        return dict(task=task, seed=seed, split=split, success=r.success, failure=r.failure, frames=r.length,
-                    seconds=r.seconds, penetration=r.health["max_penetration_m"])
+        return dict(
+            task=task,
+            seed=seed,
+            split=split,
+            success=r.success,
+            failure=r.failure,
+            frames=r.length,
+            seconds=r.seconds,
+            penetration=r.health["max_penetration_m"],
+        )
     except Exception as exc:  # a sampler or framework error is a failure to report, not a crash
-        return dict(task=task, seed=seed, split=split, success=False, failure=f"error: {exc!r}"[:200], frames=0,
-                    seconds=0.0, penetration=0.0)
+        return dict(
+            task=task,
+            seed=seed,
+            split=split,
+            success=False,
+            failure=f"error: {exc!r}"[:200],
+            frames=0,
+            seconds=0.0,
+            penetration=0.0,
+        )
 
 
 def main() -> None:
@@ -45,8 +61,12 @@ def main() -> None:
     os.environ.setdefault("MUJOCO_GL", "egl")
     from lerobot_activearena.tasks import task_names
 
-    jobs = [(t, s, sp, args.render) for t in task_names(args.tasks) for sp in args.splits.split(",")
-            for s in range(args.first_seed, args.first_seed + args.seeds)]
+    jobs = [
+        (t, s, sp, args.render)
+        for t in task_names(args.tasks)
+        for sp in args.splits.split(",")
+        for s in range(args.first_seed, args.first_seed + args.seeds)
+    ]
     t0 = time.perf_counter()
     from tqdm import tqdm
 
@@ -62,8 +82,10 @@ def main() -> None:
 
     from lerobot_activearena.tasks import get_task
 
-    print("\n| task | split | success | mean frames | p95 frames | limit | p95 / limit | max penetration (mm) "
-          "| frames/s/worker | failures |")
+    print(
+        "\n| task | split | success | mean frames | p95 frames | limit | p95 / limit | max penetration (mm) "
+        "| frames/s/worker | failures |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|")
     for (task, split), rs in groups.items():
         ok = sum(r["success"] for r in rs)
@@ -73,9 +95,12 @@ def main() -> None:
         p95 = float(np.percentile(solved, 95))
         fps = sum(frames) / max(1e-9, sum(r["seconds"] for r in rs))
         reasons = collections.Counter((r["failure"] or "")[:70] for r in rs if not r["success"])
-        print(f"| {task} | {split} | {ok}/{len(rs)} ({100 * ok / len(rs):.0f}%) | {np.mean(solved):.0f} | {p95:.0f} | "
-              f"{limit} | {p95 / limit:.2f} | {1000 * max(r['penetration'] for r in rs):.1f} | {fps:.0f} | "
-              + "; ".join(f"{n}x {k}" for k, n in reasons.most_common(3)) + " |")
+        print(
+            f"| {task} | {split} | {ok}/{len(rs)} ({100 * ok / len(rs):.0f}%) | {np.mean(solved):.0f} | {p95:.0f} | "
+            f"{limit} | {p95 / limit:.2f} | {1000 * max(r['penetration'] for r in rs):.1f} | {fps:.0f} | "
+            + "; ".join(f"{n}x {k}" for k, n in reasons.most_common(3))
+            + " |"
+        )
     n = len(results)
     print(f"\n{n} episodes in {wall:.0f} s with {args.workers} workers: {3600 * n / wall:.0f} episodes/hour")
 

@@ -20,8 +20,12 @@ def visible_band(radius: float, angles: np.ndarray, height: float) -> tuple[floa
     from lerobot_activearena.tasks.draft import TABLE_TOP, in_home_view
 
     a = np.radians(angles)
-    inside = np.array([in_home_view((radius * np.cos(x), radius * np.sin(x)), 0.0, heights=(height - TABLE_TOP,))
-                       for x in a])
+    inside = np.array(
+        [
+            in_home_view((radius * np.cos(x), radius * np.sin(x)), 0.0, heights=(height - TABLE_TOP,))
+            for x in a
+        ]
+    )
     if not inside.any():
         return None
     return float(angles[inside].min()), float(angles[inside].max())
@@ -50,8 +54,13 @@ def main() -> None:
     for side in ("left", "right"):
         print(f"{side} arm: angle (deg) -> reachable distances (m)")
         for angle in (25, 40, 55, 70, 90, 110, 125, 140, 155):
-            ok = [r for r in radii if top_down_reachable(
-                np.array([r * np.cos(np.radians(angle)), r * np.sin(np.radians(angle)), 0.78]), side)]
+            ok = [
+                r
+                for r in radii
+                if top_down_reachable(
+                    np.array([r * np.cos(np.radians(angle)), r * np.sin(np.radians(angle)), 0.78]), side
+                )
+            ]
             print(f"  {angle:4d}: {f'{min(ok):.2f}-{max(ok):.2f}' if ok else 'none'}")
 
 

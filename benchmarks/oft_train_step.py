@@ -58,11 +58,17 @@ def attention_kernels(vlm) -> str:
     out = []
     for name, m in (("causal", None), ("padded", mask)):
         ok = []
-        for b in (SDPBackend.FLASH_ATTENTION, SDPBackend.EFFICIENT_ATTENTION, SDPBackend.CUDNN_ATTENTION, SDPBackend.MATH):
+        for b in (
+            SDPBackend.FLASH_ATTENTION,
+            SDPBackend.EFFICIENT_ATTENTION,
+            SDPBackend.CUDNN_ATTENTION,
+            SDPBackend.MATH,
+        ):
             try:
                 with sdpa_kernel(b):
-                    torch.nn.functional.scaled_dot_product_attention(q, k, k, attn_mask=m, is_causal=m is None,
-                                                                     enable_gqa=kv != heads)
+                    torch.nn.functional.scaled_dot_product_attention(
+                        q, k, k, attn_mask=m, is_causal=m is None, enable_gqa=kv != heads
+                    )
                 ok.append(b.name.lower())
             except RuntimeError:
                 pass
@@ -81,8 +87,10 @@ def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: 
     from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
 
     dim, K = 18, cfg.history
-    cfg.input_features = {"observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
-                          "observation.state": PolicyFeature(FeatureType.STATE, (dim,))}
+    cfg.input_features = {
+        "observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
+        "observation.state": PolicyFeature(FeatureType.STATE, (dim,)),
+    }
     cfg.output_features = {"action": PolicyFeature(FeatureType.ACTION, (dim,))}
     policy = ActiveArenaOFTPolicy(cfg).to(cfg.device)
     unit = {"mean": torch.zeros(dim), "std": torch.ones(dim), "min": -torch.ones(dim), "max": torch.ones(dim)}
@@ -94,12 +102,14 @@ def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: 
             t = torch.randint(0, episode_frames, (batch_size,), generator=g)
             present = torch.full_like(t, K) if all_valid else torch.clamp(t // STRIDE, max=K)
             slot = torch.arange(K + 1)[None]
-            yield {"observation.images.head": torch.rand(batch_size, K + 1, 3, 384, 512, generator=g),
-                   "observation.images.head_is_pad": slot < (K - present)[:, None],
-                   "observation.state": torch.randn(batch_size, K + 1, dim, generator=g),
-                   "action": torch.randn(batch_size, cfg.chunk_size, dim, generator=g),
-                   "action_is_pad": torch.zeros(batch_size, cfg.chunk_size, dtype=torch.bool),
-                   "task": ["Press the bell's top center using the left arm."] * batch_size}
+            yield {
+                "observation.images.head": torch.rand(batch_size, K + 1, 3, 384, 512, generator=g),
+                "observation.images.head_is_pad": slot < (K - present)[:, None],
+                "observation.state": torch.randn(batch_size, K + 1, dim, generator=g),
+                "action": torch.randn(batch_size, cfg.chunk_size, dim, generator=g),
+                "action_is_pad": torch.zeros(batch_size, cfg.chunk_size, dtype=torch.bool),
+                "task": ["Press the bell's top center using the left arm."] * batch_size,
+            }
 
     return policy, pre, batches()
 
@@ -116,15 +126,30 @@ def main() -> None:
     p.add_argument("--think", default="subtask")
     p.add_argument("--steps", type=int, default=5)
     p.add_argument("--gradient-checkpointing", action="store_true")
-    p.add_argument("--decode-tokens", type=int, default=32, help="greedy <think> tokens per chunk (subtask_max_tokens)")
-    p.add_argument("--skip-uncached", action="store_true", help="do not time the re-encoding reference decoder")
-    p.add_argument("--dtype", default="auto", help="compute: auto (bfloat16 autocast on CUDA) | float32 | bfloat16")
-    p.add_argument("--weights-dtype", default="float32", help="parameters: float32 (master weights) | bfloat16")
-    p.add_argument("--synthetic", action="store_true",
-                   help="random batches shaped like the dataset's (no dataset build: runs on a bare GPU machine), "
-                        "history frames present as at a random frame of an --episode-frames long episode")
-    p.add_argument("--episode-frames", type=int, default=166, help="synthetic episodes' length (paper data: 166)")
-    p.add_argument("--all-valid", action="store_true", help="synthetic worst case: every history frame present")
+    p.add_argument(
+        "--decode-tokens", type=int, default=32, help="greedy <think> tokens per chunk (subtask_max_tokens)"
+    )
+    p.add_argument(
+        "--skip-uncached", action="store_true", help="do not time the re-encoding reference decoder"
+    )
+    p.add_argument(
+        "--dtype", default="auto", help="compute: auto (bfloat16 autocast on CUDA) | float32 | bfloat16"
+    )
+    p.add_argument(
+        "--weights-dtype", default="float32", help="parameters: float32 (master weights) | bfloat16"
+    )
+    p.add_argument(
+        "--synthetic",
+        action="store_true",
+        help="random batches shaped like the dataset's (no dataset build: runs on a bare GPU machine), "
+        "history frames present as at a random frame of an --episode-frames long episode",
+    )
+    p.add_argument(
+        "--episode-frames", type=int, default=166, help="synthetic episodes' length (paper data: 166)"
+    )
+    p.add_argument(
+        "--all-valid", action="store_true", help="synthetic worst case: every history frame present"
+    )
     args = p.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="aa_oft_bench_"))
     vlm = args.vlm_path or str(make_tiny_vlm(tmp / "tiny_vlm"))
@@ -132,29 +157,51 @@ def main() -> None:
     if args.synthetic and think == "subtask":
         think = "instruction"  # no annotations to read the subtask from; a think span of similar length
         print("synthetic batches: think=instruction stands in for think=subtask (same loss, similar length)")
-    cfg = ActiveArenaOFTConfig(vlm_path=vlm, device=args.device, memory=args.memory, history=args.history,
-                               think=think, gradient_checkpointing=args.gradient_checkpointing, dtype=args.dtype,
-                               weights_dtype=args.weights_dtype, subtask_max_tokens=args.decode_tokens)
+    cfg = ActiveArenaOFTConfig(
+        vlm_path=vlm,
+        device=args.device,
+        memory=args.memory,
+        history=args.history,
+        think=think,
+        gradient_checkpointing=args.gradient_checkpointing,
+        dtype=args.dtype,
+        weights_dtype=args.weights_dtype,
+        subtask_max_tokens=args.decode_tokens,
+    )
     if args.synthetic:
         if args.memory != "chunk":
-            raise SystemExit("--synthetic draws chunk-memory batches; use --memory chunk (or a dataset via --root)")
+            raise SystemExit(
+                "--synthetic draws chunk-memory batches; use --memory chunk (or a dataset via --root)"
+            )
         policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
         ds = None
     else:
         root = args.root
         if root is None:
             root = tmp / "ds"
-            plan = BuildPlan(repo_id=args.repo_id, split="id", tasks=["click_bell_rotate_view", "count_target_press_button"],
-                             episodes=1, episodes_per_shard=1)
+            plan = BuildPlan(
+                repo_id=args.repo_id,
+                split="id",
+                tasks=["click_bell_rotate_view", "count_target_press_button"],
+                episodes=1,
+                episodes_per_shard=1,
+            )
             build_dataset(plan, root, workers=2, progress=False)
         meta = LeRobotDatasetMetadata(args.repo_id, root=root)
         policy = make_policy(cfg, ds_meta=meta)
         pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-        ds = LeRobotDataset(args.repo_id, root=root, video_backend="pyav",
-                            delta_timestamps=resolve_delta_timestamps(cfg, meta))
+        ds = LeRobotDataset(
+            args.repo_id,
+            root=root,
+            video_backend="pyav",
+            delta_timestamps=resolve_delta_timestamps(cfg, meta),
+        )
         g = torch.Generator().manual_seed(0)
-        batches = iter(torch.utils.data.DataLoader(ds, batch_size=args.batch_size, shuffle=True, generator=g,
-                                                   drop_last=True))
+        batches = iter(
+            torch.utils.data.DataLoader(
+                ds, batch_size=args.batch_size, shuffle=True, generator=g, drop_last=True
+            )
+        )
     loader = batches
     opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
     cuda = args.device.startswith("cuda")
@@ -182,26 +229,38 @@ def main() -> None:
         images = int(batch["observation.vlm.frame_valid"].sum())
     n_params = sum(p.numel() for p in policy.parameters())
     peak = peak_memory(cuda)
-    print(f"model {vlm}: {n_params / 1e6:.1f} M parameters, device {args.device}, batch {args.batch_size}, "
-          f"K={args.history} ({args.memory} memory), think={args.think}")
-    print(f"precision: {'bfloat16 autocast' if cfg.autocast_bfloat16 else 'float32'} compute, "
-          f"{next(policy.vlm.parameters()).dtype} weights; gradient checkpointing "
-          f"{'on' if policy.vlm.is_gradient_checkpointing and policy.vlm.training else 'off'}")
+    print(
+        f"model {vlm}: {n_params / 1e6:.1f} M parameters, device {args.device}, batch {args.batch_size}, "
+        f"K={args.history} ({args.memory} memory), think={args.think}"
+    )
+    print(
+        f"precision: {'bfloat16 autocast' if cfg.autocast_bfloat16 else 'float32'} compute, "
+        f"{next(policy.vlm.parameters()).dtype} weights; gradient checkpointing "
+        f"{'on' if policy.vlm.is_gradient_checkpointing and policy.vlm.training else 'off'}"
+    )
     print(f"attention: {attention_kernels(policy.vlm)}")
     if times:
         step_s, prep_s = sum(times) / len(times), sum(prep) / len(prep)
-        print(f"train step (preprocess + forward + backward + AdamW): {step_s:.3f} s mean over {len(times)} steps "
-              f"(preprocessing {prep_s:.3f} s of it: the training loop's own process, images on {args.device}); "
-              f"{args.batch_size / step_s:.2f} samples/s; "
-              f"images in the last batch: {images}; peak memory: {peak}")
+        print(
+            f"train step (preprocess + forward + backward + AdamW): {step_s:.3f} s mean over {len(times)} steps "
+            f"(preprocessing {prep_s:.3f} s of it: the training loop's own process, images on {args.device}); "
+            f"{args.batch_size / step_s:.2f} samples/s; "
+            f"images in the last batch: {images}; peak memory: {peak}"
+        )
     policy.eval()
     policy.reset()
-    item = ({k: v for k, v in ds[len(ds) // 2].items()} if ds is not None else
-            {k: (v[0] if k != "task" else v[0]) for k, v in next(loader).items()})
+    item = (
+        {k: v for k, v in ds[len(ds) // 2].items()}
+        if ds is not None
+        else {k: (v[0] if k != "task" else v[0]) for k, v in next(loader).items()}
+    )
     image, state = item["observation.images.head"], item["observation.state"]
-    obs = {"observation.images.head": (image[-1] if image.dim() == 4 else image)[None],  # the current frame,
-           "observation.state": (state[-1] if state.dim() == 2 else state)[None],       # as an env batch of 1
-           "task": [item["task"]]}
+    obs = {
+        "observation.images.head": (image[-1] if image.dim() == 4 else image)[None],  # the current frame,
+        "observation.state": (state[-1] if state.dim() == 2 else state)[None],  # as an env batch of 1
+        "task": [item["task"]],
+    }
+
     def timed(fn):
         if cuda:
             torch.cuda.synchronize()
@@ -225,21 +284,35 @@ def main() -> None:
         policy._t = 16 * args.history
         lat.append(timed(lambda: policy.select_action(b))[0])
     peak = peak_memory(cuda)
-    print(f"inference per chunk: {lat[2] * 1000:.0f} ms with {args.history} memory frames + the current one "
-          f"(memory frames' vision features reused, as in an episode), {lat[1] * 1000:.0f} ms encoding all "
-          f"{args.history + 1} images, {lat[0] * 1000:.0f} ms with the current frame only; peak memory so far: {peak}")
+    print(
+        f"inference per chunk: {lat[2] * 1000:.0f} ms with {args.history} memory frames + the current one "
+        f"(memory frames' vision features reused, as in an episode), {lat[1] * 1000:.0f} ms encoding all "
+        f"{args.history + 1} images, {lat[0] * 1000:.0f} ms with the current frame only; peak memory so far: {peak}"
+    )
     if args.think == "subtask":  # what memory=subtask adds per chunk: greedy <think> decoding
         pixels, grid, valid, state, cache = policy._history_batch(b)
-        enc = (pixels, grid, valid, state if policy.state_encoder is not None else None, b[P.PREFIX_IDS],
-               b[P.PROMPT_IDS], b[P.PROMPT_MASK])
+        enc = (
+            pixels,
+            grid,
+            valid,
+            state if policy.state_encoder is not None else None,
+            b[P.PREFIX_IDS],
+            b[P.PROMPT_IDS],
+            b[P.PROMPT_MASK],
+        )
         with torch.no_grad():
-            cached, (tokens, _, _) = timed(lambda: policy._greedy_think(enc, use_cache=True, vision_cache=cache))
-            line = (f"subtask decoding ({len(tokens[0])} tokens, {args.history} memory frames): {cached * 1000:.0f} ms "
-                    "with the KV cache and the memory's vision features (the same pass also gives the chunk)")
+            cached, (tokens, _, _) = timed(
+                lambda: policy._greedy_think(enc, use_cache=True, vision_cache=cache)
+            )
+            line = (
+                f"subtask decoding ({len(tokens[0])} tokens, {args.history} memory frames): {cached * 1000:.0f} ms "
+                "with the KV cache and the memory's vision features (the same pass also gives the chunk)"
+            )
             if not args.skip_uncached:
                 full = timed(lambda: policy._greedy_think(enc, use_cache=False))[0]
                 line += f", {full * 1000:.0f} ms re-encoding everything every step ({full / cached:.1f}x)"
         print(line)
+
 
 if __name__ == "__main__":
     main()

@@ -25,8 +25,13 @@ def home_view_outline(radii: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     lo, hi = [], []
     angles = np.arange(20.0, 160.01, 0.5)
     for r in radii:
-        vis = [a for a in angles if in_home_view((r * math.cos(math.radians(a)), r * math.sin(math.radians(a))), 0.0,
-                                                 heights=(0.0,))]
+        vis = [
+            a
+            for a in angles
+            if in_home_view(
+                (r * math.cos(math.radians(a)), r * math.sin(math.radians(a))), 0.0, heights=(0.0,)
+            )
+        ]
         lo.append(min(vis) if vis else np.nan)
         hi.append(max(vis) if vis else np.nan)
     return np.array(lo), np.array(hi)
@@ -63,13 +68,15 @@ def main() -> None:
                 for o in scene.info.clutter:
                     x, y = scene.model.body(o.body).pos[:2]
                     data[name]["clutter"].append((math.hypot(x, y), math.degrees(math.atan2(y, x))))
-    print(f"| task | role | samples | radius (m) | azimuth (deg) | left of heading |")
+    print("| task | role | samples | radius (m) | azimuth (deg) | left of heading |")
     print("|---|---|---|---|---|---|")
     for name in names:
         for role, pts in sorted(data[name].items()):
             a = np.array(pts)
-            print(f"| {name} | {role} | {len(a)} | {a[:, 0].min():.2f}-{a[:, 0].max():.2f} | "
-                  f"{a[:, 1].min():.0f}-{a[:, 1].max():.0f} | {100 * np.mean(a[:, 1] > 90):.0f}% |")
+            print(
+                f"| {name} | {role} | {len(a)} | {a[:, 0].min():.2f}-{a[:, 0].max():.2f} | "
+                f"{a[:, 1].min():.0f}-{a[:, 1].max():.0f} | {100 * np.mean(a[:, 1] > 90):.0f}% |"
+            )
 
     radii = np.linspace(0.3, 1.08, 40)
     lo, hi = home_view_outline(radii)
@@ -87,10 +94,15 @@ def main() -> None:
         for role, pts in sorted(data[name].items(), key=lambda kv: kv[0] == "clutter", reverse=True):
             a = np.array(pts)
             style = dict(s=4, alpha=0.35, color="0.6") if role == "clutter" else dict(s=7, alpha=0.7)
-            ax.scatter(np.radians(a[:, 1]), a[:, 0], label=role, marker="x" if "hidden" in role else "o", **style)
+            ax.scatter(
+                np.radians(a[:, 1]), a[:, 0], label=role, marker="x" if "hidden" in role else "o", **style
+            )
         ax.set_title(name, fontsize=9)
         ax.legend(fontsize=6, loc="lower left", bbox_to_anchor=(-0.05, -0.32), ncol=2, frameon=False)
-    fig.suptitle(f"sampled placements ({args.seeds} seeds x {'/'.join(splits)}); 90 deg = torso heading at home", fontsize=10)
+    fig.suptitle(
+        f"sampled placements ({args.seeds} seeds x {'/'.join(splits)}); 90 deg = torso heading at home",
+        fontsize=10,
+    )
     fig.tight_layout()
     args.out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(args.out, dpi=110)

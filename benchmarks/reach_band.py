@@ -18,7 +18,9 @@ def main() -> None:
 
     ik = ArmIK()
     distances = np.round(np.arange(0.30, 0.81, 0.05), 2)
-    print("side grasp at z = 0.80 m (6 cm over the 0.74 m table); torso yaw faces the target angle +/- 20 deg")
+    print(
+        "side grasp at z = 0.80 m (6 cm over the 0.74 m table); torso yaw faces the target angle +/- 20 deg"
+    )
     for side, offset in (("left", -20.0), ("right", 20.0)):  # left arm: torso turned right of target
         print(f"{side} arm: angle(deg) -> reachable distances (m)")
         for angle in (30, 60, 90, 120, 150):

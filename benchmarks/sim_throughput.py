@@ -24,12 +24,11 @@ def main() -> None:
 
     import time
 
+    import mujoco
     import numpy as np
 
     from lerobot_activearena.sim.scene import reference_scene
     from lerobot_activearena.sim.simulator import ActiveArenaSim
-
-    import mujoco
 
     builder = reference_scene(0, n_objects=args.objects)
     if args.no_sleep:
@@ -70,10 +69,14 @@ def main() -> None:
         sim.head_camera()
         sim.end_effector_poses()
     annotated = args.steps / (time.perf_counter() - t)
-    print(f"scene: robot + fan table + {len(info.objects)} objects, nbody={model.nbody}, ngeom={model.ngeom}; "
-          f"cores={args.cores}, MUJOCO_GL={os.environ.get('MUJOCO_GL')}, sleeping={'off' if args.no_sleep else 'on'}")
-    print(f"mj_step:                     {phys:8.0f} steps/s  (timestep {model.opt.timestep * 1000:.3f} ms, "
-          f"{sim.substeps} per control step)")
+    print(
+        f"scene: robot + fan table + {len(info.objects)} objects, nbody={model.nbody}, ngeom={model.ngeom}; "
+        f"cores={args.cores}, MUJOCO_GL={os.environ.get('MUJOCO_GL')}, sleeping={'off' if args.no_sleep else 'on'}"
+    )
+    print(
+        f"mj_step:                     {phys:8.0f} steps/s  (timestep {model.opt.timestep * 1000:.3f} ms, "
+        f"{sim.substeps} per control step)"
+    )
     print(f"head RGB render 512x384:     {render:8.1f} frames/s")
     print(f"visibility ({len(info.objects)} objects):      {vis:8.1f} evals/s")
     print(f"annotated control steps:     {annotated:8.1f} steps/s  (target >= 40)")

@@ -27,8 +27,15 @@ def main() -> None:
     p.add_argument("--out", type=Path, default=Path("outputs/validity_bench"))
     args = p.parse_args()
     os.environ.setdefault("MUJOCO_GL", "egl")
-    from lerobot_activearena.eval.validity import (ADVERSARIES, EPISODES_FILE, load_records, missed, run_suite,
-                                                   summarise, write_report)
+    from lerobot_activearena.eval.validity import (
+        ADVERSARIES,
+        EPISODES_FILE,
+        load_records,
+        missed,
+        run_suite,
+        summarise,
+        write_report,
+    )
     from lerobot_activearena.tasks import task_names
 
     before = set(load_records(args.out / EPISODES_FILE))
@@ -38,7 +45,11 @@ def main() -> None:
     wall = time.perf_counter() - t0
     rows = summarise(records)
     print("\n" + write_report(rows, args.out))
-    new = [r for r in records if (r["task"], r["split"], r["adversary"], r["seed"]) not in before and not r.get("error")]
+    new = [
+        r
+        for r in records
+        if (r["task"], r["split"], r["adversary"], r["seed"]) not in before and not r.get("error")
+    ]
     per_adv = collections.defaultdict(list)
     for r in new:
         per_adv[r["adversary"]].append(r["seconds"])
@@ -46,7 +57,9 @@ def main() -> None:
     for a, s in per_adv.items():
         print(f"| {a} | {len(s)} | {sum(s) / len(s):.2f} |")
     if new:
-        print(f"\n{len(new)} episodes in {wall:.0f} s with {args.workers} workers: {3600 * len(new) / wall:.0f} episodes/hour")
+        print(
+            f"\n{len(new)} episodes in {wall:.0f} s with {args.workers} workers: {3600 * len(new) / wall:.0f} episodes/hour"
+        )
     miss = missed(rows)
     print(f"targets missed: {'; '.join(miss)}" if miss else "all targets met")
 

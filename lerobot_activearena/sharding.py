@@ -46,26 +46,41 @@ class ProgressBars(threading.Thread):
         pass
 
 
-def run_local(step: PipelineStep, tasks: int, workers: int, logging_dir: Path,
-              progress: ProgressBars | None = None) -> None:
+def run_local(
+    step: PipelineStep, tasks: int, workers: int, logging_dir: Path, progress: ProgressBars | None = None
+) -> None:
     """Run ``tasks`` ranks of ``step`` in ``workers`` processes (datatrove skips completed ranks)."""
     if progress is not None:
         progress.start()
     try:
-        LocalPipelineExecutor(pipeline=[step], tasks=tasks, workers=workers, logging_dir=str(logging_dir)).run()
+        LocalPipelineExecutor(
+            pipeline=[step], tasks=tasks, workers=workers, logging_dir=str(logging_dir)
+        ).run()
     finally:
         if progress is not None:
             progress.stop.set()
             progress.join()
 
 
-def submit_slurm(step: PipelineStep, tasks: int, merge: PipelineStep, logging_dir: Path, job_name: str,
-                 options: dict | None) -> None:
+def submit_slurm(
+    step: PipelineStep,
+    tasks: int,
+    merge: PipelineStep,
+    logging_dir: Path,
+    job_name: str,
+    options: dict | None,
+) -> None:
     """Submit ``tasks`` array tasks of ``step`` and a merge job that runs once they all succeeded."""
     opts = dict(options or {})
-    shards = SlurmPipelineExecutor(pipeline=[step], tasks=tasks, logging_dir=str(logging_dir / "logs"),
-                                   job_name=job_name, **opts)
-    merge_job = SlurmPipelineExecutor(pipeline=[merge], tasks=1, logging_dir=str(logging_dir / "logs-merge"),
-                                      job_name=f"{job_name}-merge", depends=shards,
-                                      **{k: v for k, v in opts.items() if k not in SLURM_ONLY_FOR_SHARDS})
+    shards = SlurmPipelineExecutor(
+        pipeline=[step], tasks=tasks, logging_dir=str(logging_dir / "logs"), job_name=job_name, **opts
+    )
+    merge_job = SlurmPipelineExecutor(
+        pipeline=[merge],
+        tasks=1,
+        logging_dir=str(logging_dir / "logs-merge"),
+        job_name=f"{job_name}-merge",
+        depends=shards,
+        **{k: v for k, v in opts.items() if k not in SLURM_ONLY_FOR_SHARDS},
+    )
     merge_job.run()

@@ -17,18 +17,27 @@ from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft 
 
 
 def main(vlm: str, root: str, repo: str, out: str) -> None:
-    acc = Accelerator(step_scheduler_with_optimizer=False, cpu=True,
-                      kwargs_handlers=[DistributedDataParallelKwargs(find_unused_parameters=True)])
+    acc = Accelerator(
+        step_scheduler_with_optimizer=False,
+        cpu=True,
+        kwargs_handlers=[DistributedDataParallelKwargs(find_unused_parameters=True)],
+    )
     meta = LeRobotDatasetMetadata(repo, root=root)
-    cfg = ActiveArenaOFTConfig(vlm_path=vlm, device="cpu", state_hidden=32, memory="chunk", history=2, think="subtask")
+    cfg = ActiveArenaOFTConfig(
+        vlm_path=vlm, device="cpu", state_hidden=32, memory="chunk", history=2, think="subtask"
+    )
     torch.manual_seed(0)
     policy = make_policy(cfg, ds_meta=meta)
     pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    ds = LeRobotDataset(repo, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    ds = LeRobotDataset(
+        repo, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta)
+    )
     policy.train()
     before = torch.stack([p.detach().double().sum() for p in policy.parameters()])
     opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
-    loader = torch.utils.data.DataLoader(ds, batch_size=2, shuffle=True, generator=torch.Generator().manual_seed(0))
+    loader = torch.utils.data.DataLoader(
+        ds, batch_size=2, shuffle=True, generator=torch.Generator().manual_seed(0)
+    )
     policy, opt, loader = acc.prepare(policy, opt, loader)
     losses = []
     for _, raw in zip(range(2), loader):

@@ -13,23 +13,67 @@ from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 
 # Task-named categories the benchmark's tasks rely on (paper task inventory).
-TASK_NAMED = ["hammer", "block", "bell", "stapler", "bottle", "switch", "pill_bottle", "mat", "color_pad",
-              "rubiks_cube", "wooden_block", "coffee_box", "can", "plastic_box", "container", "plate", "cup",
-              "coaster", "fan", "mouse", "bread_basket", "electronic_scale", "display_stand", "shoe", "seal",
-              "button", "patch_block", "labeled_can"]
+TASK_NAMED = [
+    "hammer",
+    "block",
+    "bell",
+    "stapler",
+    "bottle",
+    "switch",
+    "pill_bottle",
+    "mat",
+    "color_pad",
+    "rubiks_cube",
+    "wooden_block",
+    "coffee_box",
+    "can",
+    "plastic_box",
+    "container",
+    "plate",
+    "cup",
+    "coaster",
+    "fan",
+    "mouse",
+    "bread_basket",
+    "electronic_scale",
+    "display_stand",
+    "shoe",
+    "seal",
+    "button",
+    "patch_block",
+    "labeled_can",
+]
 # Objects that may roll (spheres, lying cylinders): tilt is not checked for these.
-ROUND = {"apple", "orange", "tennis_ball", "ball", "lemon", "tomato", "pear", "lightbulb", "donut", "dice",
-         "rolling_pin"}
-ALLOWED_COLLISION = {int(mujoco.mjtGeom.mjGEOM_BOX), int(mujoco.mjtGeom.mjGEOM_CYLINDER), int(mujoco.mjtGeom.mjGEOM_CAPSULE),
-                     int(mujoco.mjtGeom.mjGEOM_SPHERE), int(mujoco.mjtGeom.mjGEOM_ELLIPSOID), int(mujoco.mjtGeom.mjGEOM_MESH)}
+ROUND = {
+    "apple",
+    "orange",
+    "tennis_ball",
+    "ball",
+    "lemon",
+    "tomato",
+    "pear",
+    "lightbulb",
+    "donut",
+    "dice",
+    "rolling_pin",
+}
+ALLOWED_COLLISION = {
+    int(mujoco.mjtGeom.mjGEOM_BOX),
+    int(mujoco.mjtGeom.mjGEOM_CYLINDER),
+    int(mujoco.mjtGeom.mjGEOM_CAPSULE),
+    int(mujoco.mjtGeom.mjGEOM_SPHERE),
+    int(mujoco.mjtGeom.mjGEOM_ELLIPSOID),
+    int(mujoco.mjtGeom.mjGEOM_MESH),
+}
 
 
 def test_pools_cover_the_tasks_and_enough_distractors():
     assert set(TASK_NAMED) <= set(categories("task"))
     assert len(categories("distractor")) >= 32
     task_families = {ASSETS[c].family for c in categories("task")}
-    assert not task_families & {ASSETS[c].family for c in categories("distractor")}, \
+    assert not task_families & {ASSETS[c].family for c in categories("distractor")}, (
         "a distractor shares a family with a task object"
+    )
 
 
 def _layout(builder, cats, margin=0.03):
@@ -125,7 +169,9 @@ def test_date_labels_differ_and_render_on_the_can():
     crops = []
     for date in ("2023-01-01", "2026-12-31"):
         b = SceneBuilder()
-        b.add_object("labeled_can", "can", 0.42, 90.0, yaw=math.radians(270.0), date=date)  # label faces the robot
+        b.add_object(
+            "labeled_can", "can", 0.42, 90.0, yaw=math.radians(270.0), date=date
+        )  # label faces the robot
         model, info = b.compile()
         sim = ActiveArenaSim(model, info)
         a = sim.home_action()
@@ -135,7 +181,7 @@ def test_date_labels_differ_and_render_on_the_can():
         v = sim.visibility()
         assert v.visible[0]
         u, w = (v.uv_norm[0] * [512, 384]).astype(int)
-        crops.append(sim.render_head()[w - 25: w + 25, u - 15: u + 15].astype(int))
+        crops.append(sim.render_head()[w - 25 : w + 25, u - 15 : u + 15].astype(int))
     assert np.abs(crops[0] - crops[1]).sum() > 0, "different dates must render differently"
 
 

@@ -12,19 +12,24 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fake_slurm import install_fake_slurm, submitted_jobs
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 
 from lerobot_activearena.annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
 from lerobot_activearena.cli.build_dataset import main as build_main
 from lerobot_activearena.datasets_build import shard as shard_mod
-from lerobot_activearena.datasets_build.features import IMAGE_KEY, MASK_PAD, MAX_OBJECTS, dataset_features, matrix
+from lerobot_activearena.datasets_build.features import (
+    IMAGE_KEY,
+    MASK_PAD,
+    MAX_OBJECTS,
+    dataset_features,
+    matrix,
+)
 from lerobot_activearena.datasets_build.pipeline import build_dataset, push
 from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.datasets_build.record import record_episode
 from lerobot_activearena.tasks.rollout import run_expert_episode
-
-from fake_slurm import install_fake_slurm, submitted_jobs
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one
@@ -38,8 +43,22 @@ def _exe(name):
 def built(tmp_path_factory):
     """Two tasks, one episode each, two shards built by two datatrove worker processes."""
     root = tmp_path_factory.mktemp("ds") / "bench_id"
-    build_main(["--repo-id", "local/bench_id", "--root", str(root), "--tasks", f"{BELL},{COUNT}",
-                "--episodes", "1", "--episodes-per-shard", "1", "--workers", "2"])
+    build_main(
+        [
+            "--repo-id",
+            "local/bench_id",
+            "--root",
+            str(root),
+            "--tasks",
+            f"{BELL},{COUNT}",
+            "--episodes",
+            "1",
+            "--episodes-per-shard",
+            "1",
+            "--workers",
+            "2",
+        ]
+    )
     return root
 
 
@@ -55,8 +74,12 @@ def test_dataset_opens_in_lerobot_with_stride16_history(built):
     assert [int(e["length"]) for e in meta.episodes] == [e["length"] for e in eps]
     assert all("/" not in k for k in meta.features)
     assert set(dataset_features()) <= set(meta.features) and meta.video_keys == [IMAGE_KEY]
-    ds = LeRobotDataset("local/bench_id", root=built, video_backend="pyav",
-                        delta_timestamps={IMAGE_KEY: HISTORY, "observation.state": HISTORY})
+    ds = LeRobotDataset(
+        "local/bench_id",
+        root=built,
+        video_backend="pyav",
+        delta_timestamps={IMAGE_KEY: HISTORY, "observation.state": HISTORY},
+    )
     first_len = eps[0]["length"]
     item = ds[first_len + 50]  # frame 50 of the second episode
     assert item[IMAGE_KEY].shape == (13, 3, 384, 512) and item["observation.state"].shape == (13, 18)
@@ -66,7 +89,9 @@ def test_dataset_opens_in_lerobot_with_stride16_history(built):
     sidecar = json.loads((built / "meta/activearena/sidecars/episode_000001.json").read_text())
     assert item["task"] == sidecar["instruction"]
     # the history is the real past: the stored state 16 frames earlier
-    assert np.allclose(item["observation.state"][-2].numpy(), ds.hf_dataset[first_len + 34]["observation.state"].numpy())
+    assert np.allclose(
+        item["observation.state"][-2].numpy(), ds.hf_dataset[first_len + 34]["observation.state"].numpy()
+    )
 
 
 def test_columns_match_the_expert_and_keyframe_definitions(built):
@@ -74,7 +99,7 @@ def test_columns_match_the_expert_and_keyframe_definitions(built):
     first, ep = _episodes(built)  # the second is the count task: several objects, subtask changes
     ref = run_expert_episode(ep["task"], ep["seed"], "id")  # deterministic: same seed, same trajectory
     T = ref.length
-    rows = ds.hf_dataset.with_format("numpy")[first["length"]:first["length"] + T]
+    rows = ds.hf_dataset.with_format("numpy")[first["length"] : first["length"] + T]
     assert (rows["episode_index"] == 1).all() and len(rows["frame_index"]) == T
     assert np.array_equal(rows["action"], ref.actions.astype(np.float32))
     assert np.array_equal(rows["observation.state"], ref.states.astype(np.float32))
@@ -87,7 +112,9 @@ def test_columns_match_the_expert_and_keyframe_definitions(built):
     assert np.array_equal(rows["camera_target_active"].ravel(), np.isfinite(theta).astype(np.int8))
     assert np.allclose(rows["camera_target_theta"].ravel()[np.isfinite(theta)], theta[np.isfinite(theta)])
     assert np.allclose(matrix(rows, "extrinsic_cv")[7], ref.frames[7]["extrinsic_cv"])
-    assert np.array_equal(rows["subtask_keyframe"].ravel(), subtask_keyframes([f["subtask"] for f in ref.frames]))
+    assert np.array_equal(
+        rows["subtask_keyframe"].ravel(), subtask_keyframes([f["subtask"] for f in ref.frames])
+    )
     assert np.array_equal(rows["motion_keyframe"].ravel(), motion_keyframes(ref.states))
     assert np.array_equal(rows["chunk_keyframe"].ravel(), chunk_keyframes(T))
     assert rows["subtask_keyframe"].sum() >= 2  # the count task changes subtask at least once
@@ -128,14 +155,31 @@ def test_failed_expert_episodes_are_skipped_recorded_and_replaced(tmp_path, monk
     summary = build_dataset(plan, tmp_path / "flaky", workers=1, progress=False)
     assert summary["episodes"] == 2 and summary["skipped"] == 1
     assert [e["seed"] for e in _episodes(tmp_path / "flaky")] == [1, 2]  # seed 0 replaced by reserve seed 2
-    skipped = [json.loads(line) for line in (tmp_path / "flaky/meta/activearena/skipped.jsonl").read_text().splitlines()]
+    skipped = [
+        json.loads(line)
+        for line in (tmp_path / "flaky/meta/activearena/skipped.jsonl").read_text().splitlines()
+    ]
     assert skipped == [{"task": BELL, "seed": 0, "split": "id", "reason": "forced failure for the test"}]
 
 
 def test_killed_build_resumes_and_keeps_finished_shards(tmp_path):
     root, work = tmp_path / "resume", tmp_path / "resume.work"
-    cmd = [_exe("activearena-build-dataset"), "--repo-id", "local/resume", "--root", str(root), "--tasks", BELL,
-           "--episodes", "3", "--episodes-per-shard", "1", "--workers", "1", "--keep-shards"]
+    cmd = [
+        _exe("activearena-build-dataset"),
+        "--repo-id",
+        "local/resume",
+        "--root",
+        str(root),
+        "--tasks",
+        BELL,
+        "--episodes",
+        "3",
+        "--episodes-per-shard",
+        "1",
+        "--workers",
+        "1",
+        "--keep-shards",
+    ]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     first = work / "shards" / f"00000-{BELL}" / "shard.json"
     deadline = time.time() + 300
@@ -162,12 +206,16 @@ def test_resume_does_not_rebuild_completed_shards(tmp_path, monkeypatch):
     work = tmp_path / "partial.work"
     work.mkdir()
     plan.save(work / "plan.json")
-    shard_mod.build_shard(plan.shards[0], "id", plan.repo_id, work, plan.max_objects)  # as if killed after shard 0
+    shard_mod.build_shard(
+        plan.shards[0], "id", plan.repo_id, work, plan.max_objects
+    )  # as if killed after shard 0
     stamp = (work / "shards" / plan.shards[0].name / "shard.json").stat().st_mtime_ns
     calls = []
     real = shard_mod.record_episode
     monkeypatch.setattr(shard_mod, "record_episode", lambda *a: calls.append(a) or real(*a))
-    summary = build_dataset(plan, tmp_path / "partial", work_dir=work, workers=1, keep_shards=True, progress=False)
+    summary = build_dataset(
+        plan, tmp_path / "partial", work_dir=work, workers=1, keep_shards=True, progress=False
+    )
     assert calls == [(BELL, 1, "id")]  # only the missing shard ran
     assert (work / "shards" / plan.shards[0].name / "shard.json").stat().st_mtime_ns == stamp
     assert summary["episodes"] == 2
@@ -197,9 +245,15 @@ def test_bad_arguments_get_clear_errors():
         BuildPlan(repo_id="a/b", split="id", tasks=["nope"], episodes=1)
     with pytest.raises(SystemExit):
         build_main(["--repo-id", "a/b", "--root", "/tmp/x", "--episodes", "0"])
-    explicit = BuildPlan(repo_id="a/b", split="id", tasks=[BELL, COUNT], seeds=[5, 9, 11], episodes_per_shard=2)
+    explicit = BuildPlan(
+        repo_id="a/b", split="id", tasks=[BELL, COUNT], seeds=[5, 9, 11], episodes_per_shard=2
+    )
     assert [(s.task, s.seeds, s.reserve) for s in explicit.shards] == [
-        (BELL, (5, 9), ()), (BELL, (11,), ()), (COUNT, (5, 9), ()), (COUNT, (11,), ())]
+        (BELL, (5, 9), ()),
+        (BELL, (11,), ()),
+        (COUNT, (5, 9), ()),
+        (COUNT, (11,), ()),
+    ]
 
 
 def test_push_to_hub_uses_lerobots_upload_path(built, monkeypatch, tmp_path):
@@ -213,39 +267,100 @@ def test_push_to_hub_uses_lerobots_upload_path(built, monkeypatch, tmp_path):
             calls.setdefault(name, []).append(kwargs)
             if name == "upload_folder":
                 shutil.copytree(kwargs["folder_path"], tmp_path / "hub", dirs_exist_ok=True)
+
         return fn
 
-    for name in ("create_repo", "upload_folder", "upload_file", "create_commit", "create_tag", "delete_tag",
-                 "create_branch"):
+    for name in (
+        "create_repo",
+        "upload_folder",
+        "upload_file",
+        "create_commit",
+        "create_tag",
+        "delete_tag",
+        "create_branch",
+    ):
         monkeypatch.setattr(HfApi, name, record(name))
-    monkeypatch.setattr(RepoCard, "validate", lambda self, *a, **k: calls.setdefault("card", []).append(self.content))
+    monkeypatch.setattr(
+        RepoCard, "validate", lambda self, *a, **k: calls.setdefault("card", []).append(self.content)
+    )
     push("local/bench_id", built)
-    assert calls["create_repo"][0]["repo_type"] == "dataset" and calls["create_repo"][0]["repo_id"] == "local/bench_id"
+    assert (
+        calls["create_repo"][0]["repo_type"] == "dataset"
+        and calls["create_repo"][0]["repo_id"] == "local/bench_id"
+    )
     assert Path(calls["upload_folder"][0]["folder_path"]) == built
-    assert (tmp_path / "hub/meta/activearena/build.json").exists() and (tmp_path / "hub/meta/info.json").exists()
+    assert (tmp_path / "hub/meta/activearena/build.json").exists() and (
+        tmp_path / "hub/meta/info.json"
+    ).exists()
     assert any((tmp_path / "hub/videos").rglob("*.mp4"))
     assert "activearena" in calls["card"][0]  # LeRobot's dataset card, with our tags
 
 
 def test_lerobot_edit_dataset_info_and_merge(built, tmp_path):
-    info = subprocess.run([_exe("lerobot-edit-dataset"), "--repo_id", "local/bench_id", "--root", str(built),
-                           "--operation.type", "info"], capture_output=True, text=True, timeout=300)
+    info = subprocess.run(
+        [
+            _exe("lerobot-edit-dataset"),
+            "--repo_id",
+            "local/bench_id",
+            "--root",
+            str(built),
+            "--operation.type",
+            "info",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert info.returncode == 0, info.stderr[-2000:]
     frames = json.loads((built / "meta/activearena/build.json").read_text())["frames"]
     assert "Total episode: 2" in info.stdout and f"({frames})" in info.stdout and "FPS: 15" in info.stdout
     merged = tmp_path / "merged"
-    out = subprocess.run([_exe("lerobot-edit-dataset"), "--new_repo_id", "local/merged", "--new_root", str(merged),
-                          "--operation.type", "merge", "--operation.repo_ids", "['local/bench_id', 'local/bench_id2']",
-                          "--operation.roots", f"['{built}', '{built}']"], capture_output=True, text=True, timeout=600)
+    out = subprocess.run(
+        [
+            _exe("lerobot-edit-dataset"),
+            "--new_repo_id",
+            "local/merged",
+            "--new_root",
+            str(merged),
+            "--operation.type",
+            "merge",
+            "--operation.repo_ids",
+            "['local/bench_id', 'local/bench_id2']",
+            "--operation.roots",
+            f"['{built}', '{built}']",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert out.returncode == 0, out.stderr[-2000:]
     meta = LeRobotDatasetMetadata("local/merged", root=merged)
     assert meta.total_episodes == 4 and set(dataset_features()) <= set(meta.features)
 
 
 def test_lerobot_dataset_viz_saves_a_recording(built, tmp_path):
-    out = subprocess.run([_exe("lerobot-dataset-viz"), "--repo-id", "local/bench_id", "--root", str(built),
-                          "--episode-index", "0", "--mode", "local", "--save", "1", "--output-dir", str(tmp_path),
-                          "--num-workers", "0"], capture_output=True, text=True, timeout=600)
+    out = subprocess.run(
+        [
+            _exe("lerobot-dataset-viz"),
+            "--repo-id",
+            "local/bench_id",
+            "--root",
+            str(built),
+            "--episode-index",
+            "0",
+            "--mode",
+            "local",
+            "--save",
+            "1",
+            "--output-dir",
+            str(tmp_path),
+            "--num-workers",
+            "0",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert out.returncode == 0, out.stderr[-2000:]
     rrd = list(tmp_path.glob("*.rrd"))
     assert rrd and rrd[0].stat().st_size > 100_000
@@ -254,12 +369,19 @@ def test_lerobot_dataset_viz_saves_a_recording(built, tmp_path):
 def test_slurm_executor_builds_through_array_jobs_and_a_dependent_merge(tmp_path, monkeypatch):
     install_fake_slurm(tmp_path, monkeypatch)
     plan = BuildPlan(repo_id="local/slurm", split="id", tasks=[BELL], episodes=2, episodes_per_shard=1)
-    out = build_dataset(plan, tmp_path / "slurm", executor="slurm", slurm={"partition": "cpu", "time": "00:30:00"},
-                        progress=False)
+    out = build_dataset(
+        plan,
+        tmp_path / "slurm",
+        executor="slurm",
+        slurm={"partition": "cpu", "time": "00:30:00"},
+        progress=False,
+    )
     assert out is None  # submitted; the merge job writes the dataset
     jobs = submitted_jobs(tmp_path)
     shards = next(j for j in jobs if "activearena-build" in j["script"] and "--array=0-1" in j["script"])
-    merge = next(j for j in jobs if "activearena-build-merge" in j["script"] and "merge_stats" not in j["script"])
+    merge = next(
+        j for j in jobs if "activearena-build-merge" in j["script"] and "merge_stats" not in j["script"]
+    )
     assert "#SBATCH --partition=cpu" in shards["script"]
     assert f"--dependency=afterok:{shards['job']}" in merge["args"]
     meta = LeRobotDatasetMetadata("local/slurm", root=tmp_path / "slurm")

@@ -22,8 +22,9 @@ print(h.hexdigest())
 
 
 def _run(seed):
-    out = subprocess.run([sys.executable, "-c", SCRIPT.replace("SEED", str(seed))], capture_output=True, text=True,
-                         timeout=300)
+    out = subprocess.run(
+        [sys.executable, "-c", SCRIPT.replace("SEED", str(seed))], capture_output=True, text=True, timeout=300
+    )
     assert out.returncode == 0, out.stderr[-2000:]
     return out.stdout.strip().splitlines()[-1]
 

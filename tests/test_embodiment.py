@@ -17,7 +17,9 @@ def sim():
 
 
 def _json_joints():
-    tree = json.loads(resources.files("lerobot_activearena.sim").joinpath("data/astribot_s1_kinematics.json").read_text())["tree"]
+    tree = json.loads(
+        resources.files("lerobot_activearena.sim").joinpath("data/astribot_s1_kinematics.json").read_text()
+    )["tree"]
     out, stack = {}, [tree]
     while stack:
         n = stack.pop()

@@ -21,7 +21,9 @@ from lerobot_activearena.envs.manifests import load_manifest
 from lerobot_activearena.eval.protocol import EvalPlan
 from lerobot_activearena.eval.runner import run_eval
 from lerobot_activearena.eval.shard import read_records
-from lerobot_activearena.policies.activearena_expert.configuration_activearena_expert import ActiveArenaExpertConfig
+from lerobot_activearena.policies.activearena_expert.configuration_activearena_expert import (
+    ActiveArenaExpertConfig,
+)
 from lerobot_activearena.tasks import get_task
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -36,7 +38,9 @@ def _exe(name):
 @pytest.fixture(scope="module")
 def protocol_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("eval") / "expert"
-    eval_main([*EXPERT, "--tasks", f"{BELL},{COUNT}", "--splits", "id,ood", "--episodes", "2", "--out", str(out)])
+    eval_main(
+        [*EXPERT, "--tasks", f"{BELL},{COUNT}", "--splits", "id,ood", "--episodes", "2", "--out", str(out)]
+    )
     return out
 
 
@@ -51,43 +55,97 @@ def test_merged_results_are_lerobot_eval_output_per_split(protocol_run):
         assert info["overall"]["pc_success"] == 100.0
         video = Path(tasks[COUNT]["metrics"]["video_paths"][0])
         assert video.name == f"{COUNT}_{split}_000.mp4" and video.stat().st_size > 10_000
-        recs = [json.loads(line) for line in (protocol_run / split / "episodes" / "records.jsonl").read_text().splitlines()]
+        recs = [
+            json.loads(line)
+            for line in (protocol_run / split / "episodes" / "records.jsonl").read_text().splitlines()
+        ]
         assert len(recs) == 4
         for r in recs:  # one record per episode, with what the report and the chunk metric need
             assert r["split"] == split and r["scene_seed"] == load_manifest(r["task"], split)[r["episode"]]
             assert r["failure_state"] == "" and r["steps"] == len(r["view_targets"]) > 16
-    header, row = [line.split(",") for line in (protocol_run / "report" / "leaderboard.csv").read_text().splitlines()]
+    header, row = [
+        line.split(",") for line in (protocol_run / "report" / "leaderboard.csv").read_text().splitlines()
+    ]
     board = dict(zip(header, row))
-    assert board["policy"] == "activearena_expert" and float(board["SS ID"]) == float(board["MD OOD"]) == 100.0
+    assert (
+        board["policy"] == "activearena_expert" and float(board["SS ID"]) == float(board["MD OOD"]) == 100.0
+    )
     assert board["SL ID"] == ""  # no SL task in this run
     assert "activearena_expert ID" in (protocol_run / "report" / "per_task.csv").read_text()
 
 
 def test_rerunning_a_finished_run_plays_nothing_and_refuses_another_configuration(protocol_run, capsys):
     stamp = {p: p.stat().st_mtime_ns for p in (protocol_run / "records").rglob("*.jsonl")}
-    eval_main([*EXPERT, "--tasks", f"{BELL},{COUNT}", "--splits", "id,ood", "--episodes", "2", "--out", str(protocol_run)])
+    eval_main(
+        [
+            *EXPERT,
+            "--tasks",
+            f"{BELL},{COUNT}",
+            "--splits",
+            "id,ood",
+            "--episodes",
+            "2",
+            "--out",
+            str(protocol_run),
+        ]
+    )
     assert {p: p.stat().st_mtime_ns for p in (protocol_run / "records").rglob("*.jsonl")} == stamp
     with pytest.raises(SystemExit):
-        eval_main([*EXPERT, "--tasks", BELL, "--splits", "id,ood", "--episodes", "3", "--out", str(protocol_run)])
+        eval_main(
+            [*EXPERT, "--tasks", BELL, "--splits", "id,ood", "--episodes", "3", "--out", str(protocol_run)]
+        )
     err = capsys.readouterr().err
     assert "another configuration" in err and "episodes" in err and "tasks" in err and "--overwrite" in err
 
 
 def test_env_processes_play_the_same_episodes_as_one_process(protocol_run, tmp_path):
-    eval_main([*EXPERT, "--tasks", BELL, "--splits", "id", "--episodes", "2", "--batch-size", "2", "--async-envs",
-               "--videos", "0", "--out", str(tmp_path / "async")])
+    eval_main(
+        [
+            *EXPERT,
+            "--tasks",
+            BELL,
+            "--splits",
+            "id",
+            "--episodes",
+            "2",
+            "--batch-size",
+            "2",
+            "--async-envs",
+            "--videos",
+            "0",
+            "--out",
+            str(tmp_path / "async"),
+        ]
+    )
     ours = read_records(tmp_path / "async" / "records")
-    assert len({f.name for f in (tmp_path / "async" / "records").rglob("*.jsonl")}) == 2  # one file per env process
+    assert (
+        len({f.name for f in (tmp_path / "async" / "records").rglob("*.jsonl")}) == 2
+    )  # one file per env process
     one = read_records(protocol_run / "records")
     for key, rec in ours.items():
-        assert {k: rec[k] for k in ("scene_seed", "steps", "success", "view_targets")} == \
-               {k: one[key][k] for k in ("scene_seed", "steps", "success", "view_targets")}
+        assert {k: rec[k] for k in ("scene_seed", "steps", "success", "view_targets")} == {
+            k: one[key][k] for k in ("scene_seed", "steps", "success", "view_targets")
+        }
 
 
 def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
     out = tmp_path / "run"
-    cmd = [_exe("activearena-eval"), *EXPERT, "--tasks", COUNT, "--splits", "id", "--episodes", "6",
-           "--batch-size", "2", "--videos", "0", "--out", str(out)]
+    cmd = [
+        _exe("activearena-eval"),
+        *EXPERT,
+        "--tasks",
+        COUNT,
+        "--splits",
+        "id",
+        "--episodes",
+        "6",
+        "--batch-size",
+        "2",
+        "--videos",
+        "0",
+        "--out",
+        str(out),
+    ]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     deadline = time.time() + 300
     while time.time() < deadline and len(read_records(out / "records")) < 3:
@@ -98,7 +156,9 @@ def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
     assert 3 <= len(before) < 6, "the run should be killed half way"
     assert not (out / "id" / "eval_info.json").exists()
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=600)
-    lines = [json.loads(line) for f in (out / "records").rglob("*.jsonl") for line in f.read_text().splitlines()]
+    lines = [
+        json.loads(line) for f in (out / "records").rglob("*.jsonl") for line in f.read_text().splitlines()
+    ]
     assert sorted(r["episode"] for r in lines) == list(range(6))  # every episode once: none lost, none re-run
     after = read_records(out / "records")
     assert all(after[k] == v for k, v in before.items())  # the finished episodes were kept as they were
@@ -111,34 +171,71 @@ def test_slurm_runs_shards_as_array_jobs_then_a_dependent_merge(tmp_path, monkey
     cfg = ActiveArenaExpertConfig(device="cpu")
     cfg._save_pretrained(tmp_path)
     policy = json.loads((tmp_path / "config.json").read_text())
-    plan = EvalPlan(label="expert", policy=policy, policy_path=None, tasks=[BELL], splits=["id"], episodes=[0, 1],
-                    env={"render_pixels": False}, episodes_per_shard=1)
-    assert run_eval(plan, tmp_path / "run", policy, executor="slurm", progress=False,
-                    slurm={"partition": "gpu", "time": "01:00:00", "gpus_per_task": 1}) is None
+    plan = EvalPlan(
+        label="expert",
+        policy=policy,
+        policy_path=None,
+        tasks=[BELL],
+        splits=["id"],
+        episodes=[0, 1],
+        env={"render_pixels": False},
+        episodes_per_shard=1,
+    )
+    assert (
+        run_eval(
+            plan,
+            tmp_path / "run",
+            policy,
+            executor="slurm",
+            progress=False,
+            slurm={"partition": "gpu", "time": "01:00:00", "gpus_per_task": 1},
+        )
+        is None
+    )
     jobs = submitted_jobs(tmp_path)
     shards = next(j for j in jobs if "activearena-eval" in j["script"] and "--array=0-1" in j["script"])
-    merge = next(j for j in jobs if "activearena-eval-merge" in j["script"] and "merge_stats" not in j["script"])
+    merge = next(
+        j for j in jobs if "activearena-eval-merge" in j["script"] and "merge_stats" not in j["script"]
+    )
     assert "#SBATCH --partition=gpu" in shards["script"] and "#SBATCH --gpus=1" in shards["script"]
     assert f"--dependency=afterok:{shards['job']}" in merge["args"]
     info = json.loads((tmp_path / "run" / "id" / "eval_info.json").read_text())  # written by the merge job
     assert info["per_task"][0]["metrics"]["successes"] == [True, True]
 
 
-@pytest.mark.parametrize("name", ["activearena_id", "activearena_ood", "activearena_fixed_id", "activearena_fixed_ood"])
+@pytest.mark.parametrize(
+    "name", ["activearena_id", "activearena_ood", "activearena_fixed_id", "activearena_fixed_ood"]
+)
 def test_env_configs_are_lerobot_eval_configs_of_the_protocol(name):
-    cfg = draccus.parse(EvalPipelineConfig, config_path=ROOT / "configs" / "env" / f"{name}.json",
-                        args=["--policy.type=activearena_expert"])
+    cfg = draccus.parse(
+        EvalPipelineConfig,
+        config_path=ROOT / "configs" / "env" / f"{name}.json",
+        args=["--policy.type=activearena_expert"],
+    )
     assert cfg.env.type == "activearena" and cfg.env.task == "all" and cfg.eval.n_episodes == 50
     assert cfg.env.split == name.rsplit("_", 1)[1] and cfg.env.fixed_view == ("fixed" in name)
     assert cfg.seed == cfg.env.seed_base  # episode k of lerobot-eval plays manifest seed k
 
 
 def test_fixed_view_config_runs_in_lerobot_eval(tmp_path):
-    out = subprocess.run([_exe("lerobot-eval"), f"--config_path={ROOT / 'configs/env/activearena_fixed_ood.json'}",
-                          "--policy.type=activearena_expert", "--policy.device=cpu", f"--env.task={BELL}",
-                          "--env.expert_channel=true", "--env.render_pixels=false", "--env.episode_length=20",
-                          f"--env.episode_log_dir={tmp_path / 'eval' / 'episodes'}", "--eval.n_episodes=1",
-                          f"--output_dir={tmp_path / 'eval'}"], capture_output=True, text=True, timeout=600)
+    out = subprocess.run(
+        [
+            _exe("lerobot-eval"),
+            f"--config_path={ROOT / 'configs/env/activearena_fixed_ood.json'}",
+            "--policy.type=activearena_expert",
+            "--policy.device=cpu",
+            f"--env.task={BELL}",
+            "--env.expert_channel=true",
+            "--env.render_pixels=false",
+            "--env.episode_length=20",
+            f"--env.episode_log_dir={tmp_path / 'eval' / 'episodes'}",
+            "--eval.n_episodes=1",
+            f"--output_dir={tmp_path / 'eval'}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert out.returncode == 0, out.stderr[-2000:]
     rec = json.loads((next((tmp_path / "eval" / "episodes").glob("*.jsonl"))).read_text().splitlines()[0])
     assert rec["fixed_view"] is True and rec["split"] == "ood" and rec["episode"] == 0 and rec["steps"] == 20
@@ -156,10 +253,14 @@ def test_bad_input_gets_errors_that_name_the_fix(tmp_path, capsys):
     assert "--policy.path=" in error("--tasks", BELL)
     assert "use --tasks, --splits" in error(*EXPERT, "--env.split=ood")
     assert "outside the 100-seed manifest" in error(*EXPERT, "--episode-indices", "99-100")
-    wrong = ActiveArenaExpertConfig(device="cpu", input_features={
-        "observation.images.wrist": PolicyFeature(type=FeatureType.VISUAL, shape=(3, 224, 224)),
-        "observation.state": PolicyFeature(type=FeatureType.STATE, shape=(14,))},
-        output_features={"action": PolicyFeature(type=FeatureType.ACTION, shape=(18,))})
+    wrong = ActiveArenaExpertConfig(
+        device="cpu",
+        input_features={
+            "observation.images.wrist": PolicyFeature(type=FeatureType.VISUAL, shape=(3, 224, 224)),
+            "observation.state": PolicyFeature(type=FeatureType.STATE, shape=(14,)),
+        },
+        output_features={"action": PolicyFeature(type=FeatureType.ACTION, shape=(18,))},
+    )
     (tmp_path / "ckpt").mkdir()
     wrong._save_pretrained(tmp_path / "ckpt")
     err = error(f"--policy.path={tmp_path / 'ckpt'}", "--tasks", BELL)
@@ -169,13 +270,26 @@ def test_bad_input_gets_errors_that_name_the_fix(tmp_path, capsys):
 
 
 def test_shards_depend_on_the_selection_not_on_workers():
-    plan = EvalPlan(label="x", policy={"type": "activearena_expert"}, policy_path=None, tasks=["SS"],
-                    splits=["id", "ood"], episodes=list(range(5)), episodes_per_shard=2)
+    plan = EvalPlan(
+        label="x",
+        policy={"type": "activearena_expert"},
+        policy_path=None,
+        tasks=["SS"],
+        splits=["id", "ood"],
+        episodes=list(range(5)),
+        episodes_per_shard=2,
+    )
     n_tasks = len(plan.tasks)
     assert len(plan.shards) == 2 * n_tasks * 3 and plan.n_episodes == 2 * n_tasks * 5
     first = [s for s in plan.shards if s.task == plan.shards[0].task]
-    assert [(s.split, s.episodes) for s in first] == [("id", (0, 1)), ("id", (2, 3)), ("id", (4,)),
-                                                       ("ood", (0, 1)), ("ood", (2, 3)), ("ood", (4,))]
+    assert [(s.split, s.episodes) for s in first] == [
+        ("id", (0, 1)),
+        ("id", (2, 3)),
+        ("id", (4,)),
+        ("ood", (0, 1)),
+        ("ood", (2, 3)),
+        ("ood", (4,)),
+    ]
     limits = [get_task(s.task).max_episode_steps for s in plan.shards]
     assert limits == sorted(limits, reverse=True)  # longest tasks start first
     again = EvalPlan.from_json(plan.to_json())

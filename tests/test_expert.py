@@ -50,7 +50,7 @@ def test_every_frame_follows_the_schema(episodes, name):
         if not focus_vis:
             np.testing.assert_array_equal(f["target_uv_norm"], [-1, -1])
         else:
-            assert ((0 <= f["target_uv_norm"]) & (f["target_uv_norm"] <= 1)).all()
+            assert ((f["target_uv_norm"] >= 0) & (f["target_uv_norm"] <= 1)).all()
     disc = np.array([f["discovered_object_mask"] for f in r.frames])
     assert (np.diff(disc, axis=0) >= 0).all(), "discovered objects stay discovered"
     vis = np.array([f["visible_object_mask"] for f in r.frames])
@@ -80,7 +80,9 @@ def test_expert_turns_the_camera_before_acting(episodes):
     r = episodes["click_bell_rotate_view"]
     heading = np.array([float(f["waist_heading_deg"]) for f in r.frames])
     first_action = next(i for i, f in enumerate(r.frames) if f["stage"] == STAGE_ACTION)
-    assert abs(heading[first_action] - 90.0) > 40.0, "the bell sits outside the home view: the torso must turn"
+    assert abs(heading[first_action] - 90.0) > 40.0, (
+        "the bell sits outside the home view: the torso must turn"
+    )
     # No arm motion while the head/torso moves: arm targets are constant in search/anchor frames.
     arm = r.actions[:, :16]
     search = [i for i, f in enumerate(r.frames[:first_action])]
@@ -89,8 +91,11 @@ def test_expert_turns_the_camera_before_acting(episodes):
 
 def test_count_expert_counts_what_it_saw(episodes):
     r = episodes["count_target_press_button"]
-    seen_green = sum(1 for o in r.sidecar["objects"]
-                     if o["key"].startswith("green") and r.sidecar["final_discovered"][o["key"]])
+    seen_green = sum(
+        1
+        for o in r.sidecar["objects"]
+        if o["key"].startswith("green") and r.sidecar["final_discovered"][o["key"]]
+    )
     assert r.sidecar["expert_notes"]["count"] == seen_green == r.sidecar["params"]["count"]
 
 
@@ -153,7 +158,9 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
     sim = ActiveArenaSim(model, info)
     ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, [], AnnotationRecorder(sim, 0), ik, gaze)
-    acts = np.array(list(P.move_torso_to(ctx, 1.1)) + list(P.move_head(ctx, -0.5)) + list(P.move_torso(ctx, -2.0)))
+    acts = np.array(
+        list(P.move_torso_to(ctx, 1.1)) + list(P.move_head(ctx, -0.5)) + list(P.move_torso(ctx, -2.0))
+    )
     dt = 1 / 15
     v = np.abs(np.diff(acts[:, 16:18], axis=0)) / dt
     assert v[:, 0].max() <= 2.5 and v[:, 1].max() <= 10.0  # torso / head velocity limits

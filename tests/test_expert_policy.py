@@ -45,12 +45,23 @@ def test_policy_refuses_to_run_without_the_channel():
 
 def test_lerobot_eval_runs_the_oracle_on_manifest_seeds(tmp_path):
     exe = shutil.which("lerobot-eval", path=str(Path(sys.executable).parent)) or shutil.which("lerobot-eval")
-    out = subprocess.run([exe, "--policy.type=activearena_expert", "--env.type=activearena",
-                          "--env.task=click_bell_rotate_view", "--env.expert_channel=true", "--eval.n_episodes=3",
-                          "--eval.batch_size=2",
-                          f"--env.episode_log_dir={tmp_path / 'eval' / 'episodes'}",
-                          "--policy.device=cpu", f"--output_dir={tmp_path / 'eval'}"],
-                         capture_output=True, text=True, timeout=900)
+    out = subprocess.run(
+        [
+            exe,
+            "--policy.type=activearena_expert",
+            "--env.type=activearena",
+            "--env.task=click_bell_rotate_view",
+            "--env.expert_channel=true",
+            "--eval.n_episodes=3",
+            "--eval.batch_size=2",
+            f"--env.episode_log_dir={tmp_path / 'eval' / 'episodes'}",
+            "--policy.device=cpu",
+            f"--output_dir={tmp_path / 'eval'}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     assert out.returncode == 0, out.stderr[-3000:]
     info = json.loads((tmp_path / "eval" / "eval_info.json").read_text())
     assert info["overall"]["pc_success"] == 100.0 and info["overall"]["n_episodes"] == 3
@@ -58,7 +69,11 @@ def test_lerobot_eval_runs_the_oracle_on_manifest_seeds(tmp_path):
     assert info["per_task"][0]["task_id"] == "click_bell_rotate_view"
     assert all(Path(p).exists() for p in info["overall"]["video_paths"])
     # Episodes 0, 1, 2 played manifest seeds 0, 1, 2 although they ran in batches of 2.
-    logs = [json.loads(line) for f in (tmp_path / "eval" / "episodes").glob("*.jsonl") for line in f.read_text().splitlines()]
+    logs = [
+        json.loads(line)
+        for f in (tmp_path / "eval" / "episodes").glob("*.jsonl")
+        for line in f.read_text().splitlines()
+    ]
     played = sorted((e["episode"], e["scene_seed"]) for e in logs)
     manifest = load_manifest("click_bell_rotate_view", "id")
     assert [s for _, s in played][:3] == manifest[:3] and [k for k, _ in played][:3] == [0, 1, 2]

@@ -8,8 +8,22 @@ import av
 
 
 def test_expert_video_cli_writes_video_annotations_and_sidecar(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "lerobot_activearena.cli.expert_video", "--task", "SS",
-                          "--seed", "1", "--out", str(tmp_path)], capture_output=True, text=True, timeout=600)
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "lerobot_activearena.cli.expert_video",
+            "--task",
+            "SS",
+            "--seed",
+            "1",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert out.returncode == 0, out.stderr[-2000:]
     ep = tmp_path / "click_bell_rotate_view_id_1"
     side = json.loads((ep / "episode.json").read_text())
@@ -26,6 +40,10 @@ def test_expert_video_cli_writes_video_annotations_and_sidecar(tmp_path):
 
 
 def test_expert_video_cli_lists_tasks():
-    out = subprocess.run([sys.executable, "-m", "lerobot_activearena.cli.expert_video", "--list"],
-                         capture_output=True, text=True, timeout=300)
+    out = subprocess.run(
+        [sys.executable, "-m", "lerobot_activearena.cli.expert_video", "--list"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert out.returncode == 0 and "check_block_color" in out.stdout and " IA " in out.stdout

@@ -2,9 +2,11 @@ import os
 import subprocess
 import sys
 
-CODE = "import lerobot_activearena, os, mujoco; from lerobot_activearena.sim.scene import SceneBuilder; " \
-       "from lerobot_activearena.sim.simulator import ActiveArenaSim; m, i = SceneBuilder().compile(); " \
-       "img = ActiveArenaSim(m, i).render_head(); print(os.environ['MUJOCO_GL'], img.mean() > 5)"
+CODE = (
+    "import lerobot_activearena, os, mujoco; from lerobot_activearena.sim.scene import SceneBuilder; "
+    "from lerobot_activearena.sim.simulator import ActiveArenaSim; m, i = SceneBuilder().compile(); "
+    "img = ActiveArenaSim(m, i).render_head(); print(os.environ['MUJOCO_GL'], img.mean() > 5)"
+)
 
 
 def _run(env):

@@ -27,7 +27,9 @@ def test_can_lifted_and_shaken_stays_in_gripper():
         if phase == "lift" and rel_lift is None:
             rel_lift = can_in_tcp()
         if phase == "shake":
-            shake_disp.append(np.linalg.norm(sim.data.site("astribot_right_tcp").xpos - sim.data.body("can").xpos))
+            shake_disp.append(
+                np.linalg.norm(sim.data.site("astribot_right_tcp").xpos - sim.data.body("can").xpos)
+            )
     slip = np.linalg.norm(can_in_tcp() - rel_lift)
     assert sim.data.body("can").xpos[2] - z0 > 0.12, "can was not lifted"
     assert slip < 0.005, f"can slipped {slip * 1000:.1f} mm in the gripper"

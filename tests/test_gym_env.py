@@ -88,13 +88,17 @@ def test_config_builds_category_suites_of_task_envs():
     cfg = ActiveArenaEnvConfig(task="count_target_press_button,click_bell_rotate_view", split="ood")
     suites = cfg.create_envs(n_envs=2)
     assert set(suites) == {"MD", "SS"}  # grouped by the paper's category
-    assert list(suites["SS"]) == ["click_bell_rotate_view"] and list(suites["MD"]) == ["count_target_press_button"]
+    assert list(suites["SS"]) == ["click_bell_rotate_view"] and list(suites["MD"]) == [
+        "count_target_press_button"
+    ]
     vec = suites["SS"]["click_bell_rotate_view"]
     assert vec.num_envs == 2
     assert vec.call("split") == ("ood", "ood")
     for group in suites.values():
         for v in group.values():
             v.close()
-    lazy = ActiveArenaEnvConfig(task="SS").create_envs(n_envs=2, use_async_envs=True)["SS"]["click_bell_rotate_view"]
+    lazy = ActiveArenaEnvConfig(task="SS").create_envs(n_envs=2, use_async_envs=True)["SS"][
+        "click_bell_rotate_view"
+    ]
     assert lazy._env is None, "async workers start only when the suite is evaluated"
     lazy.close()

@@ -3,9 +3,19 @@
 import numpy as np
 import pytest
 
-from lerobot_activearena.annotations.keyframes import (chunk_keyframes, dedup, eef_events, gripper_events,
-                                                       memory_frames, memory_view, motion_keyframes, retrieval_positions,
-                                                       rotation_events, stride_sequence, subtask_keyframes)
+from lerobot_activearena.annotations.keyframes import (
+    chunk_keyframes,
+    dedup,
+    eef_events,
+    gripper_events,
+    memory_frames,
+    memory_view,
+    motion_keyframes,
+    retrieval_positions,
+    rotation_events,
+    stride_sequence,
+    subtask_keyframes,
+)
 from lerobot_activearena.sim.action import ACTION_NAMES
 
 
@@ -33,7 +43,9 @@ def test_planner_stride_sequence_and_retrieval_match_the_papers_example():
     frames = stride_sequence(89, history=12)
     assert frames == [9, 25, 41, 57, 73, 89]
     assert retrieval_positions(frames, [0, 45]) == [0, 3]
-    assert stride_sequence(300, history=12)[0] == 300 - 12 * 16 and len(stride_sequence(300, history=12)) == 13
+    assert (
+        stride_sequence(300, history=12)[0] == 300 - 12 * 16 and len(stride_sequence(300, history=12)) == 13
+    )
     assert stride_sequence(5) == [5]
 
 
@@ -53,8 +65,15 @@ def test_rotation_onset_after_four_frames_and_end_after_a_gap_of_six():
     q[18:] = q[17]
     assert rotation_events(q) == [13, 23]  # onset confirmed at the 4th moving frame; end at the 6th still
     # a 3-frame pause is merged into one rotation
-    q2 = np.concatenate([np.zeros(5), 0.01 * np.arange(1, 7), np.full(3, 0.06), 0.06 + 0.01 * np.arange(1, 7),
-                         np.full(10, 0.12)])
+    q2 = np.concatenate(
+        [
+            np.zeros(5),
+            0.01 * np.arange(1, 7),
+            np.full(3, 0.06),
+            0.06 + 0.01 * np.arange(1, 7),
+            np.full(10, 0.12),
+        ]
+    )
     assert rotation_events(q2) == [8, 25]
     jitter = np.zeros(20)
     jitter[5:8] = [0.01, 0.02, 0.03]  # 3 moving frames (then it holds): too short to be an onset
@@ -114,7 +133,9 @@ def test_motion_keyframes_are_causal():
 def test_memory_frames_per_write_policy():
     sub = subtask_keyframes([0] * 10 + [1] * 30 + [2] * 20)  # keyframes 0, 10, 40
     assert memory_frames("chunk", 64, H=12) == [0, 16, 32, 48]
-    assert memory_frames("chunk", 250, H=12)[0] == 250 - 16 * 12 and len(memory_frames("chunk", 250, H=12)) == 12
+    assert (
+        memory_frames("chunk", 250, H=12)[0] == 250 - 16 * 12 and len(memory_frames("chunk", 250, H=12)) == 12
+    )
     assert memory_frames("subtask", 40, H=12, keyframes=sub) == [0, 10]  # 40 itself is not memory yet
     assert memory_frames("subtask", 59, H=1, keyframes=sub) == [40]
     assert memory_frames("none", 64, H=12) == [] and memory_frames("chunk", 64, H=0) == []

@@ -11,12 +11,11 @@ from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.sim import action as A
 from lerobot_activearena.sim.assets.task_objects import DATE_RANGE
 from lerobot_activearena.sim.simulator import ActiveArenaSim
-from lerobot_activearena.tasks import get_task, task_names
+from lerobot_activearena.tasks import get_task, predicates as Pr, task_names
 from lerobot_activearena.tasks.inventory.check_cola_date import expired
 from lerobot_activearena.tasks.inventory.count_random_object_press_button import CATEGORIES as PLURALS
 from lerobot_activearena.tasks.inventory.rank_backside_rgb_blocks import RANK
 from lerobot_activearena.tasks.rollout import run_expert_episode
-from lerobot_activearena.tasks import predicates as Pr
 from lerobot_activearena.tasks.sampling import sample_scene
 from lerobot_activearena.tasks.shaking import ShakeDetector, reversals
 
@@ -83,7 +82,7 @@ def test_blocks_on_their_pads_without_every_patch_seen_is_not_success(name):
         adr = sim.model.jnt_qposadr[j]
         p = sim.data.body(pad.name).xpos.copy()
         offset = 0.0 if name.startswith("rank") else 0.026 * (1 if block.endswith("0") else -1)
-        sim.data.qpos[adr:adr + 7] = [p[0] + offset, p[1] + offset, p[2] + 0.0045, 1, 0, 0, 0]
+        sim.data.qpos[adr : adr + 7] = [p[0] + offset, p[1] + offset, p[2] + 0.0045, 1, 0, 0, 0]
     all_seen = np.ones(len(scene.objects), bool)
     for _ in range(12):
         sim.step(sim.home_action())
@@ -140,7 +139,9 @@ def test_shake_needs_three_real_reversals_while_held():
 
 def test_a_held_bottle_that_is_not_shaken_does_not_succeed():
     """The expert's pick without its shake: lifting and holding still scores nothing."""
-    env = ActiveArenaEnv("shake_bottle_rotate_view", render_pixels=False, expert_channel=True, use_manifest=False)
+    env = ActiveArenaEnv(
+        "shake_bottle_rotate_view", render_pixels=False, expert_channel=True, use_manifest=False
+    )
     obs, info = env.reset(seed=3)
     held_frames = 0
     frozen = None

@@ -23,7 +23,11 @@ from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.dataset_annotations import DatasetAnnotations
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
-from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import PIXELS, THINK_IDS, THINK_MASK
+from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import (
+    PIXELS,
+    THINK_IDS,
+    THINK_MASK,
+)
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
 from lerobot_activearena.tasks.rollout import run_expert_episode
 
@@ -44,7 +48,9 @@ def vlm(tmp_path_factory):
 @pytest.fixture(scope="module")
 def root(tmp_path_factory):
     root = tmp_path_factory.mktemp("oft_ds") / "ds"
-    plan = BuildPlan(repo_id=REPO, split="id", tasks=["click_bell_rotate_view", COUNT], episodes=1, episodes_per_shard=1)
+    plan = BuildPlan(
+        repo_id=REPO, split="id", tasks=["click_bell_rotate_view", COUNT], episodes=1, episodes_per_shard=1
+    )
     build_dataset(plan, root, workers=2, progress=False)
     return root
 
@@ -55,7 +61,9 @@ def _setup(vlm, root, **overrides):
     torch.manual_seed(0)
     policy = make_policy(cfg, ds_meta=meta)
     pre, post = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    ds = LeRobotDataset(REPO, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    ds = LeRobotDataset(
+        REPO, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta)
+    )
     return cfg, policy, pre, post, ds
 
 
@@ -74,7 +82,12 @@ def test_forward_backward_shapes_and_gradients(vlm, root):
     loss, info = policy.forward(batch)
     assert torch.isfinite(loss) and info["l1_loss"] > 0 and info["lm_loss"] > 0
     loss.backward()
-    for name in ("action_queries", "head.inp.1.weight", "state_encoder.mlp.0.weight", "state_encoder.frame.weight"):
+    for name in (
+        "action_queries",
+        "head.inp.1.weight",
+        "state_encoder.mlp.0.weight",
+        "state_encoder.frame.weight",
+    ):
         grad = dict(policy.named_parameters())[name].grad
         assert grad is not None and grad.abs().sum() > 0, name
     assert policy.vlm.get_input_embeddings().weight.grad.abs().sum() > 0  # the LM loss reaches the backbone
@@ -111,9 +124,9 @@ def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, r
     starts = torch.nonzero(image[1:] & ~image[:-1]).flatten() + 1
     prev_end = -1
     for (t, h, w), s in zip(grids.tolist(), starts.tolist()):
-        n = t * h * w // merge ** 2
-        block = pos[:, s:s + n]
-        assert image[s:s + n].all() and (block[0] == block[0, 0]).all()  # one temporal index per image
+        n = t * h * w // merge**2
+        block = pos[:, s : s + n]
+        assert image[s : s + n].all() and (block[0] == block[0, 0]).all()  # one temporal index per image
         assert len(block[1].unique()) == h // merge and len(block[2].unique()) == w // merge
         assert block.min() == pos[:, s - 1].max() + 1 > prev_end  # continues after the preceding text
         prev_end = block.max()
@@ -145,15 +158,23 @@ def test_actions_cannot_see_the_think_text(vlm, root):
         a_none, _ = policy._encode(*_encode_args(batch))
         a_think, lm = policy._encode(*_encode_args(batch), batch[THINK_IDS], batch[THINK_MASK])
         other = torch.flip(batch[THINK_IDS], dims=[1])
-        a_other, lm_other = policy._encode(*_encode_args(batch), other, torch.flip(batch[THINK_MASK], dims=[1]))
+        a_other, lm_other = policy._encode(
+            *_encode_args(batch), other, torch.flip(batch[THINK_MASK], dims=[1])
+        )
     assert torch.allclose(a_none, a_think, atol=1e-5) and torch.allclose(a_none, a_other, atol=1e-5)
     assert not torch.isclose(lm, lm_other)  # the think span is really there and read by the LM loss
 
 
 def _encode_args(batch):
-    return (batch[PIXELS], batch["observation.vlm.image_grid_thw"], batch["observation.vlm.frame_valid"],
-            batch["observation.state"], batch["observation.vlm.prefix_ids"], batch["observation.vlm.prompt_ids"],
-            batch["observation.vlm.prompt_mask"])
+    return (
+        batch[PIXELS],
+        batch["observation.vlm.image_grid_thw"],
+        batch["observation.vlm.frame_valid"],
+        batch["observation.state"],
+        batch["observation.vlm.prefix_ids"],
+        batch["observation.vlm.prompt_ids"],
+        batch["observation.vlm.prompt_mask"],
+    )
 
 
 def test_keyframe_memory_never_reads_the_future(vlm, root):
@@ -169,8 +190,10 @@ def test_keyframe_memory_never_reads_the_future(vlm, root):
     t = len(ds) - 60
     batch = _batch(ds, pre, [t])
     mem = ann.memory_indices(t, "motion", 3)
-    assert batch["observation.vlm.frame_valid"][0].tolist() == [False] * (3 - len(mem)) + [True] * (len(mem) + 1)
-    raw = batch["observation.vlm.raw_state"][0, 3 - len(mem):]
+    assert batch["observation.vlm.frame_valid"][0].tolist() == [False] * (3 - len(mem)) + [True] * (
+        len(mem) + 1
+    )
+    raw = batch["observation.vlm.raw_state"][0, 3 - len(mem) :]
     expect = torch.stack([ds.hf_dataset[m]["observation.state"] for m in mem + [t]])
     assert torch.allclose(raw, expect)
 
@@ -180,9 +203,15 @@ def _scripted_observations(T, seed=0):
     ref = run_expert_episode(COUNT, 0, "id")
     gen = torch.Generator().manual_seed(seed)
     for t in range(T):
-        yield t, {"observation.images.head": torch.rand(1, 3, 64, 64, generator=gen),
-                  "observation.state": torch.as_tensor(ref.states[t], dtype=torch.float32)[None],
-                  "task": [ref.sidecar["instruction"]]}, ref.states
+        yield (
+            t,
+            {
+                "observation.images.head": torch.rand(1, 3, 64, 64, generator=gen),
+                "observation.state": torch.as_tensor(ref.states[t], dtype=torch.float32)[None],
+                "task": [ref.sidecar["instruction"]],
+            },
+            ref.states,
+        )
 
 
 @pytest.mark.parametrize("memory", ["chunk", "motion", "none"])
@@ -209,8 +238,11 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
 def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, monkeypatch):
     _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="subtask")
     script = {0: (5, 6), 16: (5, 6), 32: (7,), 48: (8, 9), 64: (8, 9)}  # predicted subtask per chunk boundary
-    monkeypatch.setattr(policy, "predict_subtask_and_actions",
-                        lambda args, vision_cache=None: ([script[policy._t]], policy._encode(*args)[0]))
+    monkeypatch.setattr(
+        policy,
+        "predict_subtask_and_actions",
+        lambda args, vision_cache=None: ([script[policy._t]], policy._encode(*args)[0]),
+    )
     for t, obs, _ in _scripted_observations(70):
         policy.select_action(pre(obs))
     assert [e["t"] for e in policy._bank[0]] == [0, 32, 48]
@@ -221,15 +253,24 @@ def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, mo
 
 
 def test_subtask_memory_decodes_and_acts_from_one_pass(vlm, root):
-    _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="subtask", subtask_max_tokens=4)
+    _, policy, pre, _, _ = _setup(
+        vlm, root, memory="subtask", history=4, think="subtask", subtask_max_tokens=4
+    )
     policy.eval()
     _, obs, _ = next(_scripted_observations(1))
     batch = pre(obs)
     policy._start(batch)
     pixels, grid, valid, state, _ = policy._history_batch(batch)
     with torch.no_grad():
-        alone, _ = policy._encode(pixels, grid, valid, state, batch["observation.vlm.prefix_ids"],
-                                  batch["observation.vlm.prompt_ids"], batch["observation.vlm.prompt_mask"])
+        alone, _ = policy._encode(
+            pixels,
+            grid,
+            valid,
+            state,
+            batch["observation.vlm.prefix_ids"],
+            batch["observation.vlm.prompt_ids"],
+            batch["observation.vlm.prompt_mask"],
+        )
     action = policy.select_action(batch)
     assert torch.allclose(action, alone[:, 0], atol=1e-5)
     assert policy._subtask[0] is not None and len(policy._subtask[0]) <= 4  # decoded, within the budget
@@ -250,7 +291,14 @@ def test_backbone_matches_qwen3_vl_forward(vlm, root):
     with torch.no_grad():
         seq = policy._assemble(*_encode_args(batch))
         ours = policy._backbone(seq)[0].last_hidden_state
-        keys = ("inputs_embeds", "attention_mask", "position_ids", "pixel_values", "image_grid_thw", "mm_token_type_ids")
+        keys = (
+            "inputs_embeds",
+            "attention_mask",
+            "position_ids",
+            "pixel_values",
+            "image_grid_thw",
+            "mm_token_type_ids",
+        )
         ref = policy.vlm.model(input_ids=None, **{k: seq[k] for k in keys}).last_hidden_state
     real = seq["attention_mask"].bool()
     assert torch.allclose(ours[real], ref[real], atol=1e-5)
@@ -267,8 +315,15 @@ def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
         if t == 32:  # a full bank (frames 0 and 16): compare with encoding every image afresh
             pixels, grid, valid, state, _ = policy._history_batch(batch)
             with torch.no_grad():
-                fresh, _ = policy._encode(pixels, grid, valid, state, batch["observation.vlm.prefix_ids"],
-                                          batch["observation.vlm.prompt_ids"], batch["observation.vlm.prompt_mask"])
+                fresh, _ = policy._encode(
+                    pixels,
+                    grid,
+                    valid,
+                    state,
+                    batch["observation.vlm.prefix_ids"],
+                    batch["observation.vlm.prompt_ids"],
+                    batch["observation.vlm.prompt_mask"],
+                )
             seen.clear()
         action = policy.select_action(batch)
     assert seen == [1]  # only the current frame went through the vision tower
@@ -292,7 +347,9 @@ def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
 
 
 def test_cached_think_decoding_matches_re_encoding_the_whole_sequence(vlm, root):
-    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="subtask", subtask_max_tokens=6)
+    _, policy, pre, _, ds = _setup(
+        vlm, root, memory="chunk", history=4, think="subtask", subtask_max_tokens=6
+    )
     batch = _batch(ds, pre, [20, len(ds) - 40])  # 2 and 5 valid frames: sequences of different lengths
     assert batch["observation.vlm.frame_valid"].sum(1).tolist() == [2, 5]
     policy.eval()
@@ -340,11 +397,15 @@ def test_local_vlm_and_dataset_paths_are_stored_absolute(vlm, tmp_path, monkeypa
     monkeypatch.chdir(vlm.parent)
     cfg = ActiveArenaOFTConfig(vlm_path=vlm.name, dataset_root=".", device="cpu")
     assert cfg.vlm_path == str(vlm.resolve()) and cfg.dataset_root == str(vlm.parent.resolve())
-    monkeypatch.chdir(tmp_path)  # e.g. lerobot-eval started elsewhere: the saved config still points at the VLM
+    monkeypatch.chdir(
+        tmp_path
+    )  # e.g. lerobot-eval started elsewhere: the saved config still points at the VLM
     cfg.save_pretrained(tmp_path / "ckpt")
     reloaded = ActiveArenaOFTConfig.from_pretrained(tmp_path / "ckpt")
     assert reloaded.vlm_path == str(vlm.resolve())
-    assert ActiveArenaOFTConfig(device="cpu").vlm_path == "Qwen/Qwen3-VL-2B-Instruct"  # a Hub id stays as it is
+    assert (
+        ActiveArenaOFTConfig(device="cpu").vlm_path == "Qwen/Qwen3-VL-2B-Instruct"
+    )  # a Hub id stays as it is
 
 
 def test_a_missing_vlm_names_the_flag_and_the_fix(tmp_path):
@@ -355,10 +416,17 @@ def test_a_missing_vlm_names_the_flag_and_the_fix(tmp_path):
     empty = tmp_path / "empty"
     empty.mkdir()
     with pytest.raises(OSError, match="Qwen3-VL model from vlm_path"):
-        ActiveArenaOFTPolicy(ActiveArenaOFTConfig(vlm_path=str(empty), device="cpu", input_features={
-            "observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
-            "observation.state": PolicyFeature(FeatureType.STATE, (18,))},
-            output_features={"action": PolicyFeature(FeatureType.ACTION, (18,))}))
+        ActiveArenaOFTPolicy(
+            ActiveArenaOFTConfig(
+                vlm_path=str(empty),
+                device="cpu",
+                input_features={
+                    "observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
+                    "observation.state": PolicyFeature(FeatureType.STATE, (18,)),
+                },
+                output_features={"action": PolicyFeature(FeatureType.ACTION, (18,))},
+            )
+        )
 
 
 def test_the_2b_architecture_preset_has_the_real_models_size(tmp_path):
@@ -379,10 +447,20 @@ def test_the_2b_architecture_preset_has_the_real_models_size(tmp_path):
 
 def test_presets_match_the_papers_run_names():
     names = sorted(p.stem for p in CONFIGS.glob("oft_*.json"))
-    assert names == sorted(["oft_instruction_action_12_ws", "oft_no_action_12_ws", "oft_subtask_no_0_ws",
-                            "oft_subtask_action_12_wos", "oft_subtask_action_12_ws", "oft_subtask_action_6_ws",
-                            "oft_subtask_motion_12_ws", "oft_subtask_motion_6_ws", "oft_subtask_subtask_12_ws",
-                            "oft_subtask_subtask_6_ws"])
+    assert names == sorted(
+        [
+            "oft_instruction_action_12_ws",
+            "oft_no_action_12_ws",
+            "oft_subtask_no_0_ws",
+            "oft_subtask_action_12_wos",
+            "oft_subtask_action_12_ws",
+            "oft_subtask_action_6_ws",
+            "oft_subtask_motion_12_ws",
+            "oft_subtask_motion_6_ws",
+            "oft_subtask_subtask_12_ws",
+            "oft_subtask_subtask_6_ws",
+        ]
+    )
     memory_of = {"action": "chunk", "no": "none", "motion": "motion", "subtask": "subtask"}
     for name in names:
         _, think, history, k, state = name.split("_")
@@ -399,29 +477,68 @@ def test_presets_match_the_papers_run_names():
 
 def test_lerobot_train_then_lerobot_eval(vlm, root, tmp_path):
     train_dir = tmp_path / "train"
-    train = subprocess.run([
-        _exe("lerobot-train"), f"--config_path={CONFIGS / 'oft_subtask_action_6_ws.json'}",
-        f"--dataset.repo_id={REPO}", f"--dataset.root={root}", f"--policy.vlm_path={vlm}",
-        "--policy.device=cpu", "--policy.state_hidden=32", "--steps=2", "--batch_size=2", "--num_workers=0",
-        "--save_freq=2", "--log_freq=1", f"--output_dir={train_dir}"], capture_output=True, text=True, timeout=600)
+    train = subprocess.run(
+        [
+            _exe("lerobot-train"),
+            f"--config_path={CONFIGS / 'oft_subtask_action_6_ws.json'}",
+            f"--dataset.repo_id={REPO}",
+            f"--dataset.root={root}",
+            f"--policy.vlm_path={vlm}",
+            "--policy.device=cpu",
+            "--policy.state_hidden=32",
+            "--steps=2",
+            "--batch_size=2",
+            "--num_workers=0",
+            "--save_freq=2",
+            "--log_freq=1",
+            f"--output_dir={train_dir}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert train.returncode == 0, train.stderr[-3000:]
     assert "lm_loss" in train.stderr + train.stdout and "l1_loss" in train.stderr + train.stdout
     ckpt = train_dir / "checkpoints" / "last" / "pretrained_model"
     assert json.loads((ckpt / "config.json").read_text())["history"] == 6
     out = tmp_path / "eval"
-    ev = subprocess.run([
-        _exe("lerobot-eval"), f"--policy.path={ckpt}", "--env.type=activearena", "--env.task=click_bell_rotate_view",
-        "--eval.n_episodes=1", "--eval.batch_size=1", "--policy.device=cpu", f"--output_dir={out}",
-        f"--env.episode_log_dir={out / 'episodes'}"], capture_output=True, text=True, timeout=600)
+    ev = subprocess.run(
+        [
+            _exe("lerobot-eval"),
+            f"--policy.path={ckpt}",
+            "--env.type=activearena",
+            "--env.task=click_bell_rotate_view",
+            "--eval.n_episodes=1",
+            "--eval.batch_size=1",
+            "--policy.device=cpu",
+            f"--output_dir={out}",
+            f"--env.episode_log_dir={out / 'episodes'}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert ev.returncode == 0, ev.stderr[-3000:]
     info = json.loads((out / "eval_info.json").read_text())
     assert info["overall"]["n_episodes"] == 1
     assert list(out.glob("videos/*/*.mp4"))
     # the same checkpoint through activearena-eval's shards plays the same episode step for step
     run = tmp_path / "protocol"
-    ours = subprocess.run([
-        _exe("activearena-eval"), f"--policy.path={ckpt}", "--policy.device=cpu", "--tasks=click_bell_rotate_view",
-        "--splits=id", "--episodes=1", "--videos=0", f"--out={run}"], capture_output=True, text=True, timeout=600)
+    ours = subprocess.run(
+        [
+            _exe("activearena-eval"),
+            f"--policy.path={ckpt}",
+            "--policy.device=cpu",
+            "--tasks=click_bell_rotate_view",
+            "--splits=id",
+            "--episodes=1",
+            "--videos=0",
+            f"--out={run}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert ours.returncode == 0, ours.stderr[-3000:]
     theirs = json.loads(next((out / "episodes").glob("*.jsonl")).read_text().splitlines()[0])
     mine = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
@@ -472,9 +589,21 @@ def test_two_process_ddp_keeps_the_replicas_identical(vlm, root, tmp_path):
     the CPU, two fresh processes from torchrun): each process sees different samples, the
     all-reduced gradients keep both replicas equal."""
     out = tmp_path / "ddp.pt"
-    run = subprocess.run([
-        _exe("torchrun"), "--nproc_per_node=2", "--master_port=29532", str(Path(__file__).with_name("ddp_two_steps.py")),
-        str(vlm), str(root), REPO, str(out)], capture_output=True, text=True, timeout=600)
+    run = subprocess.run(
+        [
+            _exe("torchrun"),
+            "--nproc_per_node=2",
+            "--master_port=29532",
+            str(Path(__file__).with_name("ddp_two_steps.py")),
+            str(vlm),
+            str(root),
+            REPO,
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert run.returncode == 0, run.stderr[-3000:]
     res = torch.load(out)
     after, losses = res["after"], res["losses"]
@@ -486,12 +615,29 @@ def test_two_process_ddp_keeps_the_replicas_identical(vlm, root, tmp_path):
 @pytest.mark.slow
 def test_lerobot_train_runs_a_preset_on_two_processes(vlm, root, tmp_path):
     out = tmp_path / "train"
-    run = subprocess.run([
-        _exe("torchrun"), "--nproc_per_node=2", "--master_port=29531", _exe("lerobot-train"),
-        f"--config_path={CONFIGS / 'oft_subtask_action_6_ws.json'}", f"--dataset.repo_id={REPO}",
-        f"--dataset.root={root}", f"--policy.vlm_path={vlm}", "--policy.device=cpu", "--policy.state_hidden=32",
-        "--steps=2", "--batch_size=2", "--num_workers=0", "--save_freq=2", "--log_freq=1", f"--output_dir={out}"],
-        capture_output=True, text=True, timeout=900)
+    run = subprocess.run(
+        [
+            _exe("torchrun"),
+            "--nproc_per_node=2",
+            "--master_port=29531",
+            _exe("lerobot-train"),
+            f"--config_path={CONFIGS / 'oft_subtask_action_6_ws.json'}",
+            f"--dataset.repo_id={REPO}",
+            f"--dataset.root={root}",
+            f"--policy.vlm_path={vlm}",
+            "--policy.device=cpu",
+            "--policy.state_hidden=32",
+            "--steps=2",
+            "--batch_size=2",
+            "--num_workers=0",
+            "--save_freq=2",
+            "--log_freq=1",
+            f"--output_dir={out}",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     assert run.returncode == 0, run.stderr[-3000:]
     assert "Effective batch size: 2 x 2 = 4" in run.stdout + run.stderr  # two processes, one replica each
     assert (out / "checkpoints" / "last" / "pretrained_model" / "model.safetensors").exists()

@@ -12,8 +12,10 @@ from lerobot_activearena.eval.report import chunk_jump_deg, mean_chunk_jump
 def _run(root, split, results, failures):
     """results: {(category, task): [success, ...]}; failures: failure states of failed episodes in order."""
     root.mkdir(parents=True)
-    per_task = [{"task_group": c, "task_id": t, "metrics": {"successes": s, "video_paths": [f"videos/{t}_0.mp4"]}}
-                for (c, t), s in results.items()]
+    per_task = [
+        {"task_group": c, "task_id": t, "metrics": {"successes": s, "video_paths": [f"videos/{t}_0.mp4"]}}
+        for (c, t), s in results.items()
+    ]
     (root / "eval_info.json").write_text(json.dumps({"per_task": per_task, "overall": {}}))
     (root / "episodes").mkdir()
     fails = iter(failures)
@@ -22,8 +24,19 @@ def _run(root, split, results, failures):
         for k, s in enumerate(succ):
             # the torso target steps by 2 deg at both chunk boundaries (t = 16, 32)
             targets = [[float(np.radians(2.0 * (t >= 16) + 2.0 * (t >= 32))), 1.0] for t in range(40)]
-            lines.append(json.dumps({"task": t, "category": c, "split": split, "episode": k, "success": s,
-                                     "failure_state": "" if s else next(fails), "view_targets": targets}))
+            lines.append(
+                json.dumps(
+                    {
+                        "task": t,
+                        "category": c,
+                        "split": split,
+                        "episode": k,
+                        "success": s,
+                        "failure_state": "" if s else next(fails),
+                        "view_targets": targets,
+                    }
+                )
+            )
     (root / "episodes" / "log.jsonl").write_text("\n".join(lines))
     return root
 
@@ -47,16 +60,21 @@ def test_chunk_jump_is_the_mean_over_episodes_of_the_episode_medians():
     b[16:, 0] = np.radians(6.0)
     b[32:, 0] += np.radians(6.0)  # torso 6, 6 -> median 6
     short = np.zeros((5, 2))  # no boundary: left out of the mean
-    torso, head = mean_chunk_jump([{"view_targets": a.tolist()}, {"view_targets": b.tolist()},
-                                   {"view_targets": short.tolist()}])
+    torso, head = mean_chunk_jump(
+        [{"view_targets": a.tolist()}, {"view_targets": b.tolist()}, {"view_targets": short.tolist()}]
+    )
     assert torso == pytest.approx((1.0 + 6.0) / 2) and head == pytest.approx(0.0)
 
 
 def test_report_tables_match_hand_computed_values(tmp_path):
-    res_id = {("SS", "click_bell_rotate_view"): [True, True, False, True],
-              ("MD", "count_target_press_button"): [True, False, False, False]}
-    res_ood = {("SS", "click_bell_rotate_view"): [True, False, False, False],
-               ("MD", "count_target_press_button"): [False, False, False, False]}
+    res_id = {
+        ("SS", "click_bell_rotate_view"): [True, True, False, True],
+        ("MD", "count_target_press_button"): [True, False, False, False],
+    }
+    res_ood = {
+        ("SS", "click_bell_rotate_view"): [True, False, False, False],
+        ("MD", "count_target_press_button"): [False, False, False, False],
+    }
     a = _run(tmp_path / "a", "id", res_id, ["DM", "CO", "DM", "CR"])
     b = _run(tmp_path / "b", "ood", res_ood, ["DM"] * 3 + ["CO"] * 4)
     main([f"oracle={a}", f"oracle={b}", "--out", str(tmp_path / "rep")])
@@ -72,7 +90,10 @@ def test_report_tables_match_hand_computed_values(tmp_path):
     assert float(id_row["head chunk jump (deg)"]) == pytest.approx(0.0)
     per_task = (tmp_path / "rep" / "per_task.csv").read_text().splitlines()
     assert per_task[0] == "category,task,oracle ID,oracle OOD"
-    assert per_task[1] == "SS,click_bell_rotate_view,75.0,25.0" and per_task[2] == "MD,count_target_press_button,25.0,0.0"
+    assert (
+        per_task[1] == "SS,click_bell_rotate_view,75.0,25.0"
+        and per_task[2] == "MD,count_target_press_button,25.0,0.0"
+    )
     md = (tmp_path / "rep" / "report.md").read_text()
     assert "| oracle |" in md and "leaderboard.png" in md and "click_bell_rotate_view_0.mp4" in md
     assert (tmp_path / "rep" / "leaderboard.png").stat().st_size > 1000

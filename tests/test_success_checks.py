@@ -22,8 +22,8 @@ def _sim(task_name, seed=0, split="id"):
 def _set_free_pose(sim, body, pos, quat=(1, 0, 0, 0)):
     j = sim.model.body(body).jntadr[0]
     adr = sim.model.jnt_qposadr[j]
-    sim.data.qpos[adr:adr + 7] = [*pos, *quat]
-    sim.data.qvel[sim.model.jnt_dofadr[j]:sim.model.jnt_dofadr[j] + 6] = 0
+    sim.data.qpos[adr : adr + 7] = [*pos, *quat]
+    sim.data.qvel[sim.model.jnt_dofadr[j] : sim.model.jnt_dofadr[j] + 6] = 0
 
 
 def test_a_plunger_dip_without_the_left_gripper_is_not_a_press():
@@ -51,7 +51,11 @@ def test_a_knocked_over_bell_ends_the_episode_with_a_reason():
         if terminated:
             break
     assert terminated and not info["is_success"] and reward == 0.0
-    assert info["failure_reason"] == "the bell was knocked over" and info["failure_state"] in ("DM", "CO", "CR")
+    assert info["failure_reason"] == "the bell was knocked over" and info["failure_state"] in (
+        "DM",
+        "CO",
+        "CR",
+    )
     env.close()
 
 
@@ -76,13 +80,20 @@ def test_a_placed_cup_succeeds_only_after_resting_for_the_stable_frames():
     for _ in range(STABLE_FRAMES + 4):
         sim.step(home)
         reported.append(mon.update())
-    assert mon.checks == {"saw_task_objects": True, "cup_on_coaster": True, "cup_upright": True, "cup_released": True}
+    assert mon.checks == {
+        "saw_task_objects": True,
+        "cup_on_coaster": True,
+        "cup_upright": True,
+        "cup_released": True,
+    }
     assert reported.index(True) == STABLE_FRAMES - 1, reported
 
 
 def test_a_placed_cup_the_camera_never_saw_is_not_a_success():
     task, scene, sim, mon = _sim("place_empty_cup_rotate_view", 2)
-    _set_free_pose(sim, "cup", sim.data.body("coaster").xpos + [0, 0, scene.obj("coaster").extra["top"] + 0.001])
+    _set_free_pose(
+        sim, "cup", sim.data.body("coaster").xpos + [0, 0, scene.obj("coaster").extra["top"] + 0.001]
+    )
     for _ in range(STABLE_FRAMES + 4):
         sim.step(sim.home_action())
         assert not mon.update()
@@ -93,7 +104,12 @@ def test_a_tipped_cup_on_the_coaster_is_not_placed():
     task, scene, sim, mon = _sim("place_empty_cup_rotate_view", 2)
     top = scene.obj("coaster").extra["top"]
     tilt = np.radians(40) / 2
-    _set_free_pose(sim, "cup", sim.data.body("coaster").xpos + [0, 0, top + 0.03], quat=(np.cos(tilt), np.sin(tilt), 0, 0))
+    _set_free_pose(
+        sim,
+        "cup",
+        sim.data.body("coaster").xpos + [0, 0, top + 0.03],
+        quat=(np.cos(tilt), np.sin(tilt), 0, 0),
+    )
     for _ in range(STABLE_FRAMES + 4):
         sim.step(sim.home_action())
         assert not mon.update()
@@ -110,8 +126,9 @@ def test_a_task_object_off_the_table_ends_the_episode():
 def test_the_expert_that_cannot_look_around_fails_its_episode_not_the_run():
     """--env.fixed_view=true with the expert channel: the expert never finds what it needs; the
     episode ends as a failure (DM), the env keeps working."""
-    env = ActiveArenaEnv("count_target_press_button", split="id", fixed_view=True, expert_channel=True,
-                         render_pixels=False)
+    env = ActiveArenaEnv(
+        "count_target_press_button", split="id", fixed_view=True, expert_channel=True, render_pixels=False
+    )
     obs, _ = env.reset(seed=env.seed_base)
     for _ in range(env._max_episode_steps):
         obs, reward, terminated, truncated, info = env.step(obs["environment_state"])
@@ -128,9 +145,8 @@ def test_subtask_marker_follows_declaration_order():
     ctx.n_subtasks, ctx.intent = 2, type("I", (), {"subtask": 1})()
     with ctx.subtask(2):
         assert ctx.intent.subtask == 2
-    with pytest.raises(ValueError, match="subtask 3 is not declared"):
-        with ctx.subtask(3):
-            pass
+    with pytest.raises(ValueError, match="subtask 3 is not declared"), ctx.subtask(3):
+        pass
 
 
 def test_an_expert_that_crashes_fails_its_episode_in_the_env_not_the_run(monkeypatch, caplog):
@@ -141,7 +157,9 @@ def test_an_expert_that_crashes_fails_its_episode_in_the_env_not_the_run(monkeyp
         raise IndexError("a bug in a task script")
 
     monkeypatch.setattr(ClickBellRotateView, "expert", broken)
-    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False, expert_channel=True, render_pixels=False)
+    env = ActiveArenaEnv(
+        "click_bell_rotate_view", use_manifest=False, expert_channel=True, render_pixels=False
+    )
     obs, _ = env.reset(seed=2)
     for _ in range(3):
         obs, *_ = env.step(obs["environment_state"])

@@ -18,8 +18,10 @@ TASKS = task_names("all")
 
 
 def _layout(scene):
-    return {o.name: np.round(np.asarray(scene.model.body(o.body).pos), 6).tolist()
-            for o in scene.info.objects + scene.info.clutter}
+    return {
+        o.name: np.round(np.asarray(scene.model.body(o.body).pos), 6).tolist()
+        for o in scene.info.objects + scene.info.clutter
+    }
 
 
 @pytest.mark.parametrize("name", TASKS)

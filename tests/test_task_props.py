@@ -3,7 +3,12 @@
 import mujoco
 import numpy as np
 
-from lerobot_activearena.sim.assets.task_props import (BUTTON_PRESSED, BUTTON_RESET, add_patch_block, digit_image)
+from lerobot_activearena.sim.assets.task_props import (
+    BUTTON_PRESSED,
+    BUTTON_RESET,
+    add_patch_block,
+    digit_image,
+)
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 

@@ -7,9 +7,9 @@ import pytest
 
 from lerobot_activearena.sim.assets import ASSETS
 from lerobot_activearena.tasks import TASKS, get_task, task_names
+from lerobot_activearena.tasks.base import TaskScene
 from lerobot_activearena.tasks.draft import SceneDraft
 from lerobot_activearena.tasks.sampling import derived_rng, principle_violations, sample_scene
-from lerobot_activearena.tasks.base import TaskScene
 
 FIRST_FIVE = {
     "click_bell_rotate_view": ("SS", "Press the bell's top center using the left arm."),
@@ -27,14 +27,24 @@ def test_registry_has_the_paper_tasks_with_categories_and_instructions():
         assert (t.category, t.instruction) == (cat, instr)
         assert [s.id for s in t.subtasks] == list(range(1, len(t.subtasks) + 1))
     limits = {n: get_task(n).max_episode_steps for n in FIRST_FIVE}  # the paper's release
-    assert limits == {"click_bell_rotate_view": 137, "place_empty_cup_rotate_view": 199,
-                      "blocks_ranking_rgb_rotate_view": 351, "count_target_press_button": 152, "check_block_color": 296}
+    assert limits == {
+        "click_bell_rotate_view": 137,
+        "place_empty_cup_rotate_view": 199,
+        "blocks_ranking_rgb_rotate_view": 351,
+        "count_target_press_button": 152,
+        "check_block_color": 296,
+    }
 
 
 def test_task_selectors():
-    assert "click_bell_rotate_view" in task_names("SS") and all(get_task(n).category == "SS" for n in task_names("SS"))
+    assert "click_bell_rotate_view" in task_names("SS") and all(
+        get_task(n).category == "SS" for n in task_names("SS")
+    )
     assert set(task_names("all")) == set(TASKS)
-    assert task_names("check_block_color,click_bell_rotate_view,IA")[:2] == ["check_block_color", "click_bell_rotate_view"]
+    assert task_names("check_block_color,click_bell_rotate_view,IA")[:2] == [
+        "check_block_color",
+        "click_bell_rotate_view",
+    ]
     with pytest.raises(ValueError, match="unknown task selector 'nope'"):
         task_names("nope")
     with pytest.raises(ValueError, match="unknown ActiveArena task"):
@@ -42,8 +52,10 @@ def test_task_selectors():
 
 
 def _layout(scene):
-    return {o.name: np.round(np.asarray(scene.model.body(o.body).pos), 6).tolist()
-            for o in scene.info.objects + scene.info.clutter}
+    return {
+        o.name: np.round(np.asarray(scene.model.body(o.body).pos), 6).tolist()
+        for o in scene.info.objects + scene.info.clutter
+    }
 
 
 def test_same_seed_same_scene_and_different_seed_different_scene():
@@ -76,7 +88,9 @@ def _look(scene):
     light = m.light("key_light")
     floor = np.ravel(m.mat_texrepeat[int(np.ravel(m.geom("floor").matid)[0])])
     table = m.geom_rgba[np.flatnonzero(m.geom_bodyid == m.body("fan_level_0").id)[0]]
-    tex = m.tex_data[m.tex_adr[m.tex("floor_checker").id]: m.tex_adr[m.tex("floor_checker").id] + 6].astype(float)
+    tex = m.tex_data[m.tex_adr[m.tex("floor_checker").id] : m.tex_adr[m.tex("floor_checker").id] + 6].astype(
+        float
+    )
     return np.concatenate([np.ravel(light.diffuse), np.ravel(light.dir), floor, np.ravel(table), tex])
 
 
@@ -105,9 +119,13 @@ def test_check_block_color_patch_faces_away_at_reset():
 def test_principle_check_rejects_an_object_out_of_reach():
     task = get_task("click_bell_rotate_view")
     draft = SceneDraft("id", derived_rng(task.name, 0, "id", 0))
-    draft.place("bell", "bell", "bell", r=0.95, angle=30.0, arms=("left",))  # hidden, but far beyond the left arm
+    draft.place(
+        "bell", "bell", "bell", r=0.95, angle=30.0, arms=("left",)
+    )  # hidden, but far beyond the left arm
     model, info = draft.builder.compile()
-    scene = TaskScene(task.name, 0, "id", 0, model, info, ["bell"], ["bell"], search_targets=[0], reach={"bell": ("left",)})
+    scene = TaskScene(
+        task.name, 0, "id", 0, model, info, ["bell"], ["bell"], search_targets=[0], reach={"bell": ("left",)}
+    )
     assert principle_violations(task, scene) == ["bell is out of reach of the left arm"]
 
 
@@ -132,7 +150,9 @@ def test_home_view_is_symmetric_about_the_torso_heading():
     for r in (0.35, 0.45, 0.7):
         for off in (10.0, 30.0, 45.0, 60.0):
             a, b = np.radians(90 + off), np.radians(90 - off)
-            assert in_home_view((r * np.cos(a), r * np.sin(a)), 0.0) == in_home_view((r * np.cos(b), r * np.sin(b)), 0.0)
+            assert in_home_view((r * np.cos(a), r * np.sin(a)), 0.0) == in_home_view(
+                (r * np.cos(b), r * np.sin(b)), 0.0
+            )
 
 
 def test_task_modules_are_discovered_without_a_list():

@@ -7,9 +7,18 @@ import json
 import pytest
 
 from lerobot_activearena.cli.validity import main as validity_main
-from lerobot_activearena.eval.validity import (ADVERSARIES, LOOK_AT_NOTHING, VALIDITY_SEED_BASE, check_outside_manifests,
-                                               run_episode, run_suite, summarise, targets_met, write_report)
 from lerobot_activearena.envs.manifests import EVAL_SEED_START
+from lerobot_activearena.eval.validity import (
+    ADVERSARIES,
+    LOOK_AT_NOTHING,
+    VALIDITY_SEED_BASE,
+    check_outside_manifests,
+    run_episode,
+    run_suite,
+    summarise,
+    targets_met,
+    write_report,
+)
 from lerobot_activearena.tasks import task_names
 
 TASKS = task_names("all")

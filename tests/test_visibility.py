@@ -69,10 +69,12 @@ def test_object_occluded_behind_a_box_is_not_visible():
     probe = _sim([])
     ball = _ray_point(probe, 256, 192, 0.5)
     wall = _ray_point(probe, 256, 192, 0.3)
-    sim = _sim([
-        ("ball", "ball", ball - [0, 0, 0.03], {"radius": 0.03}),
-        ("block", "wall", wall - [0, 0, 0.1], {"half": (0.12, 0.12, 0.1)}),
-    ])
+    sim = _sim(
+        [
+            ("ball", "ball", ball - [0, 0, 0.03], {"radius": 0.03}),
+            ("block", "wall", wall - [0, 0, 0.1], {"half": (0.12, 0.12, 0.1)}),
+        ]
+    )
     visible, frac, in_img, unocc, _ = _vis(sim, "ball")
     assert in_img == pytest.approx(1.0) and unocc < 0.05 and not visible
     assert _vis(sim, "wall")[0]

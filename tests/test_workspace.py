@@ -10,13 +10,21 @@ def test_fan_dimensions_and_cylindrical_placement():
     ws = fan_workspace()
     lv = ws.level(0)
     assert (lv.inner_radius, lv.outer_radius, lv.span_deg, lv.center_deg, lv.top_z, lv.thickness) == (
-        0.30, 1.08, 180.0, 90.0, 0.74, 0.05)
+        0.30,
+        1.08,
+        180.0,
+        90.0,
+        0.74,
+        0.05,
+    )
     assert ws.placement_span_deg(0) == (20.0, 160.0)
     np.testing.assert_allclose(ws.place(0.5, 90.0), [0.0, 0.5, 0.74], atol=1e-12)
     np.testing.assert_allclose(ws.place(1.0, 30.0), [np.cos(np.pi / 6), 0.5, 0.74], atol=1e-12)
 
 
-@pytest.mark.parametrize("args, msg", [((0.2, 90.0), "radius"), ((0.5, 10.0), "margin"), ((0.5, 90.0, 1), "level 1")])
+@pytest.mark.parametrize(
+    "args, msg", [((0.2, 90.0), "radius"), ((0.5, 10.0), "margin"), ((0.5, 90.0, 1), "level 1")]
+)
 def test_placement_errors_name_the_problem(args, msg):
     with pytest.raises(ValueError, match=msg):
         fan_workspace().place(*args)

@@ -51,7 +51,7 @@ def gripper_events(gripper) -> list[int]:
     cls = np.where(g <= GRIPPER_CLOSED, 0, np.where(g >= GRIPPER_OPEN, 2, 1))
     events, confirmed = [], (cls[0] if len(cls) else None)
     for t in range(GRIPPER_CONFIRM - 1, len(cls)):
-        window = cls[t - GRIPPER_CONFIRM + 1: t + 1]
+        window = cls[t - GRIPPER_CONFIRM + 1 : t + 1]
         if (window == cls[t]).all() and cls[t] != confirmed:
             confirmed = cls[t]
             events.append(t)
@@ -135,7 +135,7 @@ def memory_view(t: int, keyframes, H: int = 12) -> list[int]:
     if H < 0:
         raise ValueError(f"H must be >= 0, got {H}")
     kept = np.flatnonzero(np.asarray(keyframes)[:t])
-    return [int(i) for i in kept[len(kept) - H:]] if H else []
+    return [int(i) for i in kept[len(kept) - H :]] if H else []
 
 
 def stride_sequence(x: int, stride: int = STRIDE, history: int | None = None) -> list[int]:
@@ -143,7 +143,7 @@ def stride_sequence(x: int, stride: int = STRIDE, history: int | None = None) ->
     if x < 0:
         raise ValueError(f"frame index must be >= 0, got {x}")
     seq = list(range(x % stride, x + 1, stride))
-    return seq if history is None else seq[-(history + 1):]
+    return seq if history is None else seq[-(history + 1) :]
 
 
 def retrieval_positions(frames, subtask_keyframes_seen, stride: int = STRIDE) -> list[int]:

@@ -85,7 +85,14 @@ class AnnotationRecorder:
             out[k] = np.asarray(rec[k], dtype=dtype)
         key = (intent.subtask, intent.stage, f)
         if key != self._last_key:
-            self.transitions.append({"frame": t, "subtask": intent.subtask, "stage": int(intent.stage),
-                                     "stage_name": STAGE_NAMES[intent.stage], "focus_object_idx": int(f)})
+            self.transitions.append(
+                {
+                    "frame": t,
+                    "subtask": intent.subtask,
+                    "stage": int(intent.stage),
+                    "stage_name": STAGE_NAMES[intent.stage],
+                    "focus_object_idx": int(f),
+                }
+            )
             self._last_key = key
         return out

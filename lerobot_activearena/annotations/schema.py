@@ -12,7 +12,12 @@ CAMERA_HOLD = 0  # head and torso hold their targets (arm actions, idle)
 CAMERA_SEARCH = 1  # sweeping sectors for an object not yet seen
 CAMERA_CENTER = 2  # turning to centre / face a located object
 CAMERA_INSPECT = 3  # looking at a carried object to read hidden information
-CAMERA_MODE_NAMES = {CAMERA_HOLD: "hold", CAMERA_SEARCH: "search", CAMERA_CENTER: "center", CAMERA_INSPECT: "inspect"}
+CAMERA_MODE_NAMES = {
+    CAMERA_HOLD: "hold",
+    CAMERA_SEARCH: "search",
+    CAMERA_CENTER: "center",
+    CAMERA_INSPECT: "inspect",
+}
 
 # field -> (numpy dtype, shape; "N" = number of registered task objects)
 FRAME_FIELDS: dict[str, tuple[type, tuple]] = {

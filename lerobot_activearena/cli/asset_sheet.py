@@ -21,8 +21,9 @@ from ..sim.simulator import ActiveArenaSim
 THUMB = (256, 192)
 
 
-def render_category(category: str, seed: int = 0, distance: float = 0.5, zoom: float = 1.0,
-                    randomize: bool = True) -> np.ndarray:
+def render_category(
+    category: str, seed: int = 0, distance: float = 0.5, zoom: float = 1.0, randomize: bool = True
+) -> np.ndarray:
     """Head-camera view of one object ``distance`` m straight ahead, cropped (THUMB / zoom) around
     its projected bounding box and resized to THUMB."""
     b = SceneBuilder()
@@ -35,11 +36,15 @@ def render_category(category: str, seed: int = 0, distance: float = 0.5, zoom: f
     img = sim.render_head()
     uv = sim.visibility().uv_norm[0]
     sim.close()
-    u, v = (uv * (HEAD_WIDTH, HEAD_HEIGHT)).astype(int) if uv[0] >= 0 else (HEAD_WIDTH // 2, HEAD_HEIGHT * 2 // 5)
+    u, v = (
+        (uv * (HEAD_WIDTH, HEAD_HEIGHT)).astype(int)
+        if uv[0] >= 0
+        else (HEAD_WIDTH // 2, HEAD_HEIGHT * 2 // 5)
+    )
     w, h = int(THUMB[0] / zoom), int(THUMB[1] / zoom)
     x0 = int(np.clip(u - w // 2, 0, HEAD_WIDTH - w))
     y0 = int(np.clip(v - h // 2, 0, HEAD_HEIGHT - h))
-    crop = Image.fromarray(img[y0:y0 + h, x0:x0 + w])
+    crop = Image.fromarray(img[y0 : y0 + h, x0 : x0 + w])
     return np.asarray(crop.resize(THUMB, Image.NEAREST))
 
 
@@ -60,12 +65,18 @@ def contact_sheet(cats: list[str], columns: int = 8, **render_kw) -> Image.Image
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--categories", default="all", help="comma list of categories, or 'all', 'task', 'distractor'")
+    p.add_argument(
+        "--categories", default="all", help="comma list of categories, or 'all', 'task', 'distractor'"
+    )
     p.add_argument("--out", type=Path, default=Path("outputs/assets.png"))
     p.add_argument("--columns", type=int, default=8)
     p.add_argument("--seed", type=int, default=0, help="attribute randomisation seed")
-    p.add_argument("--default-look", action="store_true", help="builder defaults instead of randomised attributes")
-    p.add_argument("--distance", type=float, default=0.5, help="object distance from the robot base (0.35-1.0 m)")
+    p.add_argument(
+        "--default-look", action="store_true", help="builder defaults instead of randomised attributes"
+    )
+    p.add_argument(
+        "--distance", type=float, default=0.5, help="object distance from the robot base (0.35-1.0 m)"
+    )
     p.add_argument("--zoom", type=float, default=1.0, help="enlarge the crop around each object (>= 1)")
     args = p.parse_args(argv)
     if args.categories in ("all", "task", "distractor"):
@@ -77,8 +88,14 @@ def main(argv: list[str] | None = None) -> None:
             raise SystemExit(f"unknown categories {unknown}; known: {sorted(ASSETS)}")
     if args.zoom < 1.0:
         raise SystemExit("--zoom must be >= 1")
-    sheet = contact_sheet(cats, args.columns, seed=args.seed, distance=args.distance, zoom=args.zoom,
-                          randomize=not args.default_look)
+    sheet = contact_sheet(
+        cats,
+        args.columns,
+        seed=args.seed,
+        distance=args.distance,
+        zoom=args.zoom,
+        randomize=not args.default_look,
+    )
     args.out.parent.mkdir(parents=True, exist_ok=True)
     sheet.save(args.out)
     print(f"wrote {args.out} ({len(cats)} categories)")

@@ -29,7 +29,16 @@ from ..envs.configs import ActiveArenaEnvConfig
 from ..eval.protocol import uses_expert_channel
 from .args import int_ranges
 
-RESERVED_ENV = {"type", "task", "split", "fixed_view", "seed_base", "expert_channel", "episode_log_dir", "use_manifest"}
+RESERVED_ENV = {
+    "type",
+    "task",
+    "split",
+    "fixed_view",
+    "seed_base",
+    "expert_channel",
+    "episode_log_dir",
+    "use_manifest",
+}
 
 
 @dataclass
@@ -47,24 +56,30 @@ def parse_policy(policy_args: list[str]):
     path = next((a.split("=", 1)[1] for a in policy_args if a.startswith("--policy.path=")), None)
     rest = [a for a in policy_args if not a.startswith("--policy.path=")]
     if path:
-        cfg = PreTrainedConfig.from_pretrained(path, cli_overrides=[a.replace("--policy.", "--", 1) for a in rest])
+        cfg = PreTrainedConfig.from_pretrained(
+            path, cli_overrides=[a.replace("--policy.", "--", 1) for a in rest]
+        )
         cfg.pretrained_path = Path(path)
         return cfg, path
     if not any(a.startswith("--policy.type=") for a in rest):
-        raise ValueError("give the policy as in lerobot-eval: --policy.path=<checkpoint folder or Hub id>, or "
-                         "--policy.type=<type> (e.g. activearena_expert) for one built from scratch")
+        raise ValueError(
+            "give the policy as in lerobot-eval: --policy.path=<checkpoint folder or Hub id>, or "
+            "--policy.type=<type> (e.g. activearena_expert) for one built from scratch"
+        )
     return draccus.parse(_PolicyArgs, args=rest).policy, None
 
 
 def parse_env(env_args: list[str]) -> dict:
     """Further ActiveArenaEnvConfig options from ``--env.*`` (those the protocol does not set itself)."""
     for a in env_args:
-        key = a[len("--env."):].split("=", 1)[0]
+        key = a[len("--env.") :].split("=", 1)[0]
         if key in RESERVED_ENV:
-            raise ValueError(f"{a}: activearena-eval sets env.{key} itself; use --tasks, --splits, --fixed-view "
-                             "or a --config_path file instead")
+            raise ValueError(
+                f"{a}: activearena-eval sets env.{key} itself; use --tasks, --splits, --fixed-view "
+                "or a --config_path file instead"
+            )
     env = draccus.parse(_EnvArgs, args=env_args).env
-    given = {a[len("--env."):].split("=", 1)[0] for a in env_args}
+    given = {a[len("--env.") :].split("=", 1)[0] for a in env_args}
     return {k: getattr(env, k) for k in sorted(given)}
 
 
@@ -75,14 +90,23 @@ def config_file_defaults(paths: list[Path]) -> dict:
     splits: list[str] = []
     for path in paths:
         if not Path(path).is_file():
-            raise FileNotFoundError(f"--config_path {path} not found (the protocol's files are in configs/env/)")
+            raise FileNotFoundError(
+                f"--config_path {path} not found (the protocol's files are in configs/env/)"
+            )
         d = json.loads(Path(path).read_text())
         env, ev = d.get("env", {}), d.get("eval", {})
         if env.get("type") != "activearena":
-            raise ValueError(f"{path}: env.type is {env.get('type')!r}; activearena-eval runs activearena configs")
-        vals = {"tasks": env.get("task", "all"), "fixed_view": bool(env.get("fixed_view", False)),
-                "episodes": ev.get("n_episodes"), "batch_size": ev.get("batch_size"),
-                "async_envs": ev.get("use_async_envs"), "seed_base": d.get("seed", 1000)}
+            raise ValueError(
+                f"{path}: env.type is {env.get('type')!r}; activearena-eval runs activearena configs"
+            )
+        vals = {
+            "tasks": env.get("task", "all"),
+            "fixed_view": bool(env.get("fixed_view", False)),
+            "episodes": ev.get("n_episodes"),
+            "batch_size": ev.get("batch_size"),
+            "async_envs": ev.get("use_async_envs"),
+            "seed_base": d.get("seed", 1000),
+        }
         for k, v in vals.items():
             if v is None:
                 continue
@@ -103,47 +127,87 @@ def check_features(cfg, env_options: dict, fixed_view: bool) -> None:
 
     if not cfg.input_features and not cfg.output_features:
         return  # built from scratch: make_policy fills them from the env
-    env_cfg = ActiveArenaEnvConfig(fixed_view=fixed_view, expert_channel=uses_expert_channel(cfg.type),
-                                   **env_options)
+    env_cfg = ActiveArenaEnvConfig(
+        fixed_view=fixed_view, expert_channel=uses_expert_channel(cfg.type), **env_options
+    )
     provided = env_to_policy_features(env_cfg)
     problems = []
-    acted = {k: v for k, v in cfg.output_features.items() if k == ACTION}  # other outputs are training targets
+    acted = {
+        k: v for k, v in cfg.output_features.items() if k == ACTION
+    }  # other outputs are training targets
     for key, feat in {**cfg.input_features, **acted}.items():
         have = provided.get(key)
         if have is None:
             problems.append(f"{key} {tuple(feat.shape)} is not provided")
         elif tuple(have.shape) != tuple(feat.shape):
-            problems.append(f"{key} has shape {tuple(have.shape)} in the env, {tuple(feat.shape)} in the policy")
+            problems.append(
+                f"{key} has shape {tuple(have.shape)} in the env, {tuple(feat.shape)} in the policy"
+            )
     if problems:
         env_list = ", ".join(f"{k} {tuple(v.shape)}" for k, v in provided.items())
-        raise ValueError("the policy's features do not match the activearena env: " + "; ".join(problems)
-                         + f". The env provides {env_list}. Train the policy on an ActiveArena dataset "
-                         "(activearena-build-dataset) or evaluate it on the env it was trained for")
+        raise ValueError(
+            "the policy's features do not match the activearena env: "
+            + "; ".join(problems)
+            + f". The env provides {env_list}. Train the policy on an ActiveArena dataset "
+            "(activearena-build-dataset) or evaluate it on the env it was trained for"
+        )
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="activearena-eval", description=__doc__.split("\n\n")[0],
-                                epilog="--policy.<option>=... and --env.<option>=... are passed on as in lerobot-eval",
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--config_path", action="append", type=Path, default=[],
-                   help="a lerobot-eval config of configs/env/ (repeatable: their splits are combined)")
-    p.add_argument("--tasks", default=None, help="task name, category (SS/SL/ML/MD/IA), 'all', or a comma list (default all)")
+    p = argparse.ArgumentParser(
+        prog="activearena-eval",
+        description=__doc__.split("\n\n")[0],
+        epilog="--policy.<option>=... and --env.<option>=... are passed on as in lerobot-eval",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument(
+        "--config_path",
+        action="append",
+        type=Path,
+        default=[],
+        help="a lerobot-eval config of configs/env/ (repeatable: their splits are combined)",
+    )
+    p.add_argument(
+        "--tasks",
+        default=None,
+        help="task name, category (SS/SL/ML/MD/IA), 'all', or a comma list (default all)",
+    )
     p.add_argument("--splits", default=None, help="comma list of id, ood (default id,ood)")
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--episodes", type=int, default=None, help="the first N manifest episodes per task and split (default 50)")
-    g.add_argument("--episode-indices", type=int_ranges, default=None, help="explicit manifest indices, e.g. 0-9,20")
-    p.add_argument("--fixed-view", action="store_true", default=None, help="ActiveArena-Fixed: head and torso held at home")
-    p.add_argument("--label", default=None, help="the policy's name in the report (default: policy type, + '-fixed')")
+    g.add_argument(
+        "--episodes",
+        type=int,
+        default=None,
+        help="the first N manifest episodes per task and split (default 50)",
+    )
+    g.add_argument(
+        "--episode-indices", type=int_ranges, default=None, help="explicit manifest indices, e.g. 0-9,20"
+    )
+    p.add_argument(
+        "--fixed-view",
+        action="store_true",
+        default=None,
+        help="ActiveArena-Fixed: head and torso held at home",
+    )
+    p.add_argument(
+        "--label", default=None, help="the policy's name in the report (default: policy type, + '-fixed')"
+    )
     p.add_argument("--out", type=Path, required=True, help="run folder (re-run the same command to resume)")
     p.add_argument("--batch-size", type=int, default=None, help="vector envs per shard (default 1)")
     p.add_argument("--async-envs", action="store_true", default=None, help="one process per vector env")
-    p.add_argument("--episodes-per-shard", type=int, default=None, help="default: all episodes of a task and split")
+    p.add_argument(
+        "--episodes-per-shard", type=int, default=None, help="default: all episodes of a task and split"
+    )
     p.add_argument("--workers", type=int, default=1, help="shards run at once on this machine")
     p.add_argument("--videos", type=int, default=1, help="rollout videos per shard (its first episodes)")
     p.add_argument("--executor", default="local", choices=["local", "slurm"])
-    p.add_argument("--slurm", type=json.loads, default=None,
-                   help='datatrove SlurmPipelineExecutor options as JSON, e.g. \'{"partition": "gpu", "time": "08:00:00", '
-                        '"gpus_per_task": 1}\'')
+    p.add_argument(
+        "--slurm",
+        type=json.loads,
+        default=None,
+        help='datatrove SlurmPipelineExecutor options as JSON, e.g. \'{"partition": "gpu", "time": "08:00:00", '
+        '"gpus_per_task": 1}\'',
+    )
     p.add_argument("--overwrite", action="store_true", help="discard an earlier run in --out and start fresh")
     return p
 
@@ -166,7 +230,9 @@ def main(argv: list[str] | None = None) -> None:
         p.error('--executor slurm needs --slurm \'{"partition": ..., "time": ...}\'')
     try:
         defaults = config_file_defaults(args.config_path)
-        pick = lambda name, fallback: v if (v := getattr(args, name, None)) is not None else defaults.get(name, fallback)  # noqa: E731
+        pick = lambda name, fallback: (
+            v if (v := getattr(args, name, None)) is not None else defaults.get(name, fallback)
+        )  # noqa: E731
         cfg, policy_path = parse_policy([a for a in extra if a.startswith("--policy.")])
         env_options = parse_env([a for a in extra if a.startswith("--env.")])
         fixed_view = bool(pick("fixed_view", False))
@@ -179,29 +245,51 @@ def main(argv: list[str] | None = None) -> None:
             cfg._save_pretrained(Path(tmp))
             policy_config = json.loads((Path(tmp) / "config.json").read_text())
         label = args.label or (cfg.type + ("-fixed" if fixed_view else ""))
-        plan = EvalPlan(label=label, policy=policy_config, policy_path=policy_path,
-                        tasks=[pick("tasks", "all")], splits=pick("splits", "id,ood").split(","),
-                        episodes=episodes, fixed_view=fixed_view, env=env_options,
-                        seed_base=int(pick("seed_base", 1000)),
-                        episodes_per_shard=args.episodes_per_shard or len(episodes))
+        plan = EvalPlan(
+            label=label,
+            policy=policy_config,
+            policy_path=policy_path,
+            tasks=[pick("tasks", "all")],
+            splits=pick("splits", "id,ood").split(","),
+            episodes=episodes,
+            fixed_view=fixed_view,
+            env=env_options,
+            seed_base=int(pick("seed_base", 1000)),
+            episodes_per_shard=args.episodes_per_shard or len(episodes),
+        )
     except (ValueError, KeyError, FileNotFoundError) as exc:
         p.error(str(exc))
     batch = pick("batch_size", 1)
     if batch < 1 or args.workers < 1:
         p.error("--batch-size and --workers must be >= 1")
-    print(f"activearena-eval: {plan.n_episodes} episodes ({len(plan.tasks)} tasks x {plan.splits} x "
-          f"{len(plan.episodes)}) in {len(plan.shards)} shards -> {args.out}")
+    print(
+        f"activearena-eval: {plan.n_episodes} episodes ({len(plan.tasks)} tasks x {plan.splits} x "
+        f"{len(plan.episodes)}) in {len(plan.shards)} shards -> {args.out}"
+    )
     try:
-        result = run_eval(plan, args.out, policy_config, workers=args.workers, batch_size=batch,
-                          use_async_envs=bool(pick("async_envs", False)), videos=args.videos,
-                          executor=args.executor, slurm=args.slurm, overwrite=args.overwrite)
+        result = run_eval(
+            plan,
+            args.out,
+            policy_config,
+            workers=args.workers,
+            batch_size=batch,
+            use_async_envs=bool(pick("async_envs", False)),
+            videos=args.videos,
+            executor=args.executor,
+            slurm=args.slurm,
+            overwrite=args.overwrite,
+        )
     except FileExistsError as exc:
         p.error(str(exc))
     if result is None:
-        print(f"submitted to Slurm; the merge job writes {args.out}/<split>/eval_info.json and {args.out}/report")
+        print(
+            f"submitted to Slurm; the merge job writes {args.out}/<split>/eval_info.json and {args.out}/report"
+        )
         return
     for split, o in result.items():
-        print(f"{split}: {o['pc_success']:.1f}% success over {o['n_episodes']} episodes -> {args.out / split}/eval_info.json")
+        print(
+            f"{split}: {o['pc_success']:.1f}% success over {o['n_episodes']} episodes -> {args.out / split}/eval_info.json"
+        )
     print(f"report: {args.out / 'report' / 'report.md'}")
 
 

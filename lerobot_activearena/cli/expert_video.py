@@ -56,20 +56,32 @@ def render_episode(task: str, seed: int, split: str, out: Path) -> dict:
 
         result = run_expert_episode(task, seed, split, on_frame=on_frame)
     bar.close()
-    side = dict(result.sidecar, frames=result.length, seconds=round(result.seconds, 2),
-                frames_per_s=round(result.length / max(result.seconds, 1e-9), 1), health=result.health)
+    side = dict(
+        result.sidecar,
+        frames=result.length,
+        seconds=round(result.seconds, 2),
+        frames_per_s=round(result.length / max(result.seconds, 1e-9), 1),
+        health=result.health,
+    )
     (out / "episode.json").write_text(json.dumps(side, indent=2))
     return side
 
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--task", default="all",
-                   help="task name, category (SS/SL/ML/MD/IA), 'all', or a comma list (default: all)")
+    p.add_argument(
+        "--task",
+        default="all",
+        help="task name, category (SS/SL/ML/MD/IA), 'all', or a comma list (default: all)",
+    )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--split", choices=("id", "ood"), default="id")
-    p.add_argument("--out", type=Path, default=Path("outputs/expert"),
-                   help="output root; each episode goes to <out>/<task>_<split>_<seed>/")
+    p.add_argument(
+        "--out",
+        type=Path,
+        default=Path("outputs/expert"),
+        help="output root; each episode goes to <out>/<task>_<split>_<seed>/",
+    )
     p.add_argument("--list", action="store_true", help="list the registered tasks and exit")
     args = p.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
@@ -84,8 +96,10 @@ def main(argv: list[str] | None = None) -> None:
         s = render_episode(name, args.seed, args.split, out)
         failed += not s["success"]
         status = "success" if s["success"] else f"FAILED ({s['failure']})"
-        print(f"{name} seed {args.seed} ({args.split}): {status}; {s['frames']} frames at {s['frames_per_s']} "
-              f"frames/s incl. rendering and video; wrote {out}/head.mp4, annotations.jsonl, episode.json")
+        print(
+            f"{name} seed {args.seed} ({args.split}): {status}; {s['frames']} frames at {s['frames_per_s']} "
+            f"frames/s incl. rendering and video; wrote {out}/head.mp4, annotations.jsonl, episode.json"
+        )
     if failed:
         raise SystemExit(f"{failed} expert episode(s) failed")
 

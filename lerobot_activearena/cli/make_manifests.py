@@ -45,7 +45,9 @@ def build_split(task: str, split: str, size: int, pool: ProcessPoolExecutor, bar
                 rejected[str(seed)] = failure
             bar.update()
         if nxt - EVAL_SEED_START > 20 * size:
-            raise RuntimeError(f"{task}/{split}: fewer than {size} solvable seeds in {nxt - EVAL_SEED_START} candidates")
+            raise RuntimeError(
+                f"{task}/{split}: fewer than {size} solvable seeds in {nxt - EVAL_SEED_START} candidates"
+            )
     return {"seeds": seeds, "rejected": rejected, "expert_mean_frames": round(sum(lengths) / len(lengths), 1)}
 
 
@@ -75,18 +77,25 @@ def main(argv: list[str] | None = None) -> None:
                     if was != now:
                         differences += 1
                         changed = sorted(set(was) ^ set(now))
-                        print(f"{task}/{split}: manifest differs ({len(changed)} seeds changed, e.g. {changed[:5]})")
+                        print(
+                            f"{task}/{split}: manifest differs ({len(changed)} seeds changed, e.g. {changed[:5]})"
+                        )
                     else:
                         print(f"{task}/{split}: unchanged ({len(now)} seeds)")
                 else:
-                    print(f"{task}/{split}: new manifest ({len(new['splits'][split]['seeds'])} seeds, "
-                          f"{len(new['splits'][split]['rejected'])} rejected)")
+                    print(
+                        f"{task}/{split}: new manifest ({len(new['splits'][split]['seeds'])} seeds, "
+                        f"{len(new['splits'][split]['rejected'])} rejected)"
+                    )
             if old is not None:  # keep other splits already in the file
                 for split, entry in old.get("splits", {}).items():
                     new["splits"].setdefault(split, entry)
             if not args.check:
                 path.write_text(json.dumps(new, indent=1) + "\n")
-    print(f"{differences} manifest(s) differ from the previous ones" + (" (not written: --check)" if args.check else ""))
+    print(
+        f"{differences} manifest(s) differ from the previous ones"
+        + (" (not written: --check)" if args.check else "")
+    )
     if args.check and differences:
         raise SystemExit(1)
 

@@ -14,9 +14,13 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--hidden", type=int, default=64, help="text and vision width")
     p.add_argument("--layers", type=int, default=2, help="text decoder layers")
     p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--architecture", choices=["tiny", "qwen3-vl-2b"], default="tiny",
-                   help="qwen3-vl-2b: the real 2B model's dimensions with random weights (4.3 GB), for memory and "
-                        "latency figures without the weights")
+    p.add_argument(
+        "--architecture",
+        choices=["tiny", "qwen3-vl-2b"],
+        default="tiny",
+        help="qwen3-vl-2b: the real 2B model's dimensions with random weights (4.3 GB), for memory and "
+        "latency figures without the weights",
+    )
     p.add_argument("--overwrite", action="store_true")
     args = p.parse_args(argv)
     if (args.out_dir / "config.json").exists() and not args.overwrite:
@@ -25,11 +29,15 @@ def main(argv: list[str] | None = None) -> None:
         p.error("--hidden must be a multiple of 4 and >= 32")
     from ..policies.activearena_oft.tiny_vlm import make_tiny_vlm
 
-    out = make_tiny_vlm(args.out_dir, hidden=args.hidden, layers=args.layers, seed=args.seed,
-                        architecture=args.architecture)
+    out = make_tiny_vlm(
+        args.out_dir, hidden=args.hidden, layers=args.layers, seed=args.seed, architecture=args.architecture
+    )
     n = sum(f.stat().st_size for f in out.iterdir())
-    what = (f"tiny Qwen3-VL ({args.layers} layers, width {args.hidden})" if args.architecture == "tiny"
-            else "random Qwen3-VL with the 2B model's dimensions (not pretrained)")
+    what = (
+        f"tiny Qwen3-VL ({args.layers} layers, width {args.hidden})"
+        if args.architecture == "tiny"
+        else "random Qwen3-VL with the 2B model's dimensions (not pretrained)"
+    )
     print(f"{out}: {what}, {n / 1e6:.1f} MB; use --policy.vlm_path={out}")
 
 

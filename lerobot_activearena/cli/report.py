@@ -15,11 +15,17 @@ from ..eval.report import build_report
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("runs", nargs="+", help="an activearena-eval run folder, or [label[:split]=]path of a lerobot-eval output folder")
+    p.add_argument(
+        "runs",
+        nargs="+",
+        help="an activearena-eval run folder, or [label[:split]=]path of a lerobot-eval output folder",
+    )
     p.add_argument("--out", type=Path, default=Path("outputs/report"))
     args = p.parse_args(argv)
     build_report(args.runs, args.out)
-    print(f"wrote {args.out}/report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png, per_task.png")
+    print(
+        f"wrote {args.out}/report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png, per_task.png"
+    )
 
 
 if __name__ == "__main__":

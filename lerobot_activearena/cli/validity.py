@@ -24,7 +24,9 @@ def _list(text: str) -> list[str]:
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--tasks", default="all", help="task name, category, 'all', or a comma list")
-    p.add_argument("--adversaries", default=",".join(ADVERSARIES), help=f"comma list of {', '.join(ADVERSARIES)}")
+    p.add_argument(
+        "--adversaries", default=",".join(ADVERSARIES), help=f"comma list of {', '.join(ADVERSARIES)}"
+    )
     p.add_argument("--seeds", type=int, default=50, help="episodes per task, split and adversary")
     p.add_argument("--seed-base", type=int, default=VALIDITY_SEED_BASE, help="first scene seed")
     p.add_argument("--splits", default="id", help="comma list of id, ood")
@@ -55,7 +57,9 @@ def main(argv: list[str] | None = None) -> None:
         p.error(str(exc))
     rows = summarise(records)
     print("\n" + write_report(rows, args.out))
-    print(f"\nwrote {args.out}/validity.md, validity.csv ({len(records)} episodes in {args.out}/episodes.jsonl)")
+    print(
+        f"\nwrote {args.out}/validity.md, validity.csv ({len(records)} episodes in {args.out}/episodes.jsonl)"
+    )
     miss = missed(rows)
     print(f"targets missed: {'; '.join(miss)}" if miss else "all targets met")
 

@@ -26,7 +26,11 @@ NAN_AS_FLAG = {"camera_target_theta": "camera_target_active"}
 
 def dataset_features(max_objects: int = MAX_OBJECTS) -> dict[str, dict]:
     feats: dict[str, dict] = {
-        IMAGE_KEY: {"dtype": "video", "shape": (HEAD_HEIGHT, HEAD_WIDTH, 3), "names": ["height", "width", "channels"]},
+        IMAGE_KEY: {
+            "dtype": "video",
+            "shape": (HEAD_HEIGHT, HEAD_WIDTH, 3),
+            "names": ["height", "width", "channels"],
+        },
         "observation.state": {"dtype": "float32", "shape": (ACTION_DIM,), "names": list(ACTION_NAMES)},
         "action": {"dtype": "float32", "shape": (ACTION_DIM,), "names": list(ACTION_NAMES)},
     }
@@ -38,11 +42,22 @@ def dataset_features(max_objects: int = MAX_OBJECTS) -> dict[str, dict]:
     return feats
 
 
-def frame_row(frame: dict, state: np.ndarray, action: np.ndarray, image: np.ndarray, keyframes: dict[str, int],
-              instruction: str, features: dict[str, dict]) -> dict:
+def frame_row(
+    frame: dict,
+    state: np.ndarray,
+    action: np.ndarray,
+    image: np.ndarray,
+    keyframes: dict[str, int],
+    instruction: str,
+    features: dict[str, dict],
+) -> dict:
     """One ``LeRobotDataset.add_frame`` dict from the expert's frame annotation."""
-    row = {IMAGE_KEY: image, "observation.state": np.asarray(state, np.float32),
-           "action": np.asarray(action, np.float32), "task": instruction}
+    row = {
+        IMAGE_KEY: image,
+        "observation.state": np.asarray(state, np.float32),
+        "action": np.asarray(action, np.float32),
+        "task": instruction,
+    }
     for name, value in frame.items():
         col = COLUMN_OF_FIELD[name]
         ft = features[col]
@@ -54,8 +69,10 @@ def frame_row(frame: dict, state: np.ndarray, action: np.ndarray, image: np.ndar
         if ft["shape"] != v.shape:  # an object mask: pad to the shared width
             n = v.shape[0]
             if n > ft["shape"][0]:
-                raise ValueError(f"{col} has {n} objects but the dataset holds at most {ft['shape'][0]}: "
-                                 f"raise datasets_build.features.MAX_OBJECTS")
+                raise ValueError(
+                    f"{col} has {n} objects but the dataset holds at most {ft['shape'][0]}: "
+                    f"raise datasets_build.features.MAX_OBJECTS"
+                )
             v = np.concatenate([v, np.full(ft["shape"][0] - n, MASK_PAD, v.dtype)])
         row[col] = v
     for name in KEYFRAME_COLUMNS:

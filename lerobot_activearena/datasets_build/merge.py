@@ -22,17 +22,25 @@ def merge_shards(plan: BuildPlan, work_dir: Path, root: Path) -> dict:
     complete dataset."""
     missing = [s.name for s in plan.shards if not is_complete(shard_dir(work_dir, s))]
     if missing:
-        raise RuntimeError(f"{len(missing)} shard(s) are not complete ({', '.join(missing[:5])}...): run the same "
-                           f"build command again to resume them; worker logs are in {work_dir / 'logs'}")
+        raise RuntimeError(
+            f"{len(missing)} shard(s) are not complete ({', '.join(missing[:5])}...): run the same "
+            f"build command again to resume them; worker logs are in {work_dir / 'logs'}"
+        )
     summaries = [json.loads((shard_dir(work_dir, s) / SHARD_DONE).read_text()) for s in plan.shards]
     used = [(s, summ) for s, summ in zip(plan.shards, summaries) if summ["kept"]]
     if not used:
-        raise RuntimeError("the expert solved none of the requested episodes; nothing to write "
-                           f"(skipped seeds and reasons: {work_dir / 'shards'}/*/{SHARD_DONE})")
+        raise RuntimeError(
+            "the expert solved none of the requested episodes; nothing to write "
+            f"(skipped seeds and reasons: {work_dir / 'shards'}/*/{SHARD_DONE})"
+        )
     tmp = root.with_name(root.name + ".merging")
     shutil.rmtree(tmp, ignore_errors=True)
-    aggregate_datasets(repo_ids=[f"{plan.repo_id}-{s.name}" for s, _ in used], aggr_repo_id=plan.repo_id,
-                       roots=[shard_dir(work_dir, s) for s, _ in used], aggr_root=tmp)
+    aggregate_datasets(
+        repo_ids=[f"{plan.repo_id}-{s.name}" for s, _ in used],
+        aggr_repo_id=plan.repo_id,
+        roots=[shard_dir(work_dir, s) for s, _ in used],
+        aggr_root=tmp,
+    )
     episodes, skipped = [], []
     meta = tmp / META_DIR
     (meta / "sidecars").mkdir(parents=True)
@@ -46,9 +54,15 @@ def merge_shards(plan: BuildPlan, work_dir: Path, root: Path) -> dict:
     (meta / "episodes.jsonl").write_text("".join(json.dumps(e) + "\n" for e in episodes))
     (meta / "skipped.jsonl").write_text("".join(json.dumps(s) + "\n" for s in skipped))
     shortfall = {s["task"]: s.get("shortfall", 0) for s in summaries if s.get("shortfall")}
-    build = {"plan": plan.to_json(), "episodes": len(episodes), "frames": sum(e["length"] for e in episodes),
-             "skipped": len(skipped), "shortfall": shortfall,
-             "package_version": version("lerobot_env_activearena"), "lerobot_version": version("lerobot")}
+    build = {
+        "plan": plan.to_json(),
+        "episodes": len(episodes),
+        "frames": sum(e["length"] for e in episodes),
+        "skipped": len(skipped),
+        "shortfall": shortfall,
+        "package_version": version("lerobot_env_activearena"),
+        "lerobot_version": version("lerobot"),
+    }
     (meta / "build.json").write_text(json.dumps(build, indent=1))
     if root.exists():
         shutil.rmtree(root)

@@ -36,8 +36,15 @@ class BuildShardStep(PipelineStep):
             one_core()
         work = Path(self.work_dir)
         (work / "progress").mkdir(parents=True, exist_ok=True)
-        summary = build_shard(spec, self.plan.split, self.plan.repo_id, work, self.plan.max_objects,
-                              self.encoder_threads, progress=work / "progress" / f"{spec.name}.json")
+        summary = build_shard(
+            spec,
+            self.plan.split,
+            self.plan.repo_id,
+            work,
+            self.plan.max_objects,
+            self.encoder_threads,
+            progress=work / "progress" / f"{spec.name}.json",
+        )
         self.stat_update("episodes_kept", value=len(summary["kept"]))
         self.stat_update("episodes_skipped", value=len(summary["skipped"]))
         return iter(())
@@ -90,23 +97,36 @@ def _prepare(plan: BuildPlan, root: Path, work_dir: Path, overwrite: bool) -> bo
     if built is not None and built["plan"] == json.loads(json.dumps(plan.to_json())) and not overwrite:
         return True
     if root.exists() and not overwrite:
-        raise FileExistsError(f"{root} already exists and is not this build; choose another --root or pass "
-                              "--overwrite to replace it")
+        raise FileExistsError(
+            f"{root} already exists and is not this build; choose another --root or pass "
+            "--overwrite to replace it"
+        )
     plan_file = work_dir / "plan.json"
     if overwrite:
         shutil.rmtree(work_dir, ignore_errors=True)
     elif plan_file.is_file() and not plan.same_as(plan_file):
-        raise FileExistsError(f"{work_dir} holds an unfinished build with different arguments; re-run it with "
-                              "the same arguments to resume, or pass --overwrite (or another --work-dir)")
+        raise FileExistsError(
+            f"{work_dir} holds an unfinished build with different arguments; re-run it with "
+            "the same arguments to resume, or pass --overwrite (or another --work-dir)"
+        )
     work_dir.mkdir(parents=True, exist_ok=True)
     plan.save(plan_file)
     return False
 
 
-def build_dataset(plan: BuildPlan, root: Path, work_dir: Path | None = None, workers: int | None = None,
-                  executor: str = "local", slurm: dict | None = None, overwrite: bool = False,
-                  keep_shards: bool = False, push_to_hub: bool = False, private: bool = False,
-                  progress: bool = True) -> dict | None:
+def build_dataset(
+    plan: BuildPlan,
+    root: Path,
+    work_dir: Path | None = None,
+    workers: int | None = None,
+    executor: str = "local",
+    slurm: dict | None = None,
+    overwrite: bool = False,
+    keep_shards: bool = False,
+    push_to_hub: bool = False,
+    private: bool = False,
+    progress: bool = True,
+) -> dict | None:
     """Build (or resume) the dataset at ``root``. Returns the build summary; with the Slurm executor
     the jobs are submitted and None is returned (the merge job writes ``root``)."""
     root = Path(root).resolve()
@@ -119,12 +139,24 @@ def build_dataset(plan: BuildPlan, root: Path, work_dir: Path | None = None, wor
         threads = 1 if workers > 1 else None
         step = BuildShardStep(plan, str(work_dir), encoder_threads=threads)
         if executor == "slurm":
-            submit_slurm(step, len(plan.shards), MergeStep(plan, str(work_dir), str(root)), work_dir,
-                         "activearena-build", slurm)
+            submit_slurm(
+                step,
+                len(plan.shards),
+                MergeStep(plan, str(work_dir), str(root)),
+                work_dir,
+                "activearena-build",
+                slurm,
+            )
             return None
         if executor != "local":
             raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
-        run_local(step, len(plan.shards), workers, work_dir / "logs", _Progress(plan, work_dir) if progress else None)
+        run_local(
+            step,
+            len(plan.shards),
+            workers,
+            work_dir / "logs",
+            _Progress(plan, work_dir) if progress else None,
+        )
         summary = merge_shards(plan, work_dir, root)
         if not keep_shards:
             shutil.rmtree(work_dir, ignore_errors=True)

@@ -49,7 +49,9 @@ class BuildPlan:
             raise ValueError("give exactly one of --episodes N (kept episodes per task) or --seeds a,b,c")
         if self.episodes is not None and self.episodes < 1:
             raise ValueError(f"--episodes must be >= 1, got {self.episodes}")
-        if self.seeds is not None and (not self.seeds or len(set(self.seeds)) != len(self.seeds) or min(self.seeds) < 0):
+        if self.seeds is not None and (
+            not self.seeds or len(set(self.seeds)) != len(self.seeds) or min(self.seeds) < 0
+        ):
             raise ValueError(f"--seeds must be distinct non-negative integers, got {self.seeds}")
         if self.episodes_per_shard < 1:
             raise ValueError(f"--episodes-per-shard must be >= 1, got {self.episodes_per_shard}")
@@ -66,9 +68,12 @@ class BuildPlan:
                 primary = list(range(self.seed_start, self.seed_start + self.episodes))
             reserve_base = self.seed_start + len(primary)
             for j in range(0, len(primary), size):
-                chunk = tuple(primary[j:j + size])
-                reserve = () if self.seeds is not None else tuple(
-                    range(reserve_base + j, reserve_base + j + len(chunk)))
+                chunk = tuple(primary[j : j + size])
+                reserve = (
+                    ()
+                    if self.seeds is not None
+                    else tuple(range(reserve_base + j, reserve_base + j + len(chunk)))
+                )
                 shards.append(ShardSpec(len(shards), task, chunk, reserve, len(chunk)))
         return shards
 

@@ -39,6 +39,8 @@ def episode_keyframes(result: EpisodeResult) -> dict[str, np.ndarray]:
 def record_episode(task: str, seed: int, split: str) -> RecordedEpisode:
     """Run the expert and keep the head image of every frame (the frame the annotation describes)."""
     images: list[np.ndarray] = []
-    result = run_expert_episode(task, seed, split, on_frame=lambda t, sim, frame, action: images.append(sim.render_head()))
+    result = run_expert_episode(
+        task, seed, split, on_frame=lambda t, sim, frame, action: images.append(sim.render_head())
+    )
     keyframes = episode_keyframes(result) if result.success else {}
     return RecordedEpisode(result, images, keyframes)

@@ -29,8 +29,15 @@ def is_complete(path: Path) -> bool:
     return (path / SHARD_DONE).is_file()
 
 
-def build_shard(spec: ShardSpec, split: str, repo_id: str, work_dir: Path, max_objects: int,
-                encoder_threads: int | None = 1, progress: Path | None = None) -> dict:
+def build_shard(
+    spec: ShardSpec,
+    split: str,
+    repo_id: str,
+    work_dir: Path,
+    max_objects: int,
+    encoder_threads: int | None = 1,
+    progress: Path | None = None,
+) -> dict:
     """Record the shard's episodes; returns (and stores) its summary. Safe to call again: a complete
     shard is returned as is, leftovers of an interrupted attempt are removed first."""
     final = shard_dir(work_dir, spec)
@@ -43,9 +50,17 @@ def build_shard(spec: ShardSpec, split: str, repo_id: str, work_dir: Path, max_o
     shutil.rmtree(final, ignore_errors=True)
     tmp.parent.mkdir(parents=True, exist_ok=True)
     features = dataset_features(max_objects)
-    ds = LeRobotDataset.create(f"{repo_id}-{spec.name}", fps=FPS, features=features, root=tmp, robot_type=ROBOT_TYPE,
-                               use_videos=True, streaming_encoding=True, encoder_threads=encoder_threads,
-                               video_backend="pyav")
+    ds = LeRobotDataset.create(
+        f"{repo_id}-{spec.name}",
+        fps=FPS,
+        features=features,
+        root=tmp,
+        robot_type=ROBOT_TYPE,
+        use_videos=True,
+        streaming_encoding=True,
+        encoder_threads=encoder_threads,
+        video_backend="pyav",
+    )
     kept, skipped, tried = [], [], 0
     for seed in list(spec.seeds) + list(spec.reserve):
         if len(kept) == spec.quota:
@@ -64,13 +79,31 @@ def build_shard(spec: ShardSpec, split: str, repo_id: str, work_dir: Path, max_o
             for row in rec.rows(features):
                 ds.add_frame(row)
             ds.save_episode()
-            kept.append({"shard_episode": len(kept), "task": spec.task, "seed": seed, "split": split,
-                         "length": r.length, "seconds": round(r.seconds, 2), "sidecar": r.sidecar})
+            kept.append(
+                {
+                    "shard_episode": len(kept),
+                    "task": spec.task,
+                    "seed": seed,
+                    "split": split,
+                    "length": r.length,
+                    "seconds": round(r.seconds, 2),
+                    "sidecar": r.sidecar,
+                }
+            )
         if progress is not None:
-            progress.write_text(json.dumps({"tried": tried, "kept": len(kept), "frames": sum(k["length"] for k in kept)}))
+            progress.write_text(
+                json.dumps({"tried": tried, "kept": len(kept), "frames": sum(k["length"] for k in kept)})
+            )
     ds.finalize()
-    summary = {"rank": spec.rank, "task": spec.task, "split": split, "quota": spec.quota, "tried": tried,
-               "kept": kept, "skipped": skipped}
+    summary = {
+        "rank": spec.rank,
+        "task": spec.task,
+        "split": split,
+        "quota": spec.quota,
+        "tried": tried,
+        "kept": kept,
+        "skipped": skipped,
+    }
     if len(kept) < spec.quota:
         summary["shortfall"] = spec.quota - len(kept)
     (tmp / SHARD_DONE).write_text(json.dumps(summary, indent=1))

@@ -34,17 +34,23 @@ class ActiveArenaEnvConfig(EnvConfig):
     episode_log_dir: str | None = None  # one JSON line per finished episode (failure states, view targets)
     fps: int = CONTROL_HZ
     episode_length: int | None = None  # None: each task's own step limit
-    render_pixels: bool = True  # false: black head images, for policies that read none (the oracle); videos still render
-    features: dict[str, PolicyFeature] = field(default_factory=lambda: {
-        ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(ACTION_DIM,)),
-        "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(ACTION_DIM,)),
-        "pixels/head": PolicyFeature(type=FeatureType.VISUAL, shape=(HEAD_HEIGHT, HEAD_WIDTH, 3)),
-    })
-    features_map: dict[str, str] = field(default_factory=lambda: {
-        ACTION: ACTION,
-        "agent_pos": OBS_STATE,
-        "pixels/head": f"{OBS_IMAGES}.head",
-    })
+    render_pixels: bool = (
+        True  # false: black head images, for policies that read none (the oracle); videos still render
+    )
+    features: dict[str, PolicyFeature] = field(
+        default_factory=lambda: {
+            ACTION: PolicyFeature(type=FeatureType.ACTION, shape=(ACTION_DIM,)),
+            "agent_pos": PolicyFeature(type=FeatureType.STATE, shape=(ACTION_DIM,)),
+            "pixels/head": PolicyFeature(type=FeatureType.VISUAL, shape=(HEAD_HEIGHT, HEAD_WIDTH, 3)),
+        }
+    )
+    features_map: dict[str, str] = field(
+        default_factory=lambda: {
+            ACTION: ACTION,
+            "agent_pos": OBS_STATE,
+            "pixels/head": f"{OBS_IMAGES}.head",
+        }
+    )
 
     def __post_init__(self):
         if self.split not in SPLITS:
@@ -55,11 +61,19 @@ class ActiveArenaEnvConfig(EnvConfig):
 
     @property
     def gym_kwargs(self) -> dict:
-        return {"split": self.split, "fixed_view": self.fixed_view, "use_manifest": self.use_manifest,
-                "seed_base": self.seed_base, "expert_channel": self.expert_channel,
-                "episode_log_dir": self.episode_log_dir, "render_pixels": self.render_pixels}
+        return {
+            "split": self.split,
+            "fixed_view": self.fixed_view,
+            "use_manifest": self.use_manifest,
+            "seed_base": self.seed_base,
+            "expert_channel": self.expert_channel,
+            "episode_log_dir": self.episode_log_dir,
+            "render_pixels": self.render_pixels,
+        }
 
-    def create_envs(self, n_envs: int, use_async_envs: bool = False) -> dict[str, dict[str, gym.vector.VectorEnv]]:
+    def create_envs(
+        self, n_envs: int, use_async_envs: bool = False
+    ) -> dict[str, dict[str, gym.vector.VectorEnv]]:
         """``{category: {task: VectorEnv}}``: lerobot-eval reports per task and per category."""
         from ..tasks import get_task, task_names
         from .gym_env import ActiveArenaEnv

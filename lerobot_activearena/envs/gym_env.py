@@ -9,8 +9,7 @@ import gymnasium as gym
 import numpy as np
 
 from ..annotations.recorder import AnnotationRecorder
-from ..sim import action as A
-from ..sim import embodiment as E
+from ..sim import action as A, embodiment as E
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..tasks import get_task
@@ -36,9 +35,18 @@ def failure_state(success: bool, ever_seen: np.ndarray, visible_now: np.ndarray)
 class ActiveArenaEnv(gym.Env):
     metadata = {"render_modes": ["rgb_array"], "render_fps": CONTROL_HZ}
 
-    def __init__(self, task: str = "click_bell_rotate_view", split: str = "id", fixed_view: bool = False,
-                 use_manifest: bool = True, seed_base: int = DEFAULT_SEED_BASE, expert_channel: bool = False,
-                 episode_log_dir: str | None = None, render_mode: str = "rgb_array", render_pixels: bool = True):
+    def __init__(
+        self,
+        task: str = "click_bell_rotate_view",
+        split: str = "id",
+        fixed_view: bool = False,
+        use_manifest: bool = True,
+        seed_base: int = DEFAULT_SEED_BASE,
+        expert_channel: bool = False,
+        episode_log_dir: str | None = None,
+        render_mode: str = "rgb_array",
+        render_pixels: bool = True,
+    ):
         """``use_manifest``: reset(seed=s) plays the (s - seed_base)-th seed of the task's evaluation
         manifest (so lerobot-eval's seeds seed_base, seed_base+1, ... give the protocol's episodes in
         order whatever the batch size); otherwise ``s`` is the scene seed itself.
@@ -62,7 +70,9 @@ class ActiveArenaEnv(gym.Env):
         self.sim: ActiveArenaSim | None = None
         self.scene = None
         spaces = {
-            "pixels": gym.spaces.Dict({"head": gym.spaces.Box(0, 255, (HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)}),
+            "pixels": gym.spaces.Dict(
+                {"head": gym.spaces.Box(0, 255, (HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)}
+            ),
             "agent_pos": gym.spaces.Box(-np.inf, np.inf, (A.ACTION_DIM,), np.float32),
         }
         if expert_channel:
@@ -122,9 +132,12 @@ class ActiveArenaEnv(gym.Env):
             t = self.scene.search_targets
             seen = np.append(self.recorder.discovered[t], self.monitor.info_seen)
             info["failure_state"] = failure_state(success, seen, self.recorder.visible[t])
-            info["failure_reason"] = failure_reason or ("" if success else
-                                                        f"step limit {self._max_episode_steps} reached; "
-                                                        f"unmet: {', '.join(self.monitor.failed_checks)}")
+            info["failure_reason"] = failure_reason or (
+                ""
+                if success
+                else f"step limit {self._max_episode_steps} reached; "
+                f"unmet: {', '.join(self.monitor.failed_checks)}"
+            )
             info["checks"] = dict(self.monitor.checks)
             if self.episode_log_dir:
                 self._log_episode(success, info["failure_state"], info["failure_reason"])
@@ -137,10 +150,19 @@ class ActiveArenaEnv(gym.Env):
 
         d = Path(self.episode_log_dir)
         d.mkdir(parents=True, exist_ok=True)
-        rec = {"task": self.task, "category": self.spec_task.category, "split": self.split,
-               "fixed_view": self.fixed_view, "episode": self._episode, "scene_seed": self._scene_seed,
-               "success": success, "failure_state": failure, "failure_reason": reason, "steps": self._steps,
-               "view_targets": self._view_targets}
+        rec = {
+            "task": self.task,
+            "category": self.spec_task.category,
+            "split": self.split,
+            "fixed_view": self.fixed_view,
+            "episode": self._episode,
+            "scene_seed": self._scene_seed,
+            "success": success,
+            "failure_state": failure,
+            "failure_reason": reason,
+            "steps": self._steps,
+            "view_targets": self._view_targets,
+        }
         with open(d / f"{self.task}_{self.split}_{os.getpid()}.jsonl", "a") as f:
             f.write(json.dumps(rec) + "\n")
 

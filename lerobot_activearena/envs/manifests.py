@@ -24,8 +24,10 @@ def manifest_path(task: str) -> Path:
 def load_manifest(task: str, split: str) -> list[int]:
     path = manifest_path(task)
     if not path.exists():
-        raise FileNotFoundError(f"no seed manifest for task {task!r} ({path}); generate it with "
-                                f"`activearena-make-manifests --tasks {task}`")
+        raise FileNotFoundError(
+            f"no seed manifest for task {task!r} ({path}); generate it with "
+            f"`activearena-make-manifests --tasks {task}`"
+        )
     data = json.loads(path.read_text())
     if split not in data["splits"]:
         raise KeyError(f"manifest {path} has no split {split!r}; it has {sorted(data['splits'])}")
@@ -36,7 +38,9 @@ def manifest_seed(task: str, split: str, episode: int) -> int:
     """The scene seed of evaluation episode ``episode`` (0-based) of ``task``/``split``."""
     seeds = load_manifest(task, split)
     if not 0 <= episode < len(seeds):
-        raise IndexError(f"episode {episode} is outside the {len(seeds)}-seed manifest of {task}/{split}; "
-                         f"the protocol evaluates episodes 0..{PROTOCOL_EPISODES - 1} (lerobot-eval --seed must equal "
-                         f"the env's seed_base, and --eval.n_episodes <= {len(seeds)})")
+        raise IndexError(
+            f"episode {episode} is outside the {len(seeds)}-seed manifest of {task}/{split}; "
+            f"the protocol evaluates episodes 0..{PROTOCOL_EPISODES - 1} (lerobot-eval --seed must equal "
+            f"the env's seed_base, and --eval.n_episodes <= {len(seeds)})"
+        )
     return seeds[episode]

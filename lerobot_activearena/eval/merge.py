@@ -32,8 +32,10 @@ def merge_run(plan: EvalPlan, run_dir: Path, report: bool = True) -> dict:
     missing = missing_episodes(plan, run_dir)
     if missing:
         ex = ", ".join(f"{t}/{s}#{k}" for t, s, k in missing[:3])
-        raise RuntimeError(f"{len(missing)} of {plan.n_episodes} episodes are unfinished (e.g. {ex}); "
-                           "re-run the same activearena-eval command to resume them")
+        raise RuntimeError(
+            f"{len(missing)} of {plan.n_episodes} episodes are unfinished (e.g. {ex}); "
+            "re-run the same activearena-eval command to resume them"
+        )
     records = read_records(run_dir / "records")
     by_split: dict[str, dict] = {}
     for split in plan.splits:
@@ -41,20 +43,42 @@ def merge_run(plan: EvalPlan, run_dir: Path, report: bool = True) -> dict:
         for task in plan.tasks:
             recs = [records[(task, split, k)] for k in plan.episodes]
             succ = [bool(r["success"]) for r in recs]
-            videos = [str(p) for s in plan.shards if (s.task, s.split) == (task, split)
-                      for k in s.episodes if (p := video_path(run_dir, s, k)).exists()]
+            videos = [
+                str(p)
+                for s in plan.shards
+                if (s.task, s.split) == (task, split)
+                for k in s.episodes
+                if (p := video_path(run_dir, s, k)).exists()
+            ]
             cat = plan.category(task)
-            per_task.append({"task_group": cat, "task_id": task, "metrics": {
-                "sum_rewards": [float(x) for x in succ], "max_rewards": [float(x) for x in succ],
-                "successes": succ, "video_paths": videos}})
+            per_task.append(
+                {
+                    "task_group": cat,
+                    "task_id": task,
+                    "metrics": {
+                        "sum_rewards": [float(x) for x in succ],
+                        "max_rewards": [float(x) for x in succ],
+                        "successes": succ,
+                        "video_paths": videos,
+                    },
+                }
+            )
             groups[cat] += succ
             overall += succ
             lines += [json.dumps(dict(r, category=cat, fixed_view=plan.fixed_view)) for r in recs]
-        info = {"per_task": per_task, "per_group": {g: _aggregate(v) for g, v in groups.items()},
-                "overall": _aggregate(overall),
-                "activearena": {"label": plan.label, "split": split, "fixed_view": plan.fixed_view,
-                                "episodes": plan.episodes, "policy_type": plan.policy.get("type"),
-                                "policy_path": plan.policy_path}}
+        info = {
+            "per_task": per_task,
+            "per_group": {g: _aggregate(v) for g, v in groups.items()},
+            "overall": _aggregate(overall),
+            "activearena": {
+                "label": plan.label,
+                "split": split,
+                "fixed_view": plan.fixed_view,
+                "episodes": plan.episodes,
+                "policy_type": plan.policy.get("type"),
+                "policy_path": plan.policy_path,
+            },
+        }
         out = run_dir / split
         (out / "episodes").mkdir(parents=True, exist_ok=True)
         (out / "eval_info.json").write_text(json.dumps(info, indent=2))

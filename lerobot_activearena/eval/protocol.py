@@ -56,7 +56,9 @@ class EvalPlan:
     splits: list[str]
     episodes: list[int] = field(default_factory=lambda: list(range(PROTOCOL_EPISODES)))
     fixed_view: bool = False
-    env: dict = field(default_factory=dict)  # further ActiveArenaEnvConfig options (render_pixels, episode_length)
+    env: dict = field(
+        default_factory=dict
+    )  # further ActiveArenaEnvConfig options (render_pixels, episode_length)
     seed_base: int = 1000
     episodes_per_shard: int = PROTOCOL_EPISODES
     shards: list[EvalShard] = field(init=False)
@@ -74,8 +76,10 @@ class EvalPlan:
             for split in self.splits:
                 n = len(load_manifest(task, split))
                 if max(self.episodes) >= n:
-                    raise ValueError(f"episode {max(self.episodes)} is outside the {n}-seed manifest of {task}/{split}; "
-                                     f"the protocol evaluates episodes 0..{PROTOCOL_EPISODES - 1}")
+                    raise ValueError(
+                        f"episode {max(self.episodes)} is outside the {n}-seed manifest of {task}/{split}; "
+                        f"the protocol evaluates episodes 0..{PROTOCOL_EPISODES - 1}"
+                    )
         self.shards = self._make_shards()
 
     def _make_shards(self) -> list[EvalShard]:
@@ -87,7 +91,7 @@ class EvalPlan:
         for task in longest_first:
             for split in self.splits:
                 for j in range(0, len(self.episodes), size):
-                    shards.append(EvalShard(len(shards), task, split, tuple(self.episodes[j:j + size])))
+                    shards.append(EvalShard(len(shards), task, split, tuple(self.episodes[j : j + size])))
         return shards
 
     @property

@@ -78,16 +78,24 @@ def load_run(spec: str) -> Run:
     info_path = path / "eval_info.json" if path.is_dir() else path
     run_dir = info_path.parent
     if not info_path.exists():
-        raise FileNotFoundError(f"{info_path} not found: pass lerobot-eval output folders (with eval_info.json)")
+        raise FileNotFoundError(
+            f"{info_path} not found: pass lerobot-eval output folders (with eval_info.json)"
+        )
     info = json.loads(info_path.read_text())
-    episodes = [json.loads(line) for f in sorted((run_dir / "episodes").glob("*.jsonl")) for line in f.read_text().splitlines()
-                if line.strip()]
+    episodes = [
+        json.loads(line)
+        for f in sorted((run_dir / "episodes").glob("*.jsonl"))
+        for line in f.read_text().splitlines()
+        if line.strip()
+    ]
     splits = {e["split"] for e in episodes}
     if split is None:
         if len(splits) != 1:
-            raise ValueError(f"{run_dir}: cannot tell the split ({sorted(splits) or 'no episode logs'}); "
-                             f"pass it as label:split={run_dir} or run lerobot-eval with "
-                             f"--env.episode_log_dir={run_dir}/episodes")
+            raise ValueError(
+                f"{run_dir}: cannot tell the split ({sorted(splits) or 'no episode logs'}); "
+                f"pass it as label:split={run_dir} or run lerobot-eval with "
+                f"--env.episode_log_dir={run_dir}/episodes"
+            )
         split = splits.pop()
     run = Run(label or run_dir.name, split, run_dir, episodes=episodes)
     for entry in info.get("per_task", []):
@@ -117,7 +125,9 @@ def leaderboard(runs: list[Run]) -> tuple[list[str], list[list]]:
         for c in cats:
             for s in ("id", "ood"):
                 r = splits.get(s)
-                rates = [_rate(v) for t, v in (r.task_success.items() if r else []) if r.task_category[t] == c]
+                rates = [
+                    _rate(v) for t, v in (r.task_success.items() if r else []) if r.task_category[t] == c
+                ]
                 cells[(c, s)] = float(np.mean(rates)) if rates else float("nan")
         for c in cats:
             row += [cells[(c, "id")], cells[(c, "ood")]]
@@ -130,7 +140,16 @@ def leaderboard(runs: list[Run]) -> tuple[list[str], list[list]]:
 
 
 def failure_table(runs: list[Run]) -> tuple[list[str], list[list]]:
-    header = ["policy", "split", "failures", "DM %", "CO %", "CR %", "torso chunk jump (deg)", "head chunk jump (deg)"]
+    header = [
+        "policy",
+        "split",
+        "failures",
+        "DM %",
+        "CO %",
+        "CR %",
+        "torso chunk jump (deg)",
+        "head chunk jump (deg)",
+    ]
     rows = []
     for r in runs:
         fails = [e["failure_state"] for e in r.episodes if not e["success"]]
@@ -146,8 +165,12 @@ def per_task_table(runs: list[Run]) -> tuple[list[str], list[list]]:
     header = ["category", "task"] + [f"{label} {split.upper()}" for label, split in cols]
     cats = {t: c for r in runs for t, c in r.task_category.items()}
     rows = []
-    for t in sorted(cats, key=lambda t: (list(CATEGORIES).index(cats[t]) if cats[t] in CATEGORIES else 99, t)):
-        rows.append([cats[t], t] + [_rate(r.task_success[t]) if t in r.task_success else float("nan") for r in runs])
+    for t in sorted(
+        cats, key=lambda t: (list(CATEGORIES).index(cats[t]) if cats[t] in CATEGORIES else 99, t)
+    ):
+        rows.append(
+            [cats[t], t] + [_rate(r.task_success[t]) if t in r.task_success else float("nan") for r in runs]
+        )
     return header, rows
 
 
@@ -208,14 +231,37 @@ def build_report(run_specs: list[str], out: Path) -> dict:
     videos = []
     for r in runs:
         for t, paths in sorted(r.videos.items()):
-            videos += [f"- {r.label} {r.split.upper()} `{t}`: " + ", ".join(f"[{Path(p).name}]({p})" for p in paths)]
-    md = ["# ActiveArena leaderboard", "", "Success rate (%) per category, ID and OOD; Avg = task-macro mean over tasks.",
-          "", markdown(*lb), "", "![leaderboard](leaderboard.png)", "",
-          "## Failure states among failed episodes", "",
-          "DM: a task-relevant object was never observed; CO: all observed, the final view misses some; "
-          "CR: the final view covers all, the task still failed. Chunk jump (the paper's action-continuity "
-          f"metric): per episode the median jump of the commanded target at the {CHUNK}-step chunk boundaries, "
-          "then the mean over episodes; torso yaw and head pitch separately.", "", markdown(*fl), "",
-          "## Per task (success %)", "", markdown(*pt), "", "![per task](per_task.png)", "", "## Rollout videos", "", *(videos or ["(none saved)"]), ""]
+            videos += [
+                f"- {r.label} {r.split.upper()} `{t}`: " + ", ".join(f"[{Path(p).name}]({p})" for p in paths)
+            ]
+    md = [
+        "# ActiveArena leaderboard",
+        "",
+        "Success rate (%) per category, ID and OOD; Avg = task-macro mean over tasks.",
+        "",
+        markdown(*lb),
+        "",
+        "![leaderboard](leaderboard.png)",
+        "",
+        "## Failure states among failed episodes",
+        "",
+        "DM: a task-relevant object was never observed; CO: all observed, the final view misses some; "
+        "CR: the final view covers all, the task still failed. Chunk jump (the paper's action-continuity "
+        f"metric): per episode the median jump of the commanded target at the {CHUNK}-step chunk boundaries, "
+        "then the mean over episodes; torso yaw and head pitch separately.",
+        "",
+        markdown(*fl),
+        "",
+        "## Per task (success %)",
+        "",
+        markdown(*pt),
+        "",
+        "![per task](per_task.png)",
+        "",
+        "## Rollout videos",
+        "",
+        *(videos or ["(none saved)"]),
+        "",
+    ]
     (out / "report.md").write_text("\n".join(md))
     return {"leaderboard": lb, "failures": fl, "per_task": pt}

@@ -23,17 +23,35 @@ class EvalShardStep(PipelineStep):
     name = "ActiveArena eval shard"
     type = "EVAL"
 
-    def __init__(self, plan: EvalPlan, run_dir: str, batch_size: int, use_async_envs: bool, videos: int,
-                 one_thread: bool):
+    def __init__(
+        self,
+        plan: EvalPlan,
+        run_dir: str,
+        batch_size: int,
+        use_async_envs: bool,
+        videos: int,
+        one_thread: bool,
+    ):
         super().__init__()
         self.plan, self.run_dir = plan, run_dir
-        self.batch_size, self.use_async_envs, self.videos, self.one_thread = batch_size, use_async_envs, videos, one_thread
+        self.batch_size, self.use_async_envs, self.videos, self.one_thread = (
+            batch_size,
+            use_async_envs,
+            videos,
+            one_thread,
+        )
 
     def run(self, data=None, rank: int = 0, world_size: int = 1):
         if self.one_thread:  # one worker per core
             one_core()
-        out = run_shard(self.plan, self.plan.shards[rank], Path(self.run_dir), self.batch_size,
-                        self.use_async_envs, self.videos)
+        out = run_shard(
+            self.plan,
+            self.plan.shards[rank],
+            Path(self.run_dir),
+            self.batch_size,
+            self.use_async_envs,
+            self.videos,
+        )
         self.stat_update("episodes_run", value=out["ran"])
         return iter(())
 
@@ -76,8 +94,13 @@ class _Progress(ProgressBars):
                 if shard.name in self.bars:
                     self.bars.pop(shard.name).close()
             elif done and shard.name not in self.bars:
-                self.bars[shard.name] = tqdm(total=len(shard.episodes), desc=shard.name, unit="ep", leave=False,
-                                             position=1 + len(self.bars))
+                self.bars[shard.name] = tqdm(
+                    total=len(shard.episodes),
+                    desc=shard.name,
+                    unit="ep",
+                    leave=False,
+                    position=1 + len(self.bars),
+                )
             if shard.name in self.bars:
                 self.bars[shard.name].update(done - self.bars[shard.name].n)
         self.total.update(n - self.total.n)
@@ -102,22 +125,36 @@ def prepare_run(plan: EvalPlan, run_dir: Path, policy_config: dict, overwrite: b
     elif run_file.is_file():
         diff = plan.differences(json.loads(run_file.read_text()))
         if diff:
-            raise FileExistsError(f"{run_dir} holds an evaluation with another configuration (it differs in: "
-                                  f"{', '.join(diff)}); its episodes cannot be mixed with this one. Re-run that "
-                                  "command to resume it, pass another --out, or --overwrite to start fresh")
+            raise FileExistsError(
+                f"{run_dir} holds an evaluation with another configuration (it differs in: "
+                f"{', '.join(diff)}); its episodes cannot be mixed with this one. Re-run that "
+                "command to resume it, pass another --out, or --overwrite to start fresh"
+            )
         return True
     elif run_dir.exists() and any(run_dir.iterdir()):
-        raise FileExistsError(f"{run_dir} exists and is not an activearena-eval run; pass another --out "
-                              "(or --overwrite to replace it)")
+        raise FileExistsError(
+            f"{run_dir} exists and is not an activearena-eval run; pass another --out "
+            "(or --overwrite to replace it)"
+        )
     (run_dir / "policy").mkdir(parents=True, exist_ok=True)
     (run_dir / "policy" / "config.json").write_text(json.dumps(policy_config, indent=2))
     run_file.write_text(json.dumps(plan.to_json(), indent=1))
     return False
 
 
-def run_eval(plan: EvalPlan, run_dir: Path, policy_config: dict, workers: int = 1, batch_size: int = 1,
-             use_async_envs: bool = False, videos: int = 1, executor: str = "local", slurm: dict | None = None,
-             overwrite: bool = False, progress: bool = True) -> dict | None:
+def run_eval(
+    plan: EvalPlan,
+    run_dir: Path,
+    policy_config: dict,
+    workers: int = 1,
+    batch_size: int = 1,
+    use_async_envs: bool = False,
+    videos: int = 1,
+    executor: str = "local",
+    slurm: dict | None = None,
+    overwrite: bool = False,
+    progress: bool = True,
+) -> dict | None:
     """Run (or resume) the plan in ``run_dir``; returns the merged overall metrics per split, or None
     when the jobs were submitted to Slurm (the merge job writes the results)."""
     run_dir = Path(run_dir).resolve()
@@ -125,9 +162,13 @@ def run_eval(plan: EvalPlan, run_dir: Path, policy_config: dict, workers: int = 
     workers = max(1, min(workers, len(plan.shards)))
     step = EvalShardStep(plan, str(run_dir), batch_size, use_async_envs, videos, one_thread=workers > 1)
     if executor == "slurm":
-        submit_slurm(step, len(plan.shards), MergeStep(plan, str(run_dir)), run_dir, "activearena-eval", slurm)
+        submit_slurm(
+            step, len(plan.shards), MergeStep(plan, str(run_dir)), run_dir, "activearena-eval", slurm
+        )
         return None
     if executor != "local":
         raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
-    run_local(step, len(plan.shards), workers, run_dir / "logs", _Progress(plan, run_dir) if progress else None)
+    run_local(
+        step, len(plan.shards), workers, run_dir / "logs", _Progress(plan, run_dir) if progress else None
+    )
     return merge_run(plan, run_dir)

@@ -41,17 +41,29 @@ def env_config(plan: EvalPlan, task: str, split: str, log_dir: Path | None):
     from ..envs.configs import ActiveArenaEnvConfig
 
     options = dict(plan.env)
-    return ActiveArenaEnvConfig(task=task, split=split, fixed_view=plan.fixed_view, seed_base=plan.seed_base,
-                                expert_channel=uses_expert_channel(plan.policy.get("type")),
-                                episode_log_dir=None if log_dir is None else str(log_dir), **options)
+    return ActiveArenaEnvConfig(
+        task=task,
+        split=split,
+        fixed_view=plan.fixed_view,
+        seed_base=plan.seed_base,
+        expert_channel=uses_expert_channel(plan.policy.get("type")),
+        episode_log_dir=None if log_dir is None else str(log_dir),
+        **options,
+    )
 
 
 def video_path(run_dir: Path, shard: EvalShard, episode: int) -> Path:
     return Path(run_dir) / "videos" / f"{shard.task}_{shard.split}_{episode:03d}.mp4"
 
 
-def run_shard(plan: EvalPlan, shard: EvalShard, run_dir: Path, batch_size: int = 1, use_async_envs: bool = False,
-              videos: int = 1) -> dict:
+def run_shard(
+    plan: EvalPlan,
+    shard: EvalShard,
+    run_dir: Path,
+    batch_size: int = 1,
+    use_async_envs: bool = False,
+    videos: int = 1,
+) -> dict:
     """Play the shard's unfinished episodes; returns {"episodes": n finished, "ran": n played now}."""
     import torch
     from lerobot.configs.policies import PreTrainedConfig
@@ -74,20 +86,24 @@ def run_shard(plan: EvalPlan, shard: EvalShard, run_dir: Path, batch_size: int =
     lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})
 
     cfg = PreTrainedConfig.from_pretrained(run_dir / "policy")
-    cfg.pretrained_path = Path(plan.policy_path) if plan.policy_path else None  # a Hub id or a folder, as lerobot-eval
+    cfg.pretrained_path = (
+        Path(plan.policy_path) if plan.policy_path else None
+    )  # a Hub id or a folder, as lerobot-eval
     env_cfg = env_config(plan, shard.task, shard.split, folder)
     device = get_safe_torch_device(cfg.device)
     policy = make_policy(cfg=cfg, env_cfg=env_cfg)
     policy.eval()
     preprocessor, postprocessor = make_pre_post_processors(
-        policy_cfg=cfg, pretrained_path=cfg.pretrained_path,
-        preprocessor_overrides={"device_processor": {"device": str(policy.config.device)}})
+        policy_cfg=cfg,
+        pretrained_path=cfg.pretrained_path,
+        preprocessor_overrides={"device_processor": {"device": str(policy.config.device)}},
+    )
     env_pre, env_post = make_env_pre_post_processors(env_cfg=env_cfg, policy_cfg=cfg)
     want_video = set(shard.episodes[:videos])
     fps = env_cfg.fps
     ran = 0
     for start in range(0, len(pending), batch_size):
-        batch = pending[start:start + batch_size]
+        batch = pending[start : start + batch_size]
         envs = env_cfg.create_envs(n_envs=len(batch), use_async_envs=use_async_envs)
         vec = next(iter(next(iter(envs.values())).values()))
         record = batch[0] in want_video and not video_path(run_dir, shard, batch[0]).exists()
@@ -97,21 +113,32 @@ def run_shard(plan: EvalPlan, shard: EvalShard, run_dir: Path, batch_size: int =
             frames.append(env.envs[0].render() if hasattr(env, "envs") else env.call("render")[0])
 
         try:
-            with torch.no_grad(), (torch.autocast(device_type=device.type) if cfg.use_amp else nullcontext()):
-                data = lerobot_eval.rollout(vec, policy, env_pre, env_post, preprocessor, postprocessor,
-                                            seeds=[plan.seed_base + k for k in batch],
-                                            render_callback=render if record else None)
+            with torch.no_grad(), torch.autocast(device_type=device.type) if cfg.use_amp else nullcontext():
+                data = lerobot_eval.rollout(
+                    vec,
+                    policy,
+                    env_pre,
+                    env_post,
+                    preprocessor,
+                    postprocessor,
+                    seeds=[plan.seed_base + k for k in batch],
+                    render_callback=render if record else None,
+                )
         finally:
             close_envs(envs)
         if record:
             last = int(torch.argmax(data["done"][0].to(int)))
             path = video_path(run_dir, shard, batch[0])
             path.parent.mkdir(parents=True, exist_ok=True)
-            write_video(str(path), np.stack(frames[:last + 2]), fps)
+            write_video(str(path), np.stack(frames[: last + 2]), fps)
         got = read_records(folder)
         missing = [k for k in batch if (shard.task, shard.split, k) not in got]
         if missing:
-            raise RuntimeError(f"{shard.name}: episodes {missing} ended without an episode record in {folder}")
+            raise RuntimeError(
+                f"{shard.name}: episodes {missing} ended without an episode record in {folder}"
+            )
         ran += len(batch)
-        log.info("%s: %d/%d episodes", shard.name, len(shard.episodes) - len(pending) + ran, len(shard.episodes))
+        log.info(
+            "%s: %d/%d episodes", shard.name, len(shard.episodes) - len(pending) + ran, len(shard.episodes)
+        )
     return {"episodes": len(shard.episodes), "ran": ran}

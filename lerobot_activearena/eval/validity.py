@@ -98,15 +98,23 @@ def _expert(env, obs, task, split, seed) -> Act:
     return lambda obs, t: obs["environment_state"]
 
 
-ADVERSARIES: dict[str, Adversary] = {a.name: a for a in (
-    Adversary("random", "a uniformly random action every step", _random),
-    Adversary("held_random", f"a uniformly random target held for {HOLD_STEPS} steps", _held_random),
-    Adversary("still", "the home action held", _still),
-    Adversary("blind_replay", "the expert's actions from another seed, open loop", _blind_replay),
-    Adversary("fixed_view_expert", "the privileged expert with head and torso fixed at home", _expert,
-              fixed_view=True, expert_channel=True),
-    Adversary("expert", "the privileged expert (reference: must succeed)", _expert, expert_channel=True),
-)}
+ADVERSARIES: dict[str, Adversary] = {
+    a.name: a
+    for a in (
+        Adversary("random", "a uniformly random action every step", _random),
+        Adversary("held_random", f"a uniformly random target held for {HOLD_STEPS} steps", _held_random),
+        Adversary("still", "the home action held", _still),
+        Adversary("blind_replay", "the expert's actions from another seed, open loop", _blind_replay),
+        Adversary(
+            "fixed_view_expert",
+            "the privileged expert with head and torso fixed at home",
+            _expert,
+            fixed_view=True,
+            expert_channel=True,
+        ),
+        Adversary("expert", "the privileged expert (reference: must succeed)", _expert, expert_channel=True),
+    )
+}
 LOOK_AT_NOTHING = ("random", "held_random", "still", "blind_replay")
 
 
@@ -122,8 +130,14 @@ def run_episode(task: str, split: str, adversary: str, seed: int) -> dict:
 
     adv = get_adversary(adversary)
     t0 = time.perf_counter()
-    env = ActiveArenaEnv(task=task, split=split, use_manifest=False, render_pixels=False,
-                         fixed_view=adv.fixed_view, expert_channel=adv.expert_channel)
+    env = ActiveArenaEnv(
+        task=task,
+        split=split,
+        use_manifest=False,
+        render_pixels=False,
+        fixed_view=adv.fixed_view,
+        expert_channel=adv.expert_channel,
+    )
     env.replay_seed = None
     try:
         obs, _ = env.reset(seed=int(seed))
@@ -136,9 +150,17 @@ def run_episode(task: str, split: str, adversary: str, seed: int) -> dict:
                 break
     finally:
         env.close()
-    rec = dict(task=task, split=split, adversary=adversary, seed=int(seed), success=bool(info.get("is_success")),
-               steps=t, failure_state=info.get("failure_state", ""), failure_reason=info.get("failure_reason", ""),
-               seconds=round(time.perf_counter() - t0, 3))
+    rec = dict(
+        task=task,
+        split=split,
+        adversary=adversary,
+        seed=int(seed),
+        success=bool(info.get("is_success")),
+        steps=t,
+        failure_state=info.get("failure_state", ""),
+        failure_reason=info.get("failure_reason", ""),
+        seconds=round(time.perf_counter() - t0, 3),
+    )
     if env.replay_seed is not None:
         rec["replay_seed"] = env.replay_seed
     return rec
@@ -164,8 +186,10 @@ def check_outside_manifests(tasks: Iterable[str], seeds: Iterable[int]) -> None:
             except KeyError:
                 continue
             if clash:
-                raise ValueError(f"validity seeds {sorted(clash)[:5]} are evaluation seeds of {task}/{split}; "
-                                 f"use seeds outside the manifests (the default base is {VALIDITY_SEED_BASE})")
+                raise ValueError(
+                    f"validity seeds {sorted(clash)[:5]} are evaluation seeds of {task}/{split}; "
+                    f"use seeds outside the manifests (the default base is {VALIDITY_SEED_BASE})"
+                )
 
 
 # ---- suite ---------------------------------------------------------------------------------------
@@ -180,9 +204,18 @@ def _run_job(job: tuple) -> dict:
     try:
         return run_episode(task, split, adversary, seed)
     except Exception as exc:
-        return dict(task=task, split=split, adversary=adversary, seed=int(seed), success=False, steps=0,
-                    failure_state="ERR", failure_reason=f"{type(exc).__name__}: {exc}"[:300],
-                    seconds=round(time.perf_counter() - t0, 3), error=True)
+        return dict(
+            task=task,
+            split=split,
+            adversary=adversary,
+            seed=int(seed),
+            success=False,
+            steps=0,
+            failure_state="ERR",
+            failure_reason=f"{type(exc).__name__}: {exc}"[:300],
+            seconds=round(time.perf_counter() - t0, 3),
+            error=True,
+        )
 
 
 def load_records(path: Path) -> dict[tuple, dict]:
@@ -206,8 +239,14 @@ def load_records(path: Path) -> dict[tuple, dict]:
     return out
 
 
-def run_suite(tasks: Sequence[str], adversaries: Sequence[str], seeds: int | Iterable[int],
-              splits: Sequence[str] = ("id",), out_dir: str | Path = "outputs/validity", workers: int = 2) -> list[dict]:
+def run_suite(
+    tasks: Sequence[str],
+    adversaries: Sequence[str],
+    seeds: int | Iterable[int],
+    splits: Sequence[str] = ("id",),
+    out_dir: str | Path = "outputs/validity",
+    workers: int = 2,
+) -> list[dict]:
     """Run every (task, split, adversary, seed) episode not yet in ``out_dir/episodes.jsonl``,
     appending one line per finished episode; return the records of all requested episodes.
     ``seeds``: a count (seeds VALIDITY_SEED_BASE..) or explicit seeds. ``workers <= 1`` runs in
@@ -227,6 +266,7 @@ def run_suite(tasks: Sequence[str], adversaries: Sequence[str], seeds: int | Ite
     if len(todo) < len(jobs):
         print(f"resuming {path}: {len(jobs) - len(todo)} of {len(jobs)} episodes already recorded")
     with open(path, "a") as f, tqdm(total=len(todo), desc="validity episodes", unit="ep") as bar:
+
         def record(rec):
             f.write(json.dumps(rec) + "\n")
             f.flush()
@@ -251,8 +291,18 @@ def run_suite(tasks: Sequence[str], adversaries: Sequence[str], seeds: int | Ite
 
 def _error_stub(job: tuple) -> dict:
     task, split, adversary, seed = job
-    return dict(task=task, split=split, adversary=adversary, seed=seed, success=False, steps=0,
-                failure_state="ERR", failure_reason="error (see episodes.jsonl)", seconds=0.0, error=True)
+    return dict(
+        task=task,
+        split=split,
+        adversary=adversary,
+        seed=seed,
+        success=False,
+        steps=0,
+        failure_state="ERR",
+        failure_reason="error (see episodes.jsonl)",
+        seconds=0.0,
+        error=True,
+    )
 
 
 # ---- summary -------------------------------------------------------------------------------------
@@ -293,29 +343,47 @@ def summarise(records: Iterable[dict]) -> list[dict]:
         groups[(r["task"], r["split"], r["adversary"])].append(r)
     order = list(ADVERSARIES)
     rows = []
-    for (task, split, adv), rs in sorted(groups.items(), key=lambda kv: (kv[0][0], kv[0][1], order.index(kv[0][2]))):
+    for (task, split, adv), rs in sorted(
+        groups.items(), key=lambda kv: (kv[0][0], kv[0][1], order.index(kv[0][2]))
+    ):
         ok = [r for r in rs if not r.get("error")]
         k = sum(bool(r["success"]) for r in ok)
         states = collections.Counter(r["failure_state"] for r in ok if not r["success"])
         reasons = collections.Counter(_short_reason(r["failure_reason"]) for r in ok if not r["success"])
-        row = dict(task=task, split=split, adversary=adv, episodes=len(ok), successes=k,
-                   success_rate=k / len(ok) if ok else float("nan"), errors=len(rs) - len(ok),
-                   failure_states=dict(sorted(states.items())), failure_reasons=reasons.most_common(3),
-                   seconds_per_episode=sum(r["seconds"] for r in ok) / max(1, len(ok)), target=target_text(adv))
+        row = dict(
+            task=task,
+            split=split,
+            adversary=adv,
+            episodes=len(ok),
+            successes=k,
+            success_rate=k / len(ok) if ok else float("nan"),
+            errors=len(rs) - len(ok),
+            failure_states=dict(sorted(states.items())),
+            failure_reasons=reasons.most_common(3),
+            seconds_per_episode=sum(r["seconds"] for r in ok) / max(1, len(ok)),
+            target=target_text(adv),
+        )
         row["met"] = targets_met(row)
         rows.append(row)
     return rows
 
 
 def markdown_table(rows: list[dict]) -> str:
-    lines = ["| task | split | adversary | success | failure states | most common failure reasons | s/episode "
-             "| target | met |", "|---|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "| task | split | adversary | success | failure states | most common failure reasons | s/episode "
+        "| target | met |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
     for r in rows:
-        states = ", ".join(f"{s} {n}" for s, n in r["failure_states"].items()) + (f", ERR {r['errors']}" if r["errors"] else "")
+        states = ", ".join(f"{s} {n}" for s, n in r["failure_states"].items()) + (
+            f", ERR {r['errors']}" if r["errors"] else ""
+        )
         reasons = "; ".join(f"{n}x {t}" for t, n in r["failure_reasons"]).replace("|", "/")
-        lines.append(f"| {r['task']} | {r['split']} | {r['adversary']} | {r['successes']}/{r['episodes']} "
-                     f"({100 * r['success_rate']:.0f}%) | {states} | {reasons} | {r['seconds_per_episode']:.2f} "
-                     f"| {r['target']} | {'ok' if r['met'] else 'MISSED'} |")
+        lines.append(
+            f"| {r['task']} | {r['split']} | {r['adversary']} | {r['successes']}/{r['episodes']} "
+            f"({100 * r['success_rate']:.0f}%) | {states} | {reasons} | {r['seconds_per_episode']:.2f} "
+            f"| {r['target']} | {'ok' if r['met'] else 'MISSED'} |"
+        )
     return "\n".join(lines)
 
 
@@ -327,17 +395,50 @@ def write_report(rows: list[dict], out_dir: str | Path) -> str:
     (out_dir / "validity.md").write_text("# ActiveArena validity suite\n\n" + table + "\n")
     with open(out_dir / "validity.csv", "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["task", "split", "adversary", "episodes", "successes", "success_rate", "DM", "CO", "CR", "errors",
-                    "seconds_per_episode", "target", "met", "failure_reasons"])
+        w.writerow(
+            [
+                "task",
+                "split",
+                "adversary",
+                "episodes",
+                "successes",
+                "success_rate",
+                "DM",
+                "CO",
+                "CR",
+                "errors",
+                "seconds_per_episode",
+                "target",
+                "met",
+                "failure_reasons",
+            ]
+        )
         for r in rows:
             fs = r["failure_states"]
-            w.writerow([r["task"], r["split"], r["adversary"], r["episodes"], r["successes"], f"{r['success_rate']:.3f}",
-                        fs.get("DM", 0), fs.get("CO", 0), fs.get("CR", 0), r["errors"], f"{r['seconds_per_episode']:.3f}",
-                        r["target"], "ok" if r["met"] else "MISSED",
-                        "; ".join(f"{n}x {t}" for t, n in r["failure_reasons"])])
+            w.writerow(
+                [
+                    r["task"],
+                    r["split"],
+                    r["adversary"],
+                    r["episodes"],
+                    r["successes"],
+                    f"{r['success_rate']:.3f}",
+                    fs.get("DM", 0),
+                    fs.get("CO", 0),
+                    fs.get("CR", 0),
+                    r["errors"],
+                    f"{r['seconds_per_episode']:.3f}",
+                    r["target"],
+                    "ok" if r["met"] else "MISSED",
+                    "; ".join(f"{n}x {t}" for t, n in r["failure_reasons"]),
+                ]
+            )
     return table
 
 
 def missed(rows: list[dict]) -> list[str]:
-    return [f"{r['task']}/{r['split']}/{r['adversary']} ({r['successes']}/{r['episodes']}, target {r['target']})"
-            for r in rows if not r["met"]]
+    return [
+        f"{r['task']}/{r['split']}/{r['adversary']} ({r['successes']}/{r['episodes']}, target {r['target']})"
+        for r in rows
+        if not r["met"]
+    ]

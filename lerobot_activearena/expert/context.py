@@ -21,8 +21,15 @@ class ExpertContext:
     """Shared by all primitives of one episode. Search decisions read only ``memory`` (positions of
     objects the camera has seen); manipulation reads the true pose of an object once it is known."""
 
-    def __init__(self, sim: ActiveArenaSim, objects: list[str], recorder: AnnotationRecorder, ik: ArmIK, gaze: Gaze,
-                 n_subtasks: int = 1):
+    def __init__(
+        self,
+        sim: ActiveArenaSim,
+        objects: list[str],
+        recorder: AnnotationRecorder,
+        ik: ArmIK,
+        gaze: Gaze,
+        n_subtasks: int = 1,
+    ):
         self.sim, self.recorder, self.ik, self.gaze = sim, recorder, ik, gaze
         self.n_subtasks = n_subtasks
         self.objects = list(objects)

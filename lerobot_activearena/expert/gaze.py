@@ -36,15 +36,22 @@ class Gaze:
         v = R.T @ (np.asarray(point, float) - self.data.cam_xpos[self.cam])  # camera looks along -z
         return np.array([math.atan2(v[0], -v[2]), math.atan2(v[1], -v[2])])
 
-    def aim(self, point, yaw: float, pitch: float, fix_yaw: bool = False, iters: int = 8) -> tuple[float, float]:
+    def aim(
+        self, point, yaw: float, pitch: float, fix_yaw: bool = False, iters: int = 8
+    ) -> tuple[float, float]:
         """Torso yaw and head pitch that centre ``point`` in the image (Newton steps with a
         finite-difference Jacobian); with ``fix_yaw`` only the pitch moves. Clipped to the limits."""
         x = np.array([yaw, pitch], float)
         eps = 1e-4
         for _ in range(iters):
             e = self._angles(point, *x)
-            J = np.stack([(self._angles(point, x[0] + eps, x[1]) - e) / eps,
-                          (self._angles(point, x[0], x[1] + eps) - e) / eps], axis=1)
+            J = np.stack(
+                [
+                    (self._angles(point, x[0] + eps, x[1]) - e) / eps,
+                    (self._angles(point, x[0], x[1] + eps) - e) / eps,
+                ],
+                axis=1,
+            )
             if fix_yaw:
                 dx = np.array([0.0, -e[1] / J[1, 1]])
             else:

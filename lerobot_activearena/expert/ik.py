@@ -33,8 +33,12 @@ class ArmIK:
         E.add_robot(spec)
         self.model = spec.compile()
         self.configuration = mink.Configuration(self.model)
-        self._qadr = {s: np.array([self.model.joint(j).qposadr[0] for j in E.ARM_JOINTS[s]]) for s in ("left", "right")}
-        self._dof = {s: [int(self.model.joint(j).dofadr[0]) for j in E.ARM_JOINTS[s]] for s in ("left", "right")}
+        self._qadr = {
+            s: np.array([self.model.joint(j).qposadr[0] for j in E.ARM_JOINTS[s]]) for s in ("left", "right")
+        }
+        self._dof = {
+            s: [int(self.model.joint(j).dofadr[0]) for j in E.ARM_JOINTS[s]] for s in ("left", "right")
+        }
         self._other_qadr = {
             "torso": self.model.joint(E.TORSO_YAW_JOINT).qposadr[0],
             "head": self.model.joint(E.HEAD_PITCH_JOINT).qposadr[0],
@@ -45,26 +49,46 @@ class ArmIK:
             for s in ("left", "right")
         }
         self._task = {
-            s: mink.FrameTask(E.TCP_SITES[s], "site", position_cost=1.0, orientation_cost=0.5, lm_damping=1e-3)
+            s: mink.FrameTask(
+                E.TCP_SITES[s], "site", position_cost=1.0, orientation_cost=0.5, lm_damping=1e-3
+            )
             for s in ("left", "right")
         }
         self._posture = mink.PostureTask(self.model, cost=1e-3)
 
-    def solve(self, side: str, arm_q: np.ndarray, torso_yaw: float, target_pos, target_rot,
-              max_iters: int = 300, pos_tol: float = 1e-3, rot_tol: float = 1e-2) -> np.ndarray:
+    def solve(
+        self,
+        side: str,
+        arm_q: np.ndarray,
+        torso_yaw: float,
+        target_pos,
+        target_rot,
+        max_iters: int = 300,
+        pos_tol: float = 1e-3,
+        rot_tol: float = 1e-2,
+    ) -> np.ndarray:
         """Return 7 joint angles that put ``side``'s TCP at (target_pos, target_rot)."""
         q = self.model.qpos0.copy()
         q[self._qadr[side]] = arm_q
         q[self._other_qadr["torso"]] = torso_yaw
         self.configuration.update(q)
         task = self._task[side]
-        T = mink.SE3.from_rotation_and_translation(mink.SO3.from_matrix(np.asarray(target_rot)), np.asarray(target_pos))
+        T = mink.SE3.from_rotation_and_translation(
+            mink.SO3.from_matrix(np.asarray(target_rot)), np.asarray(target_pos)
+        )
         task.set_target(T)
         self._posture.set_target(q)
         dt = 0.05
         for _ in range(max_iters):
-            vel = mink.solve_ik(self.configuration, [task, self._posture], dt, "daqp", damping=1e-3,
-                                limits=self.limits, constraints=[self._freeze[side]])
+            vel = mink.solve_ik(
+                self.configuration,
+                [task, self._posture],
+                dt,
+                "daqp",
+                damping=1e-3,
+                limits=self.limits,
+                constraints=[self._freeze[side]],
+            )
             self.configuration.integrate_inplace(vel, dt)
             err = task.compute_error(self.configuration)
             if np.linalg.norm(err[:3]) < pos_tol and np.linalg.norm(err[3:]) < rot_tol:

@@ -19,8 +19,7 @@ from ..annotations.schema import CAMERA_INSPECT, STAGE_ANCHOR, STAGE_SEARCH
 from ..sim import embodiment as E
 from ..tasks.draft import TABLE_TOP
 from ..tasks.predicates import hidden_face_visible
-from . import primitives as P
-from . import routines as R
+from . import primitives as P, routines as R
 from .context import ExpertContext, ExpertError
 from .ik import grasp_rotation, rot_z
 
@@ -46,14 +45,19 @@ class Turn:
     q_before: np.ndarray | None = None
 
 
-def inspect_points(ctx: ExpertContext, side: str, hang: float = 0.0, fine_print: bool = False) -> list[np.ndarray]:
+def inspect_points(
+    ctx: ExpertContext, side: str, hang: float = 0.0, fine_print: bool = False
+) -> list[np.ndarray]:
     """Where to turn the object, in order of preference: in front of the arm's shoulder, below the
     head (the wrist can turn there and the camera sees it), after the ``SHOW_SPOTS`` with
     ``fine_print``. Raised for objects hanging far below the TCP (``hang``): 8 cm table clearance."""
     lateral = -0.19 if side == "left" else 0.19
     c, s = math.cos(ctx.yaw), math.sin(ctx.yaw)
     spots = [*(SHOW_SPOTS if fine_print else ()), (0.38, 0.87)]
-    return [np.array([c * lateral - s * f, s * lateral + c * f, max(z, TABLE_TOP + hang + 0.08)]) for f, z in spots]
+    return [
+        np.array([c * lateral - s * f, s * lateral + c * f, max(z, TABLE_TOP + hang + 0.08)])
+        for f, z in spots
+    ]
 
 
 def turn_angles(ctx: ExpertContext, i: int, point) -> list[float]:
@@ -65,10 +69,17 @@ def turn_angles(ctx: ExpertContext, i: int, point) -> list[float]:
     want = math.atan2(cam[1] - point[1], cam[0] - point[0]) - math.atan2(normal[1], normal[0])
     base = math.remainder(want, 2 * math.pi)
     other = base - math.copysign(2 * math.pi, base)
-    return [a + off for off in (0.0, 0.45, -0.45, 0.9, -0.9) for a in (base, other) if abs(a + off) <= 1.2 * math.pi]
+    return [
+        a + off
+        for off in (0.0, 0.45, -0.45, 0.9, -0.9)
+        for a in (base, other)
+        if abs(a + off) <= 1.2 * math.pi
+    ]
 
 
-def _grasp_for_turn(ctx: ExpertContext, side: str, i: int, points, lift: float) -> tuple[np.ndarray, float, np.ndarray]:
+def _grasp_for_turn(
+    ctx: ExpertContext, side: str, i: int, points, lift: float
+) -> tuple[np.ndarray, float, np.ndarray]:
     """Finger-closing axis (+/- the object's y: the face on its +x stays uncovered), turn angle and
     inspection point: the first whose carry and whole turn IK can follow (the angles of
     ``turn_angles`` in order of obliqueness, then the points in order)."""
@@ -76,8 +87,10 @@ def _grasp_for_turn(ctx: ExpertContext, side: str, i: int, points, lift: float) 
     grasp = P.grasp_point(ctx, i)
     path = [grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift]]
     # Exactly facing the camera from any point beats an oblique view from a preferred one.
-    ranked = sorted(((k // 2, n, p, a) for n, p in enumerate(points) for k, a in enumerate(turn_angles(ctx, i, p))),
-                    key=lambda c: c[:2])
+    ranked = sorted(
+        ((k // 2, n, p, a) for n, p in enumerate(points) for k, a in enumerate(turn_angles(ctx, i, p))),
+        key=lambda c: c[:2],
+    )
     for _, _, point, angle, sign in ((*c, g) for c in ranked for g in (1.0, -1.0)):
         rot = grasp_rotation([0, 0, -1], sign * Rb[:, 1])
         try:
@@ -87,16 +100,23 @@ def _grasp_for_turn(ctx: ExpertContext, side: str, i: int, points, lift: float) 
             # The carry to the inspection point and the turn, as carry_and_turn will follow them.
             top = path[-1]
             for frac in np.linspace(0.0, 1.0, 13)[1:]:
-                q = P.solve_ik(ctx, side, q, top + frac * (point - top), rot_z(frac * angle) @ rot,
-                               max_step=P.MAX_PATH_STEP)
+                q = P.solve_ik(
+                    ctx,
+                    side,
+                    q,
+                    top + frac * (point - top),
+                    rot_z(frac * angle) @ rot,
+                    max_step=P.MAX_PATH_STEP,
+                )
             return sign * Rb[:, 1], angle, point
         except ExpertError:
             continue
     raise ExpertError(f"the {side} wrist cannot turn {ctx.objects[i]} to show its hidden face")
 
 
-def pick_for_inspection(ctx: ExpertContext, i: int, lift: float = LIFT,
-                        fine_print: bool = False) -> Generator[np.ndarray, None, Turn]:
+def pick_for_inspection(
+    ctx: ExpertContext, i: int, lift: float = LIFT, fine_print: bool = False
+) -> Generator[np.ndarray, None, Turn]:
     """Find object ``i``, face it and pick it with a grasp the wrist can turn: ``turn = yield from ...``.
     ``fine_print``: the face must be read in detail; turn it where the camera sees it most frontally."""
     side = yield from R.find_and_face(ctx, i)
@@ -126,7 +146,13 @@ def show_hidden_face(ctx: ExpertContext, turn: Turn, i: int):
     it.info_complete = True
     # The view that revealed it, for the sidecar (record_reading adds what was read and decided).
     ctx.notes.setdefault("inspections", []).append(
-        {"object": ctx.objects[i], "frame": ctx.frame, "torso_yaw": round(ctx.yaw, 4), "head_pitch": round(ctx.pitch, 4)})
+        {
+            "object": ctx.objects[i],
+            "frame": ctx.frame,
+            "torso_yaw": round(ctx.yaw, 4),
+            "head_pitch": round(ctx.pitch, 4),
+        }
+    )
     yield from P.hold(ctx, 3)
 
 

@@ -11,7 +11,9 @@ from ..sim import action as A
 CONTROL_DT = 1.0 / 15
 
 
-def interpolate_joints(start: np.ndarray, goal: np.ndarray, max_vel: float = 1.0, min_steps: int = 2) -> list[np.ndarray]:
+def interpolate_joints(
+    start: np.ndarray, goal: np.ndarray, max_vel: float = 1.0, min_steps: int = 2
+) -> list[np.ndarray]:
     """Linear joint-space path at <= ``max_vel`` rad/s (the paper's move_joint fallback), with a
     smooth (cosine) time scaling; returns the actions after ``start``, ending exactly at ``goal``."""
     start, goal = np.asarray(start, float), np.asarray(goal, float)
@@ -38,13 +40,21 @@ def trapezoid(distance: float, vmax: float, amax: float, dt: float = CONTROL_DT)
         t_total = 2 * t_acc + (d - amax * t_acc**2) / vmax
     n = max(1, int(math.ceil(t_total / dt)))
     t = np.linspace(t_total / n, t_total, n)
-    pos = np.where(t < t_acc, 0.5 * amax * t**2,
-                   np.where(t <= t_total - t_acc, 0.5 * amax * t_acc**2 + vpk * (t - t_acc),
-                            d - 0.5 * amax * (t_total - t) ** 2))
+    pos = np.where(
+        t < t_acc,
+        0.5 * amax * t**2,
+        np.where(
+            t <= t_total - t_acc,
+            0.5 * amax * t_acc**2 + vpk * (t - t_acc),
+            d - 0.5 * amax * (t_total - t) ** 2,
+        ),
+    )
     return np.clip(pos / d, 0.0, 1.0)
 
 
-def with_arm(base: np.ndarray, side: str, arm_q: np.ndarray | None = None, gripper: float | None = None) -> np.ndarray:
+def with_arm(
+    base: np.ndarray, side: str, arm_q: np.ndarray | None = None, gripper: float | None = None
+) -> np.ndarray:
     a = np.asarray(base, float).copy()
     sl, g = (A.LEFT_ARM, A.LEFT_GRIPPER) if side == "left" else (A.RIGHT_ARM, A.RIGHT_GRIPPER)
     if arm_q is not None:

@@ -21,8 +21,15 @@ def side_grasp_frames(obj_center: np.ndarray, standoff: float) -> tuple[np.ndarr
     return obj_center - standoff * radial, grasp_rotation(radial, closing)
 
 
-def pick_and_shake(sim: ActiveArenaSim, ik: ArmIK, obj: str, side: str,
-                   lift: float = 0.15, shake_amp: float = 0.05, shake_cycles: int = 2) -> Iterator[tuple[str, np.ndarray]]:
+def pick_and_shake(
+    sim: ActiveArenaSim,
+    ik: ArmIK,
+    obj: str,
+    side: str,
+    lift: float = 0.15,
+    shake_amp: float = 0.05,
+    shake_cycles: int = 2,
+) -> Iterator[tuple[str, np.ndarray]]:
     """Yield (phase, action) pairs; the caller steps the sim with each action."""
     info = next(o for o in sim.info.objects if o.name == obj)
     body = sim.data.body(info.body)

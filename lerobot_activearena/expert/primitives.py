@@ -16,10 +16,15 @@ from collections.abc import Callable, Iterator
 
 import numpy as np
 
-from ..annotations.schema import (CAMERA_CENTER, CAMERA_HOLD, CAMERA_SEARCH, STAGE_ACTION, STAGE_ANCHOR,
-                                  STAGE_SEARCH)
-from ..sim import action as A
-from ..sim import embodiment as E
+from ..annotations.schema import (
+    CAMERA_CENTER,
+    CAMERA_HOLD,
+    CAMERA_SEARCH,
+    STAGE_ACTION,
+    STAGE_ANCHOR,
+    STAGE_SEARCH,
+)
+from ..sim import action as A, embodiment as E
 from .context import ExpertContext, ExpertError
 from .gaze import heading_deg
 from .ik import IKFailed, grasp_rotation, interpolate_pose, rot_z
@@ -37,8 +42,9 @@ GRASP_Z_MIN_ABOVE_BOTTOM = 0.033  # open pads reach 0.028 m past the TCP: keep t
 
 
 # ---- camera -------------------------------------------------------------------------------------
-def move_head_torso_to(ctx: ExpertContext, yaw: float, pitch: float, mode: int,
-                       stop_when: Callable[[], bool] | None = None) -> Iterator[np.ndarray]:
+def move_head_torso_to(
+    ctx: ExpertContext, yaw: float, pitch: float, mode: int, stop_when: Callable[[], bool] | None = None
+) -> Iterator[np.ndarray]:
     """Turn torso and head together to (yaw, pitch); returns True if ``stop_when`` fired."""
     y0, p0 = ctx.yaw, ctx.pitch
     yaw = float(np.clip(yaw, -1.2, 1.2))
@@ -123,10 +129,17 @@ def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
     it.focus, it.stage, it.info_complete = i, STAGE_SEARCH, False
     it.search_targets = it.search_targets | {i}
     if i not in ctx.memory:
-        order = sorted(range(len(SECTOR_YAWS)), key=lambda s: (s in ctx.explored, abs(SECTOR_YAWS[s] - ctx.yaw)))
+        order = sorted(
+            range(len(SECTOR_YAWS)), key=lambda s: (s in ctx.explored, abs(SECTOR_YAWS[s] - ctx.yaw))
+        )
         for s in order:
-            yield from move_head_torso_to(ctx, SECTOR_YAWS[s], SEARCH_PITCH, CAMERA_SEARCH,
-                                          stop_when=lambda: bool(ctx.recorder.visible[i]))
+            yield from move_head_torso_to(
+                ctx,
+                SECTOR_YAWS[s],
+                SEARCH_PITCH,
+                CAMERA_SEARCH,
+                stop_when=lambda: bool(ctx.recorder.visible[i]),
+            )
             if ctx.recorder.visible[i]:
                 break
             yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
@@ -185,7 +198,9 @@ def tcp_pose(ctx: ExpertContext, side: str) -> tuple[np.ndarray, np.ndarray]:
     return ctx.ik.tcp_pose(side, arm_of(ctx.action, side), ctx.yaw)
 
 
-def move_arm_joint(ctx: ExpertContext, side: str, q_goal, gripper: float | None = None, max_vel: float = 1.0) -> Actions:
+def move_arm_joint(
+    ctx: ExpertContext, side: str, q_goal, gripper: float | None = None, max_vel: float = 1.0
+) -> Actions:
     """The paper's move_joint: linear joint path at <= max_vel rad/s with a smooth time scaling."""
     ctx.intent.camera_mode = CAMERA_HOLD
     q0 = arm_of(ctx.action, side)
@@ -194,12 +209,16 @@ def move_arm_joint(ctx: ExpertContext, side: str, q_goal, gripper: float | None 
         yield ctx.emit()
 
 
-def arm_goto(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, max_vel: float = 1.5) -> Actions:
+def arm_goto(
+    ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, max_vel: float = 1.5
+) -> Actions:
     q_goal = solve_ik(ctx, side, arm_of(ctx.action, side), pos, rot)
     yield from move_arm_joint(ctx, side, q_goal, gripper, max_vel)
 
 
-def arm_line(ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, speed: float = 0.15) -> Actions:
+def arm_line(
+    ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, speed: float = 0.15
+) -> Actions:
     """Straight TCP segment with a smooth (cosine) speed profile peaking at ``speed`` m/s."""
     ctx.intent.camera_mode = CAMERA_HOLD
     p0, R0 = tcp_pose(ctx, side)
@@ -228,8 +247,9 @@ def top_down_rotation(ctx: ExpertContext, side: str, closing, *positions) -> np.
     _, R_now = tcp_pose(ctx, side)
     c = np.array([closing[0], closing[1], 0.0])
     c /= np.linalg.norm(c)
-    cands = sorted([grasp_rotation([0, 0, -1], c), grasp_rotation([0, 0, -1], -c)],
-                   key=lambda R: -np.trace(R_now.T @ R))
+    cands = sorted(
+        [grasp_rotation([0, 0, -1], c), grasp_rotation([0, 0, -1], -c)], key=lambda R: -np.trace(R_now.T @ R)
+    )
     for R in cands:
         try:
             for pos in positions:
@@ -275,7 +295,9 @@ def grasp_point(ctx: ExpertContext, i: int) -> np.ndarray:
     return np.array([c[0], c[1], max(c[2], ctx.bottom_z(i) + GRASP_Z_MIN_ABOVE_BOTTOM)])
 
 
-def pick(ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15, flip_ok: bool = True) -> Actions:
+def pick(
+    ctx: ExpertContext, side: str, i: int, closing=None, lift: float = 0.15, flip_ok: bool = True
+) -> Actions:
     """Top-down grasp of object ``i`` and lift; raises ExpertError if it did not come up.
     ``flip_ok=False`` keeps the finger order given by ``closing`` (no 180 deg wrist flip)."""
     start_action(ctx, {i})
@@ -310,8 +332,15 @@ def _feasible_rotation(ctx: ExpertContext, side: str, R: np.ndarray, positions, 
     raise ExpertError(f"{side} arm cannot reach the placement poses {np.round(positions, 3).tolist()}")
 
 
-def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, clearance: float = 0.006,
-          yaw_free: bool = True) -> Actions:
+def place(
+    ctx: ExpertContext,
+    side: str,
+    i: int,
+    target_xy,
+    surface_z: float,
+    clearance: float = 0.006,
+    yaw_free: bool = True,
+) -> Actions:
     """Carry object ``i`` over ``target_xy``, lower its bottom to ``surface_z + clearance``, release, rise."""
     p, R = tcp_pose(ctx, side)
     c = ctx.center(i)
@@ -332,7 +361,9 @@ def place(ctx: ExpertContext, side: str, i: int, target_xy, surface_z: float, cl
     yield from arm_line(ctx, side, tcp_for(Rg, z_down + 0.10), Rg, 1.0, speed=0.2)
 
 
-def press(ctx: ExpertContext, side: str, point, depth: float, targets: set[int], approach: float = 0.07) -> Actions:
+def press(
+    ctx: ExpertContext, side: str, point, depth: float, targets: set[int], approach: float = 0.07
+) -> Actions:
     """Closed fingertips pressed ``depth`` m into ``point`` from above, then released. The wrist's
     rotation about the vertical is free: the first one IK reaches along the whole stroke is used."""
     start_action(ctx, targets)
@@ -370,8 +401,9 @@ def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: i
         yield ctx.emit()
 
 
-def carry_and_turn(ctx: ExpertContext, side: str, pos, angle: float, speed: float = 0.2,
-                   steps_per_rad: int = 12) -> Actions:
+def carry_and_turn(
+    ctx: ExpertContext, side: str, pos, angle: float, speed: float = 0.2, steps_per_rad: int = 12
+) -> Actions:
     """Move the TCP in a straight line to ``pos`` while turning it about the vertical by ``angle``
     rad (one smooth motion, as long as the slower of the two)."""
     ctx.intent.camera_mode = CAMERA_HOLD
@@ -381,7 +413,9 @@ def carry_and_turn(ctx: ExpertContext, side: str, pos, angle: float, speed: floa
     q = arm_of(ctx.action, side)
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
-        q = solve_ik(ctx, side, q, p0 + s * (np.asarray(pos) - p0), rot_z(s * angle) @ R0, max_step=MAX_PATH_STEP)
+        q = solve_ik(
+            ctx, side, q, p0 + s * (np.asarray(pos) - p0), rot_z(s * angle) @ R0, max_step=MAX_PATH_STEP
+        )
         ctx.action = with_arm(ctx.action, side, q)
         yield ctx.emit()
 

@@ -11,7 +11,9 @@ from . import primitives as P
 from .context import ExpertContext
 
 
-def find_and_face(ctx: ExpertContext, i: int, side: str | None = None, then=None) -> Generator[np.ndarray, None, str]:
+def find_and_face(
+    ctx: ExpertContext, i: int, side: str | None = None, then=None
+) -> Generator[np.ndarray, None, str]:
     """Search for object ``i`` (from memory or by sector sweep), choose the arm (``side``, or the one
     on the object's half of the fan; with a known destination ``then``, the half of the midpoint)
     and turn the torso so the object sits in front of it. Returns the arm: ``side = yield from ...``."""

@@ -40,7 +40,10 @@ class ClipReport:
         return self.indices.size > 0
 
     def as_dict(self) -> dict[str, tuple[float, float]]:
-        return {ACTION_NAMES[i]: (float(r), float(a)) for i, r, a in zip(self.indices, self.requested, self.applied)}
+        return {
+            ACTION_NAMES[i]: (float(r), float(a))
+            for i, r, a in zip(self.indices, self.requested, self.applied)
+        }
 
 
 def validate_action(action) -> np.ndarray:

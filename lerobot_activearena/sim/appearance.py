@@ -33,7 +33,8 @@ def random_appearance(rng: np.random.Generator) -> Appearance:
     azimuth = rng.uniform(0, 2 * np.pi)
     tilt = rng.uniform(0.15, 0.8)  # horizontal component of the light direction
     return Appearance(
-        floor_rgb1=tuple(map(float, base)), floor_rgb2=tuple(map(float, floor2)),
+        floor_rgb1=tuple(map(float, base)),
+        floor_rgb2=tuple(map(float, floor2)),
         floor_repeat=float(rng.uniform(3, 14)),
         table_rgba=(*map(float, table), 1.0),
         table_texture_seed=int(rng.integers(0, 2**31 - 1)),

@@ -33,7 +33,9 @@ def extrinsic_cv(data: mujoco.MjData, cam_id: int) -> np.ndarray:
     return T
 
 
-def project(points_world: np.ndarray, K: np.ndarray, world_to_cam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def project(
+    points_world: np.ndarray, K: np.ndarray, world_to_cam: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Project Nx3 world points; returns pixel coords (N,2) and camera depths (N,)."""
     pc = points_world @ world_to_cam[:3, :3].T + world_to_cam[:3, 3]
     z = pc[:, 2]

@@ -137,7 +137,11 @@ def _add_gripper_geoms(body: mujoco.MjsBody, node: dict, side: str) -> None:
     for box in node["collision_boxes"]:
         g = body.add_geom()
         is_pad = "L11" in node["name"] or "R11" in node["name"]
-        g.name = f"{PREFIX}gripper_{side}_pad_{'L' if 'L11' in node['name'] else 'R'}" if is_pad else f"{PREFIX}gripper_{side}_palm"
+        g.name = (
+            f"{PREFIX}gripper_{side}_pad_{'L' if 'L11' in node['name'] else 'R'}"
+            if is_pad
+            else f"{PREFIX}gripper_{side}_palm"
+        )
         g.type = mujoco.mjtGeom.mjGEOM_BOX
         g.size = np.asarray(box["size"], float)
         g.pos = np.asarray(box["pos"], float)
@@ -154,6 +158,7 @@ def _add_gripper_geoms(body: mujoco.MjsBody, node: dict, side: str) -> None:
 
 def _add_fixed_visuals(body: mujoco.MjsBody, name: str) -> None:
     """Non-colliding shapes for torso, head and finger bars (for looks)."""
+
     def vis(gtype, size, pos, rgba=ROBOT_COLOR, quat=None):
         g = body.add_geom()
         g.type, g.size, g.pos, g.rgba = gtype, np.asarray(size, float), np.asarray(pos, float), rgba
@@ -194,7 +199,9 @@ def _forward_left_up_camera_quat(rpy) -> np.ndarray:
     return out
 
 
-def _add_body(parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing: dict[str, float]) -> mujoco.MjsBody:
+def _add_body(
+    parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing: dict[str, float]
+) -> mujoco.MjsBody:
     body = parent.add_body()
     body.name = node["name"]
     body.pos = np.asarray(node.get("pos", (0, 0, 0)), float)
@@ -237,7 +244,10 @@ def _add_body(parent: mujoco.MjsBody, node: dict, info: RobotSpecInfo, standing:
         c.pos = np.asarray(cam["pos"], float)
         c.fovy = float(cam["fovy"][0])
         if cam["name"] == HEAD_CAMERA:
-            c.pos, c.quat = np.asarray(HEAD_CAMERA_MOUNT, float), _forward_left_up_camera_quat(HEAD_CAMERA_RPY)
+            c.pos, c.quat = (
+                np.asarray(HEAD_CAMERA_MOUNT, float),
+                _forward_left_up_camera_quat(HEAD_CAMERA_RPY),
+            )
         elif "xyaxes" in cam:
             x = np.asarray(cam["xyaxes"][:3], float)
             y = np.asarray(cam["xyaxes"][3:], float)
@@ -320,12 +330,13 @@ def _add_actuators(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
         _position_actuator(spec, joint, joint, kp, 0.0)
     for side in ("left", "right"):
         _position_actuator(
-            spec, f"{PREFIX}gripper_{side}", info.gripper_joints[side], *GRIPPER_GAINS,
+            spec,
+            f"{PREFIX}gripper_{side}",
+            info.gripper_joints[side],
+            *GRIPPER_GAINS,
             force=GRIPPER_FORCE * GRIPPER_FINGER_LEVER,
         )
     for joint, (kp, kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
         a = spec.add_actuator()
         a.name, a.target, a.trntype = f"{joint}_velocity", joint, mujoco.mjtTrn.mjTRN_JOINT
         a.set_to_velocity(kv=kv)
-
-

@@ -8,8 +8,8 @@ import mujoco
 import numpy as np
 
 from . import embodiment
-from .assets import ObjectInfo, build_asset
 from .appearance import DEFAULT_APPEARANCE, Appearance, table_texture
+from .assets import ObjectInfo, build_asset
 from .assets.base import add_texture_material
 from .workspace import Workspace, add_workspace, fan_workspace
 
@@ -34,8 +34,13 @@ class SceneInfo:
 class SceneBuilder:
     """Builds one scene. Add objects, then ``compile()`` to an ``MjModel``."""
 
-    def __init__(self, workspace: Workspace | None = None, wrist_cameras: bool = False, shadows: bool = False,
-                 appearance: Appearance | None = None):
+    def __init__(
+        self,
+        workspace: Workspace | None = None,
+        wrist_cameras: bool = False,
+        shadows: bool = False,
+        appearance: Appearance | None = None,
+    ):
         """``shadows`` costs ~5x in CPU rendering (llvmpipe), so it is off by default."""
         self.workspace = workspace or fan_workspace()
         self.shadows = shadows
@@ -110,26 +115,57 @@ class SceneBuilder:
         look = self.appearance
         material = None
         if look.table_texture_seed is not None:
-            material = add_texture_material(self.spec, "tabletop_grain",
-                                            table_texture(look.table_texture_seed, look.table_rgba[:3]), texrepeat=(4, 4),
-                                            texuniform=True)
+            material = add_texture_material(
+                self.spec,
+                "tabletop_grain",
+                table_texture(look.table_texture_seed, look.table_rgba[:3]),
+                texrepeat=(4, 4),
+                texuniform=True,
+            )
         for g in self.spec.geoms:
             if g.material == "tabletop":
                 g.rgba = look.table_rgba if material is None else (1, 1, 1, 1)
                 if material:
                     g.material = material
 
-    def add_object(self, kind: str, name: str, distance: float, angle_deg: float, level: int = 0,
-                   yaw: float = 0.0, rng: np.random.Generator | None = None, register: bool = True,
-                   static: bool = False, **params) -> ObjectInfo:
+    def add_object(
+        self,
+        kind: str,
+        name: str,
+        distance: float,
+        angle_deg: float,
+        level: int = 0,
+        yaw: float = 0.0,
+        rng: np.random.Generator | None = None,
+        register: bool = True,
+        static: bool = False,
+        **params,
+    ) -> ObjectInfo:
         """Place an object on the workspace at robot-centric cylindrical coordinates: ``distance``
         (radius from the robot base, m), ``angle_deg`` and ``level``; ``params`` go to the builder."""
         pos = self.workspace.place(distance, angle_deg, level)
-        return self.add_object_at(kind, name, pos + np.array([0, 0, 0.0005]), yaw, rng=rng, register=register,
-                                  static=static, **params)
+        return self.add_object_at(
+            kind,
+            name,
+            pos + np.array([0, 0, 0.0005]),
+            yaw,
+            rng=rng,
+            register=register,
+            static=static,
+            **params,
+        )
 
-    def add_object_at(self, kind: str, name: str, pos, yaw: float = 0.0, rng: np.random.Generator | None = None,
-                      register: bool = True, static: bool = False, **params) -> ObjectInfo:
+    def add_object_at(
+        self,
+        kind: str,
+        name: str,
+        pos,
+        yaw: float = 0.0,
+        rng: np.random.Generator | None = None,
+        register: bool = True,
+        static: bool = False,
+        **params,
+    ) -> ObjectInfo:
         """Place an object at a world position (its bottom centre). ``register=False`` adds it as
         clutter (no visibility/annotation bookkeeping); ``static=True`` fixes it to the world."""
         if any(o.name == name for o in self.info.objects + self.info.clutter):
@@ -168,7 +204,9 @@ def reference_scene(seed: int = 0, n_objects: int = 25, target: str | None = Non
         r = rng.uniform(0.38, 1.0)
         a = rng.uniform(lo, hi)
         xy = builder.workspace.place(r, a)[:2]
-        if any(np.linalg.norm(xy - p) < 0.11 for p in placed) or any(np.linalg.norm(xy - p) < 0.2 for p in reserved):
+        if any(np.linalg.norm(xy - p) < 0.11 for p in placed) or any(
+            np.linalg.norm(xy - p) < 0.2 for p in reserved
+        ):
             continue
         kind = kinds[len(placed) % len(kinds)]
         rgba = (*rng.uniform(0.1, 0.95, 3), 1.0)

@@ -8,8 +8,7 @@ import logging
 import mujoco
 import numpy as np
 
-from . import action as A
-from . import embodiment as E
+from . import action as A, embodiment as E
 from .camera import cam2world_gl, extrinsic_cv, intrinsics
 from .controller import JointTargetController
 from .gl_backend import rendering_error
@@ -33,16 +32,24 @@ class ActiveArenaSim:
         self._joint_idx = np.array([i for i in range(A.ACTION_DIM) if i not in A.GRIPPER_INDICES])
         self._joint_qadr = np.array([model.joint(j).qposadr[0] for j in robot.actuated_joints])
         # Gripper joint addresses per side: the active joint first, then its followers with coefficients.
-        self._grip_qadr = np.array([model.joint(robot.gripper_joints[s]).qposadr[0] for s in ("left", "right")])
-        self._finger_qadr = np.array([[model.joint(f"{E.PREFIX}gripper_{s}_joint_{n}").qposadr[0]
-                                       for n, _ in E.GRIPPER_COUPLING] for s in ("left", "right")])
+        self._grip_qadr = np.array(
+            [model.joint(robot.gripper_joints[s]).qposadr[0] for s in ("left", "right")]
+        )
+        self._finger_qadr = np.array(
+            [
+                [model.joint(f"{E.PREFIX}gripper_{s}_joint_{n}").qposadr[0] for n, _ in E.GRIPPER_COUPLING]
+                for s in ("left", "right")
+            ]
+        )
         self._finger_coef = np.array([c for _, c in E.GRIPPER_COUPLING])
         act = [model.actuator(j).id for j in robot.actuated_joints]
         grip = [model.actuator(f"{E.PREFIX}gripper_{s}").id for s in ("left", "right")]
         # action index -> actuator index
         self._act_of_action = np.array(act[:7] + [grip[0]] + act[7:14] + [grip[1]] + act[14:16])
         # velocity actuators of torso yaw and head pitch (control: the reference's velocity)
-        self._vel_act = np.array([model.actuator(f"{j}_velocity").id for j in (E.TORSO_YAW_JOINT, E.HEAD_PITCH_JOINT)])
+        self._vel_act = np.array(
+            [model.actuator(f"{j}_velocity").id for j in (E.TORSO_YAW_JOINT, E.HEAD_PITCH_JOINT)]
+        )
         self.action_low = np.zeros(A.ACTION_DIM)
         self.action_high = np.ones(A.ACTION_DIM)
         ranges = np.array([model.joint(j).range for j in robot.actuated_joints])
@@ -107,8 +114,11 @@ class ActiveArenaSim:
         if report.any:
             self.clip_count += 1
             (log.warning if self.clip_count == 1 else log.debug)(
-                "action clipped to joint limits (requested, applied): %s%s", report.as_dict(),
-                "; further clips are reported in step() results and logged at DEBUG" if self.clip_count == 1 else "",
+                "action clipped to joint limits (requested, applied): %s%s",
+                report.as_dict(),
+                "; further clips are reported in step() results and logged at DEBUG"
+                if self.clip_count == 1
+                else "",
             )
         for ref in self.controller.substep_targets(a):
             self.data.ctrl[:] = self._ctrl_from_reference(ref, self.controller.reference_velocity())

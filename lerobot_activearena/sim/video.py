@@ -23,7 +23,9 @@ class Mp4Writer:
         if not self._started:
             self._stream.height, self._stream.width = frame.shape[:2]
             self._started = True
-        for packet in self._stream.encode(av.VideoFrame.from_ndarray(np.ascontiguousarray(frame), format="rgb24")):
+        for packet in self._stream.encode(
+            av.VideoFrame.from_ndarray(np.ascontiguousarray(frame), format="rgb24")
+        ):
             self._container.mux(packet)
 
     def close(self) -> None:
@@ -38,7 +40,9 @@ class Mp4Writer:
         self.close()
 
 
-def draw_annotations(frame: np.ndarray, lines: list[str], points: list[tuple[float, float, str]]) -> np.ndarray:
+def draw_annotations(
+    frame: np.ndarray, lines: list[str], points: list[tuple[float, float, str]]
+) -> np.ndarray:
     """Text lines at the top-left and labelled markers at normalised image points."""
     img = Image.fromarray(frame)
     draw = ImageDraw.Draw(img)

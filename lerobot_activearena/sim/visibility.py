@@ -14,8 +14,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from .camera import extrinsic_cv, intrinsics, project
 from .assets.base import ObjectInfo
+from .camera import extrinsic_cv, intrinsics, project
 
 VISIBLE_THRESHOLD = 0.4
 SAMPLES_PER_GEOM = 26
@@ -29,7 +29,9 @@ class Visibility:
     visible_fraction: np.ndarray  # (N,) in [0, 1]
     in_image_fraction: np.ndarray
     unoccluded_fraction: np.ndarray
-    uv_norm: np.ndarray  # (N, 2), centre of the in-image part of the projected bbox / (W, H); (-1, -1) when not visible
+    uv_norm: (
+        np.ndarray
+    )  # (N, 2), centre of the in-image part of the projected bbox / (W, H); (-1, -1) when not visible
 
 
 def _fibonacci_sphere(n: int) -> np.ndarray:
@@ -60,7 +62,7 @@ def geom_surface_samples(model: mujoco.MjModel, gid: int, n: int = SAMPLES_PER_G
     if t == int(G.mjGEOM_MESH):
         mid = model.geom_dataid[gid]
         start, count = model.mesh_vertadr[mid], model.mesh_vertnum[mid]
-        verts = model.mesh_vert[start:start + count]
+        verts = model.mesh_vert[start : start + count]
         step = max(1, count // n)
         return np.asarray(verts[::step][:n], float)
     raise ValueError(f"no surface sampler for geom type {t} (geom {gid})")
@@ -69,8 +71,15 @@ def geom_surface_samples(model: mujoco.MjModel, gid: int, n: int = SAMPLES_PER_G
 class VisibilityChecker:
     """Precomputes surface samples of registered objects; evaluates visibility per frame."""
 
-    def __init__(self, model: mujoco.MjModel, objects: list[ObjectInfo], camera: str,
-                 width: int, height: int, exclude_body: str | None = None):
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        objects: list[ObjectInfo],
+        camera: str,
+        width: int,
+        height: int,
+        exclude_body: str | None = None,
+    ):
         self.model = model
         self.objects = objects
         self.cam_id = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, camera)
@@ -135,11 +144,25 @@ class VisibilityChecker:
                 vec /= dist_target[:, None]
                 geomid = np.full(idx.size, -1, np.int32)
                 dist = np.zeros(idx.size)
-                mujoco.mj_multiRay(self.model, data, cam, vec.reshape(-1), _RENDERED_GROUPS, 1,
-                                   self.exclude_body, geomid, dist, None, idx.size, 1e3)
+                mujoco.mj_multiRay(
+                    self.model,
+                    data,
+                    cam,
+                    vec.reshape(-1),
+                    _RENDERED_GROUPS,
+                    1,
+                    self.exclude_body,
+                    geomid,
+                    dist,
+                    None,
+                    idx.size,
+                    1e3,
+                )
                 hit_body = np.where(geomid >= 0, self._body_of_geom[np.maximum(geomid, 0)], -1)
                 # A ray that ends on the object's own moving part (a rocker, a plunger) sees the object.
-                own = (hit_body >= 0) & (self._root[np.maximum(hit_body, 0)] == self._root[bid[self._owner[idx]]])
+                own = (hit_body >= 0) & (
+                    self._root[np.maximum(hit_body, 0)] == self._root[bid[self._owner[idx]]]
+                )
                 clear = (geomid < 0) | (dist >= dist_target - 1e-3)
                 seen = own | clear
                 tot = np.bincount(self._owner[idx], minlength=n)
@@ -152,8 +175,18 @@ class VisibilityChecker:
         return Visibility(visible, frac, in_image, unocc, uv_norm)
 
 
-def surface_point_visible(model: mujoco.MjModel, data: mujoco.MjData, cam_id: int, point, normal, geom: int,
-                          width: int, height: int, exclude_body: int = -1, min_cos: float = 0.25) -> bool:
+def surface_point_visible(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    cam_id: int,
+    point,
+    normal,
+    geom: int,
+    width: int,
+    height: int,
+    exclude_body: int = -1,
+    min_cos: float = 0.25,
+) -> bool:
     """Whether a small surface patch (``point`` with outward ``normal``, on ``geom``) is seen by the
     camera: in the image, facing it (cos >= ``min_cos``), and the first thing a ray from the camera hits."""
     point, normal = np.asarray(point, float), np.asarray(normal, float)

@@ -51,7 +51,9 @@ class Workspace:
 
     def level(self, index: int) -> FanLevel:
         if not 0 <= index < len(self.levels):
-            raise ValueError(f"level {index} does not exist: this workspace has levels 0..{len(self.levels) - 1}")
+            raise ValueError(
+                f"level {index} does not exist: this workspace has levels 0..{len(self.levels) - 1}"
+            )
         return self.levels[index]
 
     def place(self, radius: float, angle_deg: float, level: int = 0) -> np.ndarray:
@@ -98,7 +100,9 @@ def _sector_prism(r0: float, r1: float, a0: float, a1: float, z0: float, z1: flo
     return np.asarray(pts, dtype=float)
 
 
-def add_level(spec: mujoco.MjSpec, lv: FanLevel, name: str, radial_segments: int, angular_segments: int) -> int:
+def add_level(
+    spec: mujoco.MjSpec, lv: FanLevel, name: str, radial_segments: int, angular_segments: int
+) -> int:
     """Tile one level with convex patches; returns the patch count."""
     body = spec.worldbody.add_body()
     body.name = name
@@ -107,7 +111,9 @@ def add_level(spec: mujoco.MjSpec, lv: FanLevel, name: str, radial_segments: int
     n = 0
     for i in range(radial_segments):
         for k in range(angular_segments):
-            verts = _sector_prism(radii[i], radii[i + 1], angles[k], angles[k + 1], lv.top_z - lv.thickness, lv.top_z)
+            verts = _sector_prism(
+                radii[i], radii[i + 1], angles[k], angles[k + 1], lv.top_z - lv.thickness, lv.top_z
+            )
             mesh = spec.add_mesh()
             mesh.name = f"{name}_patch_{i}_{k}"
             mesh.uservert = verts.reshape(-1)
@@ -122,7 +128,9 @@ def add_level(spec: mujoco.MjSpec, lv: FanLevel, name: str, radial_segments: int
     return n
 
 
-def add_workspace(spec: mujoco.MjSpec, ws: Workspace, radial_segments: int = 2, angular_segments: int = 36) -> None:
+def add_workspace(
+    spec: mujoco.MjSpec, ws: Workspace, radial_segments: int = 2, angular_segments: int = 36
+) -> None:
     """Add the tabletops, legs and (two-level) support column to ``spec``."""
     if "tabletop" not in [m.name for m in spec.materials]:
         mat = spec.add_material()

@@ -132,9 +132,13 @@ TASKS: dict[str, type[Task]] = {}
 
 def register_task(cls: type[Task]) -> type[Task]:
     if cls.name in TASKS and TASKS[cls.name] is not cls:
-        raise ValueError(f"task {cls.name!r} registered twice ({TASKS[cls.name].__module__} and {cls.__module__})")
+        raise ValueError(
+            f"task {cls.name!r} registered twice ({TASKS[cls.name].__module__} and {cls.__module__})"
+        )
     if cls.category not in CATEGORIES:
-        raise ValueError(f"task {cls.name!r}: unknown category {cls.category!r}; use one of {sorted(CATEGORIES)}")
+        raise ValueError(
+            f"task {cls.name!r}: unknown category {cls.category!r}; use one of {sorted(CATEGORIES)}"
+        )
     ids = [s.id for s in cls.subtasks]
     if ids != list(range(1, len(ids) + 1)):
         raise ValueError(f"task {cls.name!r}: subtask ids must be 1..n in declaration order, got {ids}")

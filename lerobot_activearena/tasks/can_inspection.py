@@ -8,9 +8,7 @@ asset parameters), and maps what the expert read to the area (``area_for``).
 
 from __future__ import annotations
 
-from ..expert import inspection as I
-from ..expert import primitives as P
-from ..expert import routines as R
+from ..expert import inspection as I, primitives as P, routines as R
 from . import predicates as Pr
 from .base import Task
 from .draft import Region
@@ -35,8 +33,15 @@ class InspectCanTask(Task):
     def layout(self, draft):
         label = self.place_areas(draft)
         # Label faces outward (yaw None: body +x radially out, a little jitter): unreadable at home.
-        draft.place("labeled_can", CAN, "cola can", Region(r=I.INSPECT_R, angle=(40.0, 140.0)), margin=0.04,
-                    arms=ARMS, **label)
+        draft.place(
+            "labeled_can",
+            CAN,
+            "cola can",
+            Region(r=I.INSPECT_R, angle=(40.0, 140.0)),
+            margin=0.04,
+            arms=ARMS,
+            **label,
+        )
         draft.params["label"] = label
 
     def information_faces(self, scene):
@@ -47,9 +52,13 @@ class InspectCanTask(Task):
 
     def evaluate(self, sim, scene, monitor):
         area = scene.obj(self.area_for(scene, scene.obj(CAN).extra))
-        return {"can_in_matching_area": Pr.resting_on(sim, CAN, area.name, area.half_extents[:2], area.extra["top"]),
-                "can_upright": Pr.upright(sim, CAN),
-                "can_released": Pr.released(sim, CAN)}
+        return {
+            "can_in_matching_area": Pr.resting_on(
+                sim, CAN, area.name, area.half_extents[:2], area.extra["top"]
+            ),
+            "can_upright": Pr.upright(sim, CAN),
+            "can_released": Pr.released(sim, CAN),
+        }
 
     def expert(self, ctx, scene):
         can = ctx.idx(CAN)

@@ -7,8 +7,7 @@ expert counts what it has seen (``count_seen``); buttons, checks and the press c
 
 from __future__ import annotations
 
-from ..expert import primitives as P
-from ..expert import routines as R
+from ..expert import primitives as P, routines as R
 from ..expert.context import ExpertError
 from ..sim.assets.task_props import BUTTON_PRESSED
 from . import predicates as Pr
@@ -17,8 +16,9 @@ from .draft import REACH
 
 ARMS = ("left", "right")
 BUTTONS = (1, 2, 3)
-PRESS_SUBTASK = Subtask(2, "press_matching_number_button",
-                        "localize and press the button corresponding to the inferred count", 1)
+PRESS_SUBTASK = Subtask(
+    2, "press_matching_number_button", "localize and press the button corresponding to the inferred count", 1
+)
 
 
 class CountAndPressTask(Task):
@@ -52,8 +52,11 @@ class CountAndPressTask(Task):
     def evaluate(self, sim, scene, monitor):
         button = f"button_{scene.params['count']}"
         point = Pr.body_point(sim, button, scene.obj(button).extra["press_point"])
-        pressed = monitor.event("pressed", Pr.joint_below(sim, f"{button}_joint", BUTTON_PRESSED)
-                                and Pr.pressed_by_either(sim, button, point))
+        pressed = monitor.event(
+            "pressed",
+            Pr.joint_below(sim, f"{button}_joint", BUTTON_PRESSED)
+            and Pr.pressed_by_either(sim, button, point),
+        )
         return {"pressed_matching_button": pressed}
 
     def failure(self, sim, scene, monitor):

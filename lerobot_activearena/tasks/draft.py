@@ -92,10 +92,16 @@ def in_home_view(xy, radius: float, heights=(0.005, 0.08)) -> bool:
 
     K, T = _home_camera()
     ring = np.linspace(0, 2 * np.pi, 12, endpoint=False)
-    pts = [[xy[0] + radius * math.cos(a), xy[1] + radius * math.sin(a), TABLE_TOP + h] for a in ring for h in heights]
+    pts = [
+        [xy[0] + radius * math.cos(a), xy[1] + radius * math.sin(a), TABLE_TOP + h]
+        for a in ring
+        for h in heights
+    ]
     pts += [[xy[0], xy[1], TABLE_TOP + h] for h in heights]
     uv, z = project(np.asarray(pts), K, T)
-    inside = (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] <= HEAD_WIDTH) & (uv[:, 1] >= 0) & (uv[:, 1] <= HEAD_HEIGHT)
+    inside = (
+        (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] <= HEAD_WIDTH) & (uv[:, 1] >= 0) & (uv[:, 1] <= HEAD_HEIGHT)
+    )
     return bool(inside.any())
 
 
@@ -131,9 +137,24 @@ class SceneDraft:
     def random_yaw(self) -> float:
         return float(self.rng.uniform(-np.pi, np.pi))
 
-    def place(self, category: str, name: str, label: str, region: Region = REACH, *, r=None, angle=None,
-              yaw: float | str | None = None, arms: tuple[str, ...] = (), margin: float = 0.04,
-              register: bool = True, static: bool = False, tries: int = 200, yaw_jitter: float = 0.25, **params):
+    def place(
+        self,
+        category: str,
+        name: str,
+        label: str,
+        region: Region = REACH,
+        *,
+        r=None,
+        angle=None,
+        yaw: float | str | None = None,
+        arms: tuple[str, ...] = (),
+        margin: float = 0.04,
+        register: bool = True,
+        static: bool = False,
+        tries: int = 200,
+        yaw_jitter: float = 0.25,
+        **params,
+    ):
         """Sample a free spot in ``region`` (or the explicit ``r`` / ``angle``, a value or a range) and
         add the object. ``yaw``: radians, ``'random'``, or None (body +x points radially outward, give or
         take ``yaw_jitter`` rad). ``arms``: the arms that may touch it (checked reachable by the sampler).
@@ -155,18 +176,30 @@ class SceneDraft:
                 continue
             break
         else:
-            raise SamplingFailed(f"no free spot for {name} ({category}) in r={r}, angle={angle}, hidden={region.hidden}")
+            raise SamplingFailed(
+                f"no free spot for {name} ({category}) in r={r}, angle={angle}, hidden={region.hidden}"
+            )
         if yaw == "random":
             yaw = self.random_yaw()
         elif yaw is None:
             yaw = math.radians(aa) + float(self.rng.uniform(-yaw_jitter, yaw_jitter))
-        info = self.builder.add_object(category, name, rr, aa, yaw=yaw, rng=self.rng, register=register,
-                                       static=static or ASSETS[category].static, **params)
+        info = self.builder.add_object(
+            category,
+            name,
+            rr,
+            aa,
+            yaw=yaw,
+            rng=self.rng,
+            register=register,
+            static=static or ASSETS[category].static,
+            **params,
+        )
         self.discs.append((xy, foot))
         if register:
             self.labels.append(label)
-            self.placements.append({"name": name, "category": category, "r": rr, "angle": aa,
-                                    "hidden": bool(region.hidden)})
+            self.placements.append(
+                {"name": name, "category": category, "r": rr, "angle": aa, "hidden": bool(region.hidden)}
+            )
             if region.hidden:
                 self.hidden.append(name)
             if arms:
@@ -185,7 +218,16 @@ class SceneDraft:
                 break
             cat = pool[int(self.rng.integers(0, len(pool)))]
             try:
-                self.place(cat, f"clutter_{k}_{cat}", cat, CLUTTER, margin=0.02, register=False, static=True, tries=40)
+                self.place(
+                    cat,
+                    f"clutter_{k}_{cat}",
+                    cat,
+                    CLUTTER,
+                    margin=0.02,
+                    register=False,
+                    static=True,
+                    tries=40,
+                )
             except SamplingFailed:
                 continue
             placed += 1

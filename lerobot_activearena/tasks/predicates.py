@@ -11,8 +11,7 @@ import math
 import mujoco
 import numpy as np
 
-from ..sim import action as A
-from ..sim import embodiment as E
+from ..sim import action as A, embodiment as E
 from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..sim.visibility import surface_point_visible
@@ -119,15 +118,23 @@ def gripper_closed(sim: ActiveArenaSim, arm: str) -> bool:
     return bool(sim.state()[g] < GRIPPER_CLOSED_BELOW)
 
 
-TOUCH_DISTANCE = 0.002  # m: geoms this close count as touching (a pressing pad flickers in and out of contact)
+TOUCH_DISTANCE = (
+    0.002  # m: geoms this close count as touching (a pressing pad flickers in and out of contact)
+)
 
 
 def _collision_geoms(sim: ActiveArenaSim, pred) -> list[int]:
     m = sim.model
-    return [g for g in range(m.ngeom) if (m.geom_contype[g] or m.geom_conaffinity[g]) and pred(int(m.geom_bodyid[g]))]
+    return [
+        g
+        for g in range(m.ngeom)
+        if (m.geom_contype[g] or m.geom_conaffinity[g]) and pred(int(m.geom_bodyid[g]))
+    ]
 
 
-def gripper_contact_near(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float, radius_z: float) -> bool:
+def gripper_contact_near(
+    sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float, radius_z: float
+) -> bool:
     """``arm``'s gripper touches ``body`` (or a part attached to it) within the cylinder (radius_xy,
     +/- radius_z) around the world ``point``. Touching = geom distance below ``TOUCH_DISTANCE``
     (``mj_geomDistance``), so a press is seen even at a physics substep without an active contact."""
@@ -136,8 +143,10 @@ def gripper_contact_near(sim: ActiveArenaSim, arm: str, body: str, point, radius
     cache = sim.__dict__.setdefault("_predicate_cache", {})
     if key not in cache:
         root = m.body_rootid[m.body(body).id]
-        cache[key] = (_collision_geoms(sim, lambda b: _gripper_body(sim, b, arm)),
-                      _collision_geoms(sim, lambda b: m.body_rootid[b] == root))
+        cache[key] = (
+            _collision_geoms(sim, lambda b: _gripper_body(sim, b, arm)),
+            _collision_geoms(sim, lambda b: m.body_rootid[b] == root),
+        )
     grippers, parts = cache[key]
     point = np.asarray(point, float)
     fromto = np.zeros(6)
@@ -164,8 +173,15 @@ def tcp_over(sim: ActiveArenaSim, arm: str, point, radius_xy: float) -> bool:
     return bool(np.hypot(*(tcp[:2] - np.asarray(point, float)[:2])) <= radius_xy)
 
 
-def pressed_by(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03,
-               centered_within: float | None = None) -> bool:
+def pressed_by(
+    sim: ActiveArenaSim,
+    arm: str,
+    body: str,
+    point,
+    radius_xy: float = 0.025,
+    radius_z: float = 0.03,
+    centered_within: float | None = None,
+) -> bool:
     """``arm``'s closed gripper touches ``body`` near ``point`` (the paper's release: closed gripper,
     contact within 2.5 cm (xy) / 3 cm (z) of the press point); with ``centered_within``, its tool
     centre must also be that close to the point horizontally (a press *at* the point)."""
@@ -174,7 +190,9 @@ def pressed_by(sim: ActiveArenaSim, arm: str, body: str, point, radius_xy: float
     return gripper_closed(sim, arm) and gripper_contact_near(sim, arm, body, point, radius_xy, radius_z)
 
 
-def pressed_by_either(sim: ActiveArenaSim, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03) -> bool:
+def pressed_by_either(
+    sim: ActiveArenaSim, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03
+) -> bool:
     return any(pressed_by(sim, arm, body, point, radius_xy, radius_z) for arm in ("left", "right"))
 
 
@@ -184,14 +202,23 @@ def body_point(sim: ActiveArenaSim, body: str, local) -> np.ndarray:
     return b.xpos + b.xmat.reshape(3, 3) @ np.asarray(local, float)
 
 
-def resting_on(sim: ActiveArenaSim, body: str, support: str, half_xy, height: float, margin: float = 0.01,
-               z_tol: float = 0.012) -> bool:
+def resting_on(
+    sim: ActiveArenaSim,
+    body: str,
+    support: str,
+    half_xy,
+    height: float,
+    margin: float = 0.01,
+    z_tol: float = 0.012,
+) -> bool:
     """``body``'s origin lies within the support's top rectangle (``half_xy`` in the support's frame,
     shrunk by ``margin``) at ``height`` above the support's origin (+/- ``z_tol``)."""
     s = sim.data.body(support)
     local = s.xmat.reshape(3, 3).T @ (sim.data.body(body).xpos - s.xpos)
     hx, hy = (half_xy, half_xy) if np.isscalar(half_xy) else half_xy
-    return bool(abs(local[0]) <= hx - margin and abs(local[1]) <= hy - margin and abs(local[2] - height) <= z_tol)
+    return bool(
+        abs(local[0]) <= hx - margin and abs(local[1]) <= hy - margin and abs(local[2] - height) <= z_tol
+    )
 
 
 def inside_disc(sim: ActiveArenaSim, body: str, center_body: str, radius: float) -> bool:
@@ -220,5 +247,14 @@ def hidden_face_visible(model: mujoco.MjModel, data: mujoco.MjData, info) -> boo
     point = body.xpos + R @ np.asarray(info.extra["face_center_body"])
     normal = R @ np.asarray(info.extra["face_normal_body"])
     cam = model.camera(E.HEAD_CAMERA).id
-    return surface_point_visible(model, data, cam, point, normal, model.geom(info.extra["face_geom"]).id,
-                                 HEAD_WIDTH, HEAD_HEIGHT, exclude_body=model.body(f"{E.PREFIX}head_link_2").id)
+    return surface_point_visible(
+        model,
+        data,
+        cam,
+        point,
+        normal,
+        model.geom(info.extra["face_geom"]).id,
+        HEAD_WIDTH,
+        HEAD_HEIGHT,
+        exclude_body=model.body(f"{E.PREFIX}head_link_2").id,
+    )

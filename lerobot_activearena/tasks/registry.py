@@ -40,8 +40,10 @@ def task_names(selector: str = "all") -> list[str]:
         elif part in TASKS:
             names = [part]
         else:
-            raise ValueError(f"unknown task selector {part!r}: use 'all', a category {sorted(CATEGORIES)}, "
-                             f"or a task name {sorted(TASKS)}")
+            raise ValueError(
+                f"unknown task selector {part!r}: use 'all', a category {sorted(CATEGORIES)}, "
+                f"or a task name {sorted(TASKS)}"
+            )
         out += [n for n in names if n not in out]
     if not out:
         raise ValueError(f"task selector {selector!r} selects no task")

@@ -52,7 +52,9 @@ class PhysicsHealth:
     def __init__(self, sim: ActiveArenaSim):
         self.sim = sim
         m = sim.model
-        self.free_qadr = [m.jnt_qposadr[j] for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+        self.free_qadr = [
+            m.jnt_qposadr[j] for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE
+        ]
         self.max_penetration = 0.0
         self.problem: str | None = None
 
@@ -61,7 +63,7 @@ class PhysicsHealth:
         if not (np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()):
             self.problem = "NaN in the simulation state"
         for a in self.free_qadr:
-            p = d.qpos[a:a + 3]
+            p = d.qpos[a : a + 3]
             if p[2] < 0.3 or np.hypot(p[0], p[1]) > WORLD_RADIUS:
                 self.problem = f"an object left the world (at {np.round(p, 2).tolist()})"
         if d.ncon:
@@ -71,8 +73,14 @@ class PhysicsHealth:
         return self.problem
 
 
-def make_sidecar(task, scene: TaskScene, recorder: AnnotationRecorder, ctx: ExpertContext, success: bool,
-                 failure: str | None) -> dict:
+def make_sidecar(
+    task,
+    scene: TaskScene,
+    recorder: AnnotationRecorder,
+    ctx: ExpertContext,
+    success: bool,
+    failure: str | None,
+) -> dict:
     return {
         "task": task.name,
         "category": task.category,
@@ -80,10 +88,14 @@ def make_sidecar(task, scene: TaskScene, recorder: AnnotationRecorder, ctx: Expe
         "seed": scene.seed,
         "split": scene.split,
         "scene_attempt": scene.attempt,
-        "objects": [{"index": i, "key": n, "name": lbl, "category": scene.info.objects[i].category}
-                    for i, (n, lbl) in enumerate(zip(scene.objects, scene.labels))],
-        "subtasks": [{"id": s.id, "name": s.name, "text": s.text, "instruction_idx": s.instruction_idx}
-                     for s in task.subtasks],
+        "objects": [
+            {"index": i, "key": n, "name": lbl, "category": scene.info.objects[i].category}
+            for i, (n, lbl) in enumerate(zip(scene.objects, scene.labels))
+        ],
+        "subtasks": [
+            {"id": s.id, "name": s.name, "text": s.text, "instruction_idx": s.instruction_idx}
+            for s in task.subtasks
+        ],
         "search_targets": list(scene.search_targets),
         "params": {k: v for k, v in scene.params.items() if k not in ("rejected_attempts", "placements")},
         "placements": scene.params.get("placements", []),
@@ -103,8 +115,14 @@ class ExpertDriver:
     ``contain_errors`` (the env's expert channel): any other exception from the script is logged
     with its traceback and fails the episode instead of the whole evaluation run."""
 
-    def __init__(self, task: Task, scene: TaskScene, sim: ActiveArenaSim, recorder: AnnotationRecorder,
-                 contain_errors: bool = False):
+    def __init__(
+        self,
+        task: Task,
+        scene: TaskScene,
+        sim: ActiveArenaSim,
+        recorder: AnnotationRecorder,
+        contain_errors: bool = False,
+    ):
         ik, gaze = shared_kinematics()
         self.task, self.recorder = task, recorder
         self.ctx = ExpertContext(sim, scene.objects, recorder, ik, gaze, n_subtasks=len(task.subtasks))
@@ -140,8 +158,12 @@ class ExpertDriver:
         return self.recorder.frame(t, self.ctx.intent, sub.instruction_idx)
 
 
-def run_expert_episode(task_name: str, seed: int, split: str = "id",
-                       on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None) -> EpisodeResult:
+def run_expert_episode(
+    task_name: str,
+    seed: int,
+    split: str = "id",
+    on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None,
+) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
     (e.g. to render video)."""
@@ -186,10 +208,22 @@ def run_expert_episode(task_name: str, seed: int, split: str = "id",
         driver.observed()
     success = bool(monitor.success) and failure is None
     if failure is None and not success:
-        failure = f"task not accomplished when the expert script ended (failed checks: {monitor.failed_checks})"
+        failure = (
+            f"task not accomplished when the expert script ended (failed checks: {monitor.failed_checks})"
+        )
     sidecar = make_sidecar(task, scene, recorder, driver.ctx, success, failure)
     sidecar["final_checks"] = monitor.checks
     sim.close()
-    return EpisodeResult(task.name, seed, split, success, failure, np.array(actions), np.array(states), frames, sidecar,
-                         {"max_penetration_m": health.max_penetration, "problem": health.problem},
-                         time.perf_counter() - t0)
+    return EpisodeResult(
+        task.name,
+        seed,
+        split,
+        success,
+        failure,
+        np.array(actions),
+        np.array(states),
+        frames,
+        sidecar,
+        {"max_penetration_m": health.max_penetration, "problem": health.problem},
+        time.perf_counter() - t0,
+    )

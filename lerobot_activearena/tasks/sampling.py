@@ -32,7 +32,9 @@ def sector_visibility(model: mujoco.MjModel, info, views=SECTOR_VIEWS) -> np.nda
     """(n_views, n_objects) visibility of the registered objects from each (torso yaw, head pitch)
     with the robot at home (no physics step: spawn poses)."""
     data = mujoco.MjData(model)
-    checker = VisibilityChecker(model, info.objects, E.HEAD_CAMERA, 512, 384, exclude_body=f"{E.PREFIX}head_link_2")
+    checker = VisibilityChecker(
+        model, info.objects, E.HEAD_CAMERA, 512, 384, exclude_body=f"{E.PREFIX}head_link_2"
+    )
     qy = model.joint(E.TORSO_YAW_JOINT).qposadr[0]
     qp = model.joint(E.HEAD_PITCH_JOINT).qposadr[0]
     out = []
@@ -74,7 +76,9 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
     for name, arms in scene.reach.items():
         obj = scene.obj(name)
         body = data.body(obj.body)
-        top = body.xpos + body.xmat.reshape(3, 3) @ np.asarray(obj.center_offset) + [0, 0, obj.half_extents[2]]
+        top = (
+            body.xpos + body.xmat.reshape(3, 3) @ np.asarray(obj.center_offset) + [0, 0, obj.half_extents[2]]
+        )
         if not any(top_down_reachable(top, side) for side in arms):
             problems.append(f"{name} is out of reach of the {'/'.join(arms)} arm")
     return problems
@@ -105,9 +109,20 @@ def sample_scene(task: Task, seed: int, split: str = "id") -> TaskScene:
             continue
         draft.params["n_clutter"] = draft.add_clutter()
         model, info = draft.builder.compile()
-        scene = TaskScene(task.name, seed, split, attempt, model, info, [o.name for o in info.objects],
-                          list(draft.labels), dict(draft.params), task.instruction_for(draft.params),
-                          hidden=list(draft.hidden), reach=dict(draft.reach))
+        scene = TaskScene(
+            task.name,
+            seed,
+            split,
+            attempt,
+            model,
+            info,
+            [o.name for o in info.objects],
+            list(draft.labels),
+            dict(draft.params),
+            task.instruction_for(draft.params),
+            hidden=list(draft.hidden),
+            reach=dict(draft.reach),
+        )
         scene.params["placements"] = draft.placements
         scene.search_targets = task.search_targets(scene)
         problems = principle_violations(task, scene) or goal_holds_at_reset(task, scene)
@@ -115,4 +130,6 @@ def sample_scene(task: Task, seed: int, split: str = "id") -> TaskScene:
             scene.params["rejected_attempts"] = reasons
             return scene
         reasons.append("; ".join(problems))
-    raise SamplingFailed(f"{task.name} seed {seed} ({split}): no valid scene in {MAX_ATTEMPTS} attempts: {reasons[-3:]}")
+    raise SamplingFailed(
+        f"{task.name} seed {seed} ({split}): no valid scene in {MAX_ATTEMPTS} attempts: {reasons[-3:]}"
+    )

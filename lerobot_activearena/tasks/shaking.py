@@ -15,8 +15,7 @@ from collections import deque
 
 import numpy as np
 
-from ..expert import primitives as P
-from ..expert import routines as R
+from ..expert import primitives as P, routines as R
 from ..expert.motion import CONTROL_DT
 from . import predicates as Pr
 from .base import Task
@@ -98,14 +97,28 @@ class ShakeBottleTask(Task):
         height, radius = float(rng.uniform(*BOTTLE_HEIGHT)), float(rng.uniform(*BOTTLE_RADIUS))
         rgba = (*colorsys.hsv_to_rgb(float(rng.uniform()), 0.7, 0.75), 1.0)
         mass = 0.15 * (height / 0.16) * (radius / 0.03) ** 2  # half-full plastic: 150 g at 16 x 6 cm
-        draft.place("bottle", BOTTLE, "bottle", Region(r=self.bottle_r, hidden=True), yaw="random",
-                    arms=("left", "right"), height=height, radius=radius, mass=mass, rgba=rgba)
+        draft.place(
+            "bottle",
+            BOTTLE,
+            "bottle",
+            Region(r=self.bottle_r, hidden=True),
+            yaw="random",
+            arms=("left", "right"),
+            height=height,
+            radius=radius,
+            mass=mass,
+            rgba=rgba,
+        )
         draft.params["bottle"] = {"height": round(height, 4), "radius": round(radius, 4)}
 
     def evaluate(self, sim, scene, monitor):
         detector = monitor.state.setdefault("shake", ShakeDetector(self.horizontal))
         arm = Pr.held_by_gripper(sim, BOTTLE)
-        held_up = arm is not None and Pr.lifted(sim, BOTTLE, LIFT) and Pr.tcp_on_axis(sim, arm, BOTTLE, GRASP_CENTRED)
+        held_up = (
+            arm is not None
+            and Pr.lifted(sim, BOTTLE, LIFT)
+            and Pr.tcp_on_axis(sim, arm, BOTTLE, GRASP_CENTRED)
+        )
         shaken = monitor.event("shaken", detector.update(Pr.position(sim, BOTTLE), held_up))
         name = "shaken_horizontally_while_held" if self.horizontal else "shaken_while_held"
         return {name: shaken, "bottle_not_dropped": not Pr.off_table(sim, BOTTLE)}
@@ -119,7 +132,9 @@ class ShakeBottleTask(Task):
             p, rot = P.tcp_pose(ctx, side)
             axis = np.array([0.0, 0.0, 1.0]) if not self.horizontal else P.radial_tangent(p)
             for k in range(REVERSALS + 2):  # swings of 8 cm, a little over 3 per second
-                yield from P.arm_line(ctx, side, p + (0.04 if k % 2 == 0 else -0.04) * axis, rot, 0.0, speed=0.45)
+                yield from P.arm_line(
+                    ctx, side, p + (0.04 if k % 2 == 0 else -0.04) * axis, rot, 0.0, speed=0.45
+                )
             yield from P.arm_line(ctx, side, p, rot, 0.0, speed=0.3)
             yield from P.place(ctx, side, bottle, home[:2], 0.74, yaw_free=False)
             yield from R.finish(ctx, side)

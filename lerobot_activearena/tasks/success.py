@@ -46,8 +46,11 @@ class SuccessMonitor:
         """After each observation: ``discovered`` = registered objects the head camera has seen so far."""
         if not self.info_seen:
             model, data = self.sim.model, self.sim.data
-            self.faces_seen |= {n for n, o in self._faces.items()
-                                if n not in self.faces_seen and P.hidden_face_visible(model, data, o)}
+            self.faces_seen |= {
+                n
+                for n, o in self._faces.items()
+                if n not in self.faces_seen and P.hidden_face_visible(model, data, o)
+            }
             self.info_seen = len(self.faces_seen) == len(self._faces)
         self.informed = bool(np.asarray(discovered)[self.scene.search_targets].all()) and self.info_seen
 

@@ -16,10 +16,14 @@ ACTION_DIM = 18
 @dataclass
 class ActiveArenaExpertConfig(PreTrainedConfig):
     n_obs_steps: int = 1
-    normalization_mapping: dict[str, NormalizationMode] = field(default_factory=lambda: {
-        "VISUAL": NormalizationMode.IDENTITY, "STATE": NormalizationMode.IDENTITY,
-        "ENV": NormalizationMode.IDENTITY, "ACTION": NormalizationMode.IDENTITY,
-    })
+    normalization_mapping: dict[str, NormalizationMode] = field(
+        default_factory=lambda: {
+            "VISUAL": NormalizationMode.IDENTITY,
+            "STATE": NormalizationMode.IDENTITY,
+            "ENV": NormalizationMode.IDENTITY,
+            "ACTION": NormalizationMode.IDENTITY,
+        }
+    )
 
     @property
     def observation_delta_indices(self) -> None:

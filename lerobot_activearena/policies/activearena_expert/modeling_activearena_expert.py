@@ -4,10 +4,9 @@ opt-in privileged channel (``observation.environment_state``)."""
 from __future__ import annotations
 
 import torch
-from torch import Tensor, nn
-
 from lerobot.policies.pretrained import PreTrainedPolicy
 from lerobot.utils.constants import OBS_ENV_STATE
+from torch import Tensor, nn
 
 from .configuration_activearena_expert import ACTION_DIM, ActiveArenaExpertConfig
 
@@ -39,8 +38,10 @@ class ActiveArenaExpertPolicy(PreTrainedPolicy):
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         if OBS_ENV_STATE not in batch:
-            raise KeyError(f"{OBS_ENV_STATE} is missing: enable the env's privileged channel with "
-                           "--env.expert_channel=true")
+            raise KeyError(
+                f"{OBS_ENV_STATE} is missing: enable the env's privileged channel with "
+                "--env.expert_channel=true"
+            )
         action = batch[OBS_ENV_STATE]
         if action.shape[-1] != ACTION_DIM:
             raise ValueError(f"expected an {ACTION_DIM}-D expert action, got shape {tuple(action.shape)}")

@@ -6,7 +6,6 @@ from __future__ import annotations
 from typing import Any
 
 import torch
-
 from lerobot.processor import PolicyAction, PolicyProcessorPipeline
 from lerobot.processor.factory import make_default_policy_processor_steps, make_policy_processor_pipelines
 
@@ -14,8 +13,12 @@ from .configuration_activearena_expert import ActiveArenaExpertConfig
 
 
 def make_activearena_expert_pre_post_processors(
-    config: ActiveArenaExpertConfig, dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
-) -> tuple[PolicyProcessorPipeline[dict[str, Any], dict[str, Any]], PolicyProcessorPipeline[PolicyAction, PolicyAction]]:
+    config: ActiveArenaExpertConfig,
+    dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
+) -> tuple[
+    PolicyProcessorPipeline[dict[str, Any], dict[str, Any]],
+    PolicyProcessorPipeline[PolicyAction, PolicyAction],
+]:
     s = make_default_policy_processor_steps(config, dataset_stats, normalizer_device=config.device)
     return make_policy_processor_pipelines(
         input_steps=[s.rename_observations, s.add_batch_dim, s.to_device],

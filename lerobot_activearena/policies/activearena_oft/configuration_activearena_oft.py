@@ -54,7 +54,9 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
     # The backbone's attention kernel: sdpa (PyTorch's fused scaled-dot-product attention: flash or
     # memory-efficient kernels on CUDA) | flash_attention_2 (needs the flash-attn package) | eager.
     attn_implementation: str = "sdpa"
-    push_to_hub: bool = False  # LeRobot's default (True) needs a repo id; opt in with --policy.push_to_hub=true
+    push_to_hub: bool = (
+        False  # LeRobot's default (True) needs a repo id; opt in with --policy.push_to_hub=true
+    )
     # Optimiser (paper: AdamW (0.9, 0.95), eps 1e-8, wd 1e-8, backbone 1e-5, heads 1e-4,
     # 5k-step linear warm-up, cosine to 5e-7, clip 1.0).
     optimizer_lr: float = 1e-5
@@ -66,10 +68,13 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
     scheduler_warmup_steps: int = 5_000
     scheduler_decay_steps: int = 150_000
     scheduler_decay_lr: float = 5e-7
-    normalization_mapping: dict[str, NormalizationMode] = field(default_factory=lambda: {
-        "VISUAL": NormalizationMode.IDENTITY, "STATE": NormalizationMode.MEAN_STD,
-        "ACTION": NormalizationMode.MEAN_STD,
-    })
+    normalization_mapping: dict[str, NormalizationMode] = field(
+        default_factory=lambda: {
+            "VISUAL": NormalizationMode.IDENTITY,
+            "STATE": NormalizationMode.MEAN_STD,
+            "ACTION": NormalizationMode.MEAN_STD,
+        }
+    )
 
     def __post_init__(self):
         super().__post_init__()
@@ -77,7 +82,11 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
             raise ValueError(f"--policy.memory must be one of {WRITE_POLICIES}, got {self.memory!r}")
         if self.think not in THINK_TARGETS:
             raise ValueError(f"--policy.think must be one of {THINK_TARGETS}, got {self.think!r}")
-        for name, allowed in (("dtype", DTYPES), ("weights_dtype", WEIGHT_DTYPES), ("attn_implementation", ATTENTION)):
+        for name, allowed in (
+            ("dtype", DTYPES),
+            ("weights_dtype", WEIGHT_DTYPES),
+            ("attn_implementation", ATTENTION),
+        ):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")
         if self.history < 0:
@@ -85,7 +94,9 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
         if self.memory == "none":
             self.history = 0
         if not 1 <= self.n_action_steps <= self.chunk_size:
-            raise ValueError(f"n_action_steps ({self.n_action_steps}) must be in 1..chunk_size ({self.chunk_size})")
+            raise ValueError(
+                f"n_action_steps ({self.n_action_steps}) must be in 1..chunk_size ({self.chunk_size})"
+            )
         # A local folder is stored absolute, so a checkpoint reloads from any working directory.
         for name in ("vlm_path", "dataset_root"):
             value = getattr(self, name)
@@ -118,19 +129,29 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
         return None
 
     def get_optimizer_preset(self) -> AdamWConfig:
-        return AdamWConfig(lr=self.optimizer_lr, betas=self.optimizer_betas, eps=self.optimizer_eps,
-                           weight_decay=self.optimizer_weight_decay, grad_clip_norm=self.optimizer_grad_clip_norm)
+        return AdamWConfig(
+            lr=self.optimizer_lr,
+            betas=self.optimizer_betas,
+            eps=self.optimizer_eps,
+            weight_decay=self.optimizer_weight_decay,
+            grad_clip_norm=self.optimizer_grad_clip_norm,
+        )
 
     def get_scheduler_preset(self) -> CosineDecayWithWarmupSchedulerConfig:
-        return CosineDecayWithWarmupSchedulerConfig(num_warmup_steps=self.scheduler_warmup_steps,
-                                                    num_decay_steps=self.scheduler_decay_steps,
-                                                    peak_lr=self.optimizer_lr, decay_lr=self.scheduler_decay_lr)
+        return CosineDecayWithWarmupSchedulerConfig(
+            num_warmup_steps=self.scheduler_warmup_steps,
+            num_decay_steps=self.scheduler_decay_steps,
+            peak_lr=self.optimizer_lr,
+            decay_lr=self.scheduler_decay_lr,
+        )
 
     def validate_features(self) -> None:
         img = self.input_features.get(IMAGE_KEY)
         if img is None or img.type != FeatureType.VISUAL:
-            raise ValueError(f"activearena_oft needs the head camera {IMAGE_KEY!r}; input features were "
-                             f"{sorted(self.input_features)}")
+            raise ValueError(
+                f"activearena_oft needs the head camera {IMAGE_KEY!r}; input features were "
+                f"{sorted(self.input_features)}"
+            )
         if self.use_state and OBS_STATE not in self.input_features:
             raise ValueError(f"use_state=true needs {OBS_STATE!r} (or pass --policy.use_state=false)")
         act = self.output_features.get(ACTION)

@@ -22,13 +22,17 @@ class DatasetAnnotations:
 
         root = Path(root)
         if not (root / "meta/info.json").is_file():
-            raise FileNotFoundError(f"{root} is not a LeRobot dataset (no meta/info.json); set --policy.dataset_root "
-                                    "to the ActiveArena dataset used for training")
+            raise FileNotFoundError(
+                f"{root} is not a LeRobot dataset (no meta/info.json); set --policy.dataset_root "
+                "to the ActiveArena dataset used for training"
+            )
         self.ds = LeRobotDataset(repo_id, root=root, video_backend="pyav")
         missing = [c for c in COLUMNS if c not in self.ds.features]
         if missing:
-            raise ValueError(f"{root} lacks the ActiveArena annotation columns {missing}: build it with "
-                             "activearena-build-dataset")
+            raise ValueError(
+                f"{root} lacks the ActiveArena annotation columns {missing}: build it with "
+                "activearena-build-dataset"
+            )
         table = self.ds.hf_dataset.with_format("numpy").select_columns(list(COLUMNS))[:]
         self.cols = {c: np.asarray(table[c]).reshape(-1) for c in COLUMNS}
         self.ep_start = {int(e["episode_index"]): int(e["dataset_from_index"]) for e in self.ds.meta.episodes}
@@ -48,11 +52,21 @@ class DatasetAnnotations:
         """Global indices of M_t for the frame at global ``index`` (chronological, all before it)."""
         ep = int(self.cols["episode_index"][index])
         start = self.ep_start[ep]
-        kf = self.cols[f"{policy}_keyframe"][start:self.ep_end[ep]] if policy in ("subtask", "motion") else None
+        kf = (
+            self.cols[f"{policy}_keyframe"][start : self.ep_end[ep]]
+            if policy in ("subtask", "motion")
+            else None
+        )
         return [start + f for f in memory_frames(policy, index - start, history, kf)]
 
-    def memory_batch(self, index: torch.Tensor, current: torch.Tensor, state: torch.Tensor | None, policy: str,
-                     history: int) -> tuple[torch.Tensor, torch.Tensor | None, torch.Tensor]:
+    def memory_batch(
+        self,
+        index: torch.Tensor,
+        current: torch.Tensor,
+        state: torch.Tensor | None,
+        policy: str,
+        history: int,
+    ) -> tuple[torch.Tensor, torch.Tensor | None, torch.Tensor]:
         """(B, history+1, C, H, W) images, (B, history+1, D) states and (B, history+1) is_pad: the memory
         frames left-padded, then the current frame."""
         B = current.shape[0]

@@ -16,38 +16,54 @@ from collections import deque
 import numpy as np
 import torch
 import torch.nn.functional as F
-from torch import Tensor, nn
-
 from lerobot.policies.pretrained import PreTrainedPolicy
 from lerobot.utils.constants import ACTION, OBS_STATE
+from torch import Tensor, nn
 
 from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_oft import ActiveArenaOFTConfig
 from .heads import MLPResNet, StateEncoder
+from .processor_activearena_oft import (
+    FRAME_VALID,
+    GRID,
+    PIXELS,
+    PREFIX_IDS,
+    PROMPT_IDS,
+    PROMPT_MASK,
+    RAW_STATE,
+    THINK_IDS,
+    THINK_MASK,
+)
 from .vlm_loading import load_from_vlm_path
-from .processor_activearena_oft import (FRAME_VALID, GRID, PIXELS, PREFIX_IDS, PROMPT_IDS, PROMPT_MASK, RAW_STATE,
-                                        THINK_IDS, THINK_MASK)
 
 TEXT, IMAGE, STATE, QUERY, THINK = 0, 1, 2, 3, 4
 
 
 def _weights_dtype(config: ActiveArenaOFTConfig) -> torch.dtype:
     if config.weights_dtype == "bfloat16":
-        warnings.warn("weights_dtype=bfloat16: the backbone's parameters are bfloat16, so AdamW updates smaller "
-                      "than their last bit (most of them at lr 1e-5) round away. Keep the default float32 master "
-                      "weights (bfloat16 compute comes from dtype=auto/bfloat16) unless memory forces this.",
-                      UserWarning, stacklevel=3)
+        warnings.warn(
+            "weights_dtype=bfloat16: the backbone's parameters are bfloat16, so AdamW updates smaller "
+            "than their last bit (most of them at lr 1e-5) round away. Keep the default float32 master "
+            "weights (bfloat16 compute comes from dtype=auto/bfloat16) unless memory forces this.",
+            UserWarning,
+            stacklevel=3,
+        )
         return torch.bfloat16
     return torch.float32
 
 
 def _in_precision(method):
     """Run ``method`` under the policy's autocast (bfloat16 compute over float32 weights when enabled)."""
+
     @functools.wraps(method)
     def wrapper(self, *args, **kwargs):
-        with torch.autocast(device_type=self.action_queries.device.type, dtype=torch.bfloat16,
-                            enabled=self.config.autocast_bfloat16):
+        with torch.autocast(
+            device_type=self.action_queries.device.type,
+            dtype=torch.bfloat16,
+            enabled=self.config.autocast_bfloat16,
+        ):
             return method(self, *args, **kwargs)
+
     return wrapper
 
 
@@ -61,8 +77,13 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         self.config = config
         from transformers import Qwen3VLForConditionalGeneration
 
-        self.vlm = load_from_vlm_path(Qwen3VLForConditionalGeneration.from_pretrained, config.vlm_path, "model",
-                                      dtype=_weights_dtype(config), attn_implementation=config.attn_implementation)
+        self.vlm = load_from_vlm_path(
+            Qwen3VLForConditionalGeneration.from_pretrained,
+            config.vlm_path,
+            "model",
+            dtype=_weights_dtype(config),
+            attn_implementation=config.attn_implementation,
+        )
         if config.gradient_checkpointing:
             self.vlm.gradient_checkpointing_enable()
         vc = self.vlm.config
@@ -71,10 +92,16 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         self.action_queries = nn.Parameter(torch.randn(config.chunk_size, width) * 0.02)
         self.head = MLPResNet(width, config.head_hidden_mult * width, config.action_dim, config.head_blocks)
         state_ft = config.input_features.get(OBS_STATE)
-        self.state_encoder = (StateEncoder(int(state_ft.shape[0]), config.state_hidden, width, self.max_frames)
-                              if config.use_state else None)
+        self.state_encoder = (
+            StateEncoder(int(state_ft.shape[0]), config.state_hidden, width, self.max_frames)
+            if config.use_state
+            else None
+        )
         self.image_token_id, self.vision_start_id, self.vision_end_id = (
-            vc.image_token_id, vc.vision_start_token_id, vc.vision_end_token_id)
+            vc.image_token_id,
+            vc.vision_start_token_id,
+            vc.vision_end_token_id,
+        )
         self.pad_id = vc.text_config.pad_token_id or 0
         self.reset()
 
@@ -82,13 +109,24 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
     def get_optim_params(self) -> list[dict]:
         backbone = [p for p in self.vlm.parameters() if p.requires_grad]
         heads = [p for n, p in self.named_parameters() if not n.startswith("vlm.") and p.requires_grad]
-        return [{"params": backbone, "lr": self.config.optimizer_lr},
-                {"params": heads, "lr": self.config.head_lr}]
+        return [
+            {"params": backbone, "lr": self.config.optimizer_lr},
+            {"params": heads, "lr": self.config.head_lr},
+        ]
 
     # ----- sequence assembly -----
-    def _assemble(self, pixels: Tensor, grid: Tensor, valid: Tensor, state: Tensor | None, prefix: Tensor,
-                  prompt: Tensor, prompt_mask: Tensor, think: Tensor | None = None,
-                  think_mask: Tensor | None = None) -> dict[str, Tensor]:
+    def _assemble(
+        self,
+        pixels: Tensor,
+        grid: Tensor,
+        valid: Tensor,
+        state: Tensor | None,
+        prefix: Tensor,
+        prompt: Tensor,
+        prompt_mask: Tensor,
+        think: Tensor | None = None,
+        think_mask: Tensor | None = None,
+    ) -> dict[str, Tensor]:
         """One right-padded token sequence per sample: the frames (each followed by its state token), the
         prompt, the action queries, then the optional think span. Returns the backbone's inputs and the
         per-position ``kind`` (-1 = padding)."""
@@ -102,7 +140,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             for j in range(T):
                 if not valid[b, j]:
                     continue
-                n = int(grid[b, j].prod()) // self.vlm.config.vision_config.spatial_merge_size ** 2
+                n = int(grid[b, j].prod()) // self.vlm.config.vision_config.spatial_merge_size**2
                 ids += [self.vision_start_id] + [self.image_token_id] * n + [self.vision_end_id]
                 kind += [TEXT] + [IMAGE] * n + [TEXT]
                 images.append((b, j))
@@ -123,30 +161,42 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         input_ids = torch.full((B, L), self.pad_id, dtype=torch.long)
         kind = torch.full((B, L), -1, dtype=torch.long)
         for b, (s, k) in enumerate(zip(seqs, kinds)):
-            input_ids[b, :len(s)], kind[b, :len(k)] = torch.tensor(s), torch.tensor(k)
+            input_ids[b, : len(s)], kind[b, : len(k)] = torch.tensor(s), torch.tensor(k)
         input_ids, kind = input_ids.to(dev), kind.to(dev)
         attn = (kind >= 0).long()
         mm = (kind == IMAGE).long()
         embeds = self.vlm.get_input_embeddings()(input_ids)
-        embeds = embeds.masked_scatter((kind == QUERY)[..., None],
-                                       self.action_queries.to(embeds.dtype).repeat(B, 1))
+        embeds = embeds.masked_scatter(
+            (kind == QUERY)[..., None], self.action_queries.to(embeds.dtype).repeat(B, 1)
+        )
         if states:
             rows = torch.stack([state[b, j] for b, j, _ in states]).to(dev, torch.float32)
             slots = torch.tensor([s for _, _, s in states], device=dev)
-            embeds = embeds.masked_scatter((kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype))
+            embeds = embeds.masked_scatter(
+                (kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype)
+            )
         pv = torch.cat([pixels[b, j] for b, j in images]).to(dev, self.vlm.dtype)
         thw = torch.stack([grid[b, j] for b, j in images]).to(dev)
-        position_ids, _ = self.vlm.model.get_rope_index(input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw,
-                                                        attention_mask=attn)
-        return {"input_ids": input_ids, "kind": kind, "inputs_embeds": embeds, "attention_mask": attn,
-                "position_ids": position_ids, "pixel_values": pv, "image_grid_thw": thw, "mm_token_type_ids": mm,
-                "images": images}
+        position_ids, _ = self.vlm.model.get_rope_index(
+            input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw, attention_mask=attn
+        )
+        return {
+            "input_ids": input_ids,
+            "kind": kind,
+            "inputs_embeds": embeds,
+            "attention_mask": attn,
+            "position_ids": position_ids,
+            "pixel_values": pv,
+            "image_grid_thw": thw,
+            "mm_token_type_ids": mm,
+            "images": images,
+        }
 
     def _vision(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
         """Vision tower per image (each image attends only to itself): its merged tokens and DeepStack
         features, so a memory frame's can be kept and reused at later chunks."""
         out = self.vlm.model.get_image_features(pixel_values, grid)
-        sizes = (grid.prod(-1) // self.vlm.config.vision_config.spatial_merge_size ** 2).tolist()
+        sizes = (grid.prod(-1) // self.vlm.config.vision_config.spatial_merge_size**2).tolist()
         deep = [torch.split(d, sizes) for d in out.deepstack_features]
         return [(e, [d[i] for d in deep]) for i, e in enumerate(out.pooler_output)]
 
@@ -165,12 +215,18 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 if images[i] in vision_cache:
                     vision_cache[images[i]]["vision"] = f
         mask = seq["kind"] == IMAGE
-        embeds = seq["inputs_embeds"].masked_scatter(mask[..., None],
-                                                     torch.cat([f[0] for f in feats]).to(seq["inputs_embeds"].dtype))
+        embeds = seq["inputs_embeds"].masked_scatter(
+            mask[..., None], torch.cat([f[0] for f in feats]).to(seq["inputs_embeds"].dtype)
+        )
         deep = [torch.cat([f[1][layer] for f in feats]) for layer in range(len(feats[0][1]))]
-        out = self.vlm.model.language_model(inputs_embeds=embeds, attention_mask=seq["attention_mask"],
-                                            position_ids=seq["position_ids"], use_cache=use_cache,
-                                            visual_pos_masks=mask, deepstack_visual_embeds=deep)
+        out = self.vlm.model.language_model(
+            inputs_embeds=embeds,
+            attention_mask=seq["attention_mask"],
+            position_ids=seq["position_ids"],
+            use_cache=use_cache,
+            visual_pos_masks=mask,
+            deepstack_visual_embeds=deep,
+        )
         return out, feats
 
     def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
@@ -202,11 +258,23 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         if state is not None and state.dim() == 2:
             state = state[:, None]
         think = batch.get(THINK_IDS) if self.config.think != "none" else None
-        pred, lm_loss = self._encode(batch[PIXELS], batch[GRID], batch[FRAME_VALID], state, batch[PREFIX_IDS],
-                                     batch[PROMPT_IDS], batch[PROMPT_MASK], think, batch.get(THINK_MASK))
+        pred, lm_loss = self._encode(
+            batch[PIXELS],
+            batch[GRID],
+            batch[FRAME_VALID],
+            state,
+            batch[PREFIX_IDS],
+            batch[PROMPT_IDS],
+            batch[PROMPT_MASK],
+            think,
+            batch.get(THINK_MASK),
+        )
         pred, target = pred.float(), batch[ACTION]
-        keep = ~batch["action_is_pad"] if "action_is_pad" in batch else torch.ones(target.shape[:2], dtype=torch.bool,
-                                                                                   device=target.device)
+        keep = (
+            ~batch["action_is_pad"]
+            if "action_is_pad" in batch
+            else torch.ones(target.shape[:2], dtype=torch.bool, device=target.device)
+        )
         l1 = (pred - target).abs().mean(-1)
         l1 = (l1 * keep).sum(-1) / keep.sum(-1).clamp(min=1)
         loss = l1.mean() if reduction == "mean" else l1
@@ -277,8 +345,15 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             if self._bank is None:
                 self._start(batch)
             pixels, grid, valid, state, cache = self._history_batch(batch)
-        args = (pixels, grid, valid, state if self.state_encoder is not None else None,
-                batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK])
+        args = (
+            pixels,
+            grid,
+            valid,
+            state if self.state_encoder is not None else None,
+            batch[PREFIX_IDS],
+            batch[PROMPT_IDS],
+            batch[PROMPT_MASK],
+        )
         if cache is not None and self.config.memory == "subtask" and self.config.uses_history:
             subtasks, pred = self.predict_subtask_and_actions(args, vision_cache=cache)
             for b, sub in enumerate(subtasks):
@@ -287,14 +362,17 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         else:
             pred = self._encode(*args, vision_cache=cache)[0]
         if cache is not None:  # the current frames' features, for a memory write at this step
-            self._current_vision = {b: entry.get("vision") for (b, slot), entry in cache.items()
-                                    if slot == valid.shape[1] - 1}
+            self._current_vision = {
+                b: entry.get("vision") for (b, slot), entry in cache.items() if slot == valid.shape[1] - 1
+            }
         return pred.float()
 
     def _start(self, batch: dict[str, Tensor]) -> None:
         if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
-            raise ValueError("memory=subtask at evaluation writes a frame when the policy's own predicted subtask "
-                             "changes, so it needs a policy trained with think=subtask")
+            raise ValueError(
+                "memory=subtask at evaluation writes a frame when the policy's own predicted subtask "
+                "changes, so it needs a policy trained with think=subtask"
+            )
         B = batch[PIXELS].shape[0]
         self._bank = [[] for _ in range(B)]
         self._raw_states = [[] for _ in range(B)]
@@ -316,16 +394,18 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         return self._greedy_think(encode_args)[0]
 
     @torch.no_grad()
-    def predict_subtask_and_actions(self, encode_args: tuple, vision_cache: dict | None = None
-                                    ) -> tuple[list[tuple[int, ...]], Tensor]:
+    def predict_subtask_and_actions(
+        self, encode_args: tuple, vision_cache: dict | None = None
+    ) -> tuple[list[tuple[int, ...]], Tensor]:
         """The predicted subtasks and the action chunk from one backbone pass over images and prompt: the
         queries sit before ``<think>``, so (causal attention) the actions are those of ``_encode``."""
         tokens, _, actions = self._greedy_think(encode_args, vision_cache=vision_cache)
         return tokens, actions
 
     @_in_precision
-    def _greedy_think(self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
-                      ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
+    def _greedy_think(
+        self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
+    ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
         """Greedy decoding after ``<think>``; returns the tokens, each step's (B, vocab) logits and the
         action chunk read from the first pass's query positions. With
         ``use_cache`` the images and prompt go through the backbone once and every new token reuses
@@ -339,7 +419,11 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             if seq is None or not use_cache:
                 seq = self._assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
                 out = self._backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
-                last = torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1).max(1).values
+                last = (
+                    torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1)
+                    .max(1)
+                    .values
+                )
                 hidden, cache = out.last_hidden_state[rows, last], out.past_key_values
                 if actions is None:
                     actions = self._actions(out.last_hidden_state, seq["kind"])
@@ -349,8 +433,12 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 position = position + 1  # the next text token, on all M-RoPE axes
                 attn = torch.cat([attn, attn.new_ones(B, 1)], dim=1)
                 out = self.vlm.model.language_model(
-                    inputs_embeds=self.vlm.get_input_embeddings()(fed[:, -1:].to(dev)), attention_mask=attn,
-                    position_ids=position[..., None], past_key_values=cache, use_cache=True)
+                    inputs_embeds=self.vlm.get_input_embeddings()(fed[:, -1:].to(dev)),
+                    attention_mask=attn,
+                    position_ids=position[..., None],
+                    past_key_values=cache,
+                    use_cache=True,
+                )
                 hidden, cache = out.last_hidden_state[:, -1], out.past_key_values
             logits = self.vlm.lm_head(hidden).float()
             step_logits.append(logits)
@@ -359,7 +447,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 break
         tokens = []
         for row in fed[:, 1:].tolist():  # each sample's text up to and including its first </think>
-            tokens.append(tuple(row[:row.index(end) + 1] if end in row else row))
+            tokens.append(tuple(row[: row.index(end) + 1] if end in row else row))
         return tokens, step_logits, actions
 
     @torch.no_grad()
@@ -371,21 +459,29 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         if RAW_STATE in batch:
             dim = self.config.input_features[OBS_STATE].shape[0]
             if tuple(batch[RAW_STATE].shape) != (B, dim):
-                raise ValueError(f"observation.state must be (batch, {dim}) at evaluation, got "
-                                 f"{tuple(batch[RAW_STATE].shape)}: pass the current state only (history comes "
-                                 "from the policy's memory bank)")
+                raise ValueError(
+                    f"observation.state must be (batch, {dim}) at evaluation, got "
+                    f"{tuple(batch[RAW_STATE].shape)}: pass the current state only (history comes "
+                    "from the policy's memory bank)"
+                )
             for b in range(B):
                 self._raw_states[b].append(batch[RAW_STATE][b].float().cpu().numpy())
         self._current_vision = {}
         if not self._queue:
-            chunk = self.predict_action_chunk(batch)[:, :self.config.n_action_steps]
+            chunk = self.predict_action_chunk(batch)[:, : self.config.n_action_steps]
             self._queue.extend(chunk.transpose(0, 1))
         if self.config.uses_history:
             for b in range(B):
                 if self._retained(b):  # vision features: this step's, else computed at first use
-                    self._bank[b].append({"t": self._t, "pixels": batch[PIXELS][b, -1], "grid": batch[GRID][b, -1],
-                                          "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
-                                          "vision": self._current_vision.get(b)})
-                    del self._bank[b][:-self.config.history]
+                    self._bank[b].append(
+                        {
+                            "t": self._t,
+                            "pixels": batch[PIXELS][b, -1],
+                            "grid": batch[GRID][b, -1],
+                            "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
+                            "vision": self._current_vision.get(b),
+                        }
+                    )
+                    del self._bank[b][: -self.config.history]
         self._t += 1
         return self._queue.popleft()

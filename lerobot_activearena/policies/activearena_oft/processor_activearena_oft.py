@@ -9,7 +9,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import torch
-
 from lerobot.configs.types import PipelineFeatureType, PolicyFeature
 from lerobot.lerobot_types import TransitionKey
 from lerobot.processor import PolicyAction, PolicyProcessorPipeline, ProcessorStep, ProcessorStepRegistry
@@ -24,8 +23,10 @@ PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + 
 PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
 PREFIX = "<|im_start|>user\n"
-PROMPT = ("The images are ordered from earliest to latest, and the last image is the current view. "
-          "Task: {instruction}<|im_end|>\n<|im_start|>assistant\n")
+PROMPT = (
+    "The images are ordered from earliest to latest, and the last image is the current view. "
+    "Task: {instruction}<|im_end|>\n<|im_start|>assistant\n"
+)
 THINK = "<think>{target}</think><|im_end|>"
 
 
@@ -58,8 +59,10 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         if index is None or not self._needed():
             return transition  # evaluation: the policy's own memory bank supplies history
         if self.dataset_root is None:
-            raise ValueError("this activearena_oft configuration reads the dataset's annotations at training time; "
-                             "set --policy.dataset_root (lerobot-train fills it from --dataset.root)")
+            raise ValueError(
+                "this activearena_oft configuration reads the dataset's annotations at training time; "
+                "set --policy.dataset_root (lerobot-train fills it from --dataset.root)"
+            )
         if self._ann is None:
             from .dataset_annotations import DatasetAnnotations
 
@@ -74,7 +77,8 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             if img.dim() != 4:
                 raise ValueError(f"keyframe memory expects the current frame only, got {tuple(img.shape)}")
             obs[IMAGE_KEY], states, comp[f"{IMAGE_KEY}_is_pad"] = self._ann.memory_batch(
-                torch.tensor(idx), img, obs.get(OBS_STATE), self.memory, self.history)
+                torch.tensor(idx), img, obs.get(OBS_STATE), self.memory, self.history
+            )
             if states is not None:
                 obs[OBS_STATE] = states
         out = dict(transition)
@@ -82,8 +86,13 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         return out
 
     def get_config(self) -> dict[str, Any]:
-        return {"dataset_root": self.dataset_root, "repo_id": self.repo_id, "memory": self.memory,
-                "history": self.history, "think": self.think}
+        return {
+            "dataset_root": self.dataset_root,
+            "repo_id": self.repo_id,
+            "memory": self.memory,
+            "history": self.history,
+            "think": self.think,
+        }
 
     def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
         return features
@@ -110,8 +119,9 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         self._processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.vlm_path, "processor")
 
     def _tokenize(self, texts: list[str]) -> tuple[torch.Tensor, torch.Tensor]:
-        tok = self._processor.tokenizer(texts, padding=True, padding_side="right", return_tensors="pt",
-                                        add_special_tokens=False)
+        tok = self._processor.tokenizer(
+            texts, padding=True, padding_side="right", return_tensors="pt", add_special_tokens=False
+        )
         return tok["input_ids"], tok["attention_mask"].bool()
 
     def __call__(self, transition):
@@ -129,9 +139,17 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         device = self._device()
         frames = img.detach().to(device).flatten(0, 1)[keep.to(device)]
         frames = (frames.float().clamp(0, 1) * 255).round().to(torch.uint8)
-        out = self._processor.image_processor(images=list(frames), return_tensors="pt", device=device,
-                                              max_pixels=self.image_max_pixels, min_pixels=16 * 16 * 4)
-        pv, grid = out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]), out["image_grid_thw"]
+        out = self._processor.image_processor(
+            images=list(frames),
+            return_tensors="pt",
+            device=device,
+            max_pixels=self.image_max_pixels,
+            min_pixels=16 * 16 * 4,
+        )
+        pv, grid = (
+            out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]),
+            out["image_grid_thw"],
+        )
         pixels = pv.new_zeros((B * T, *pv.shape[1:]))
         pixels[keep.to(pv.device)] = pv
         grid = grid.cpu()
@@ -151,8 +169,10 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         if transition.get(TransitionKey.ACTION) is not None and self.think != "none":
             if self.think == "subtask":
                 if "subtask" not in comp:
-                    raise ValueError("think=subtask needs the annotated subtask text: train on an ActiveArena "
-                                     "dataset (activearena-build-dataset) with --policy.dataset_root set")
+                    raise ValueError(
+                        "think=subtask needs the annotated subtask text: train on an ActiveArena "
+                        "dataset (activearena-build-dataset) with --policy.dataset_root set"
+                    )
                 targets = list(comp["subtask"])
             else:
                 targets = tasks
@@ -170,27 +190,43 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         return dev
 
     def get_config(self) -> dict[str, Any]:
-        return {"vlm_path": self.vlm_path, "think": self.think, "image_max_pixels": self.image_max_pixels,
-                "device": self.device}
+        return {
+            "vlm_path": self.vlm_path,
+            "think": self.think,
+            "image_max_pixels": self.image_max_pixels,
+            "device": self.device,
+        }
 
     def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
         return features
 
 
 def make_activearena_oft_pre_post_processors(
-    config: ActiveArenaOFTConfig, dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
+    config: ActiveArenaOFTConfig,
+    dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
     dataset_meta: Any | None = None,
-) -> tuple[PolicyProcessorPipeline[dict[str, Any], dict[str, Any]], PolicyProcessorPipeline[PolicyAction, PolicyAction]]:
+) -> tuple[
+    PolicyProcessorPipeline[dict[str, Any], dict[str, Any]],
+    PolicyProcessorPipeline[PolicyAction, PolicyAction],
+]:
     # lerobot-train hands the dataset metadata to make_policy, which keeps it on the config
     dataset_meta = dataset_meta or getattr(config, "_runtime_dataset_meta", None)
     if dataset_meta is not None and getattr(dataset_meta, "root", None) is not None:
         config.dataset_root = str(dataset_meta.root)
     s = make_default_policy_processor_steps(config, dataset_stats, normalizer_device=config.device)
     annotations = ActiveArenaAnnotationStep(
-        dataset_root=config.dataset_root, repo_id=getattr(dataset_meta, "repo_id", None) or "local/activearena",
-        memory=config.memory, history=config.history, think=config.think)
-    inputs = ActiveArenaVLMInputsStep(vlm_path=config.vlm_path, think=config.think,
-                                      image_max_pixels=config.image_max_pixels, device=config.device or "cpu")
+        dataset_root=config.dataset_root,
+        repo_id=getattr(dataset_meta, "repo_id", None) or "local/activearena",
+        memory=config.memory,
+        history=config.history,
+        think=config.think,
+    )
+    inputs = ActiveArenaVLMInputsStep(
+        vlm_path=config.vlm_path,
+        think=config.think,
+        image_max_pixels=config.image_max_pixels,
+        device=config.device or "cpu",
+    )
     return make_policy_processor_pipelines(
         input_steps=[s.rename_observations, s.add_batch_dim, annotations, inputs, s.normalize, s.to_device],
         output_steps=[s.unnormalize, s.to_cpu],

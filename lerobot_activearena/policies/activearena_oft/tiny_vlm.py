@@ -15,14 +15,26 @@ CHAT_TEMPLATE = (
     "{% if c['type'] == 'image' %}<|vision_start|><|image_pad|><|vision_end|>{% else %}{{ c['text'] }}{% endif %}"
     "{% endfor %}{% endif %}<|im_end|>\n{% endfor %}{% if add_generation_prompt %}<|im_start|>assistant\n{% endif %}"
 )
-SPECIAL_TOKENS = ["<|endoftext|>", "<|im_start|>", "<|im_end|>", "<|vision_start|>", "<|vision_end|>",
-                  "<|image_pad|>", "<|video_pad|>", "<think>", "</think>"]
+SPECIAL_TOKENS = [
+    "<|endoftext|>",
+    "<|im_start|>",
+    "<|im_end|>",
+    "<|vision_start|>",
+    "<|vision_end|>",
+    "<|image_pad|>",
+    "<|video_pad|>",
+    "<think>",
+    "</think>",
+]
 
 
 def _corpus() -> list[str]:
     from ...tasks import get_task, task_names
 
-    lines = ["Frames: total history current. Now the subtask is", "The images are ordered from earliest to latest."]
+    lines = [
+        "Frames: total history current. Now the subtask is",
+        "The images are ordered from earliest to latest.",
+    ]
     for name in task_names("all"):
         task = get_task(name)
         lines.append(getattr(task, "instruction", name))
@@ -34,12 +46,31 @@ def _corpus() -> list[str]:
 # Qwen/Qwen3-VL-2B-Instruct's dimensions (text: the Qwen3-1.7B decoder; vision: 24-layer ViT with
 # DeepStack taps 5/11/17), for measuring memory and latency at the real size without its weights.
 QWEN3_VL_2B = {
-    "text": dict(vocab_size=151936, hidden_size=2048, intermediate_size=6144, num_hidden_layers=28,
-                 num_attention_heads=16, num_key_value_heads=8, head_dim=128, max_position_embeddings=262144,
-                 rope_parameters={"rope_type": "default", "rope_theta": 5000000.0, "mrope_section": [24, 20, 20],
-                                  "mrope_interleaved": True}),
-    "vision": dict(depth=24, hidden_size=1024, intermediate_size=4096, num_heads=16, out_hidden_size=2048,
-                   num_position_embeddings=2304, deepstack_visual_indexes=[5, 11, 17]),
+    "text": dict(
+        vocab_size=151936,
+        hidden_size=2048,
+        intermediate_size=6144,
+        num_hidden_layers=28,
+        num_attention_heads=16,
+        num_key_value_heads=8,
+        head_dim=128,
+        max_position_embeddings=262144,
+        rope_parameters={
+            "rope_type": "default",
+            "rope_theta": 5000000.0,
+            "mrope_section": [24, 20, 20],
+            "mrope_interleaved": True,
+        },
+    ),
+    "vision": dict(
+        depth=24,
+        hidden_size=1024,
+        intermediate_size=4096,
+        num_heads=16,
+        out_hidden_size=2048,
+        num_position_embeddings=2304,
+        deepstack_visual_indexes=[5, 11, 17],
+    ),
 }
 
 
@@ -50,24 +81,41 @@ def qwen3_vl_config(text: dict, vision: dict, ids: dict[str, int] | None = None)
 
     tokens = {}
     if ids is not None:
-        tokens = dict(image_token_id=ids["<|image_pad|>"], video_token_id=ids["<|video_pad|>"],
-                      vision_start_token_id=ids["<|vision_start|>"], vision_end_token_id=ids["<|vision_end|>"])
+        tokens = dict(
+            image_token_id=ids["<|image_pad|>"],
+            video_token_id=ids["<|video_pad|>"],
+            vision_start_token_id=ids["<|vision_start|>"],
+            vision_end_token_id=ids["<|vision_end|>"],
+        )
         text = dict(text, pad_token_id=ids["<|endoftext|>"])
-    return Qwen3VLConfig(text_config=dict(text, tie_word_embeddings=True),
-                         vision_config=dict(vision, patch_size=16, spatial_merge_size=2, temporal_patch_size=2),
-                         tie_word_embeddings=True, **tokens)
+    return Qwen3VLConfig(
+        text_config=dict(text, tie_word_embeddings=True),
+        vision_config=dict(vision, patch_size=16, spatial_merge_size=2, temporal_patch_size=2),
+        tie_word_embeddings=True,
+        **tokens,
+    )
 
 
-def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab: int = 1024, seed: int = 0,
-                  architecture: str = "tiny") -> Path:
+def make_tiny_vlm(
+    out_dir: str | Path,
+    hidden: int = 64,
+    layers: int = 2,
+    vocab: int = 1024,
+    seed: int = 0,
+    architecture: str = "tiny",
+) -> Path:
     """Write a random Qwen3-VL, tokenizer and processor to ``out_dir``: tiny (``hidden`` / ``layers``), or
     with ``architecture="qwen3-vl-2b"`` the real 2B model's dimensions (saved in bfloat16, ~4.3 GB)."""
     if architecture not in ("tiny", "qwen3-vl-2b"):
         raise ValueError(f"architecture must be 'tiny' or 'qwen3-vl-2b', got {architecture!r}")
     import torch
     from tokenizers import Tokenizer, decoders, models, pre_tokenizers, trainers
-    from transformers import (Qwen2TokenizerFast, Qwen2VLImageProcessor,
-                              Qwen3VLForConditionalGeneration, Qwen3VLProcessor)
+    from transformers import (
+        Qwen2TokenizerFast,
+        Qwen2VLImageProcessor,
+        Qwen3VLForConditionalGeneration,
+        Qwen3VLProcessor,
+    )
     from transformers.models.qwen3_vl.video_processing_qwen3_vl import Qwen3VLVideoProcessor
 
     out = Path(out_dir)
@@ -75,27 +123,61 @@ def make_tiny_vlm(out_dir: str | Path, hidden: int = 64, layers: int = 2, vocab:
     bpe = Tokenizer(models.BPE())
     bpe.pre_tokenizer = pre_tokenizers.ByteLevel(add_prefix_space=False)
     bpe.decoder = decoders.ByteLevel()
-    trainer = trainers.BpeTrainer(vocab_size=vocab - len(SPECIAL_TOKENS), special_tokens=SPECIAL_TOKENS,
-                                  initial_alphabet=pre_tokenizers.ByteLevel.alphabet(), show_progress=False)
+    trainer = trainers.BpeTrainer(
+        vocab_size=vocab - len(SPECIAL_TOKENS),
+        special_tokens=SPECIAL_TOKENS,
+        initial_alphabet=pre_tokenizers.ByteLevel.alphabet(),
+        show_progress=False,
+    )
     bpe.train_from_iterator(_corpus(), trainer)
-    tok = Qwen2TokenizerFast(tokenizer_object=bpe, eos_token="<|im_end|>", pad_token="<|endoftext|>",
-                             unk_token=None, bos_token=None)
+    tok = Qwen2TokenizerFast(
+        tokenizer_object=bpe,
+        eos_token="<|im_end|>",
+        pad_token="<|endoftext|>",
+        unk_token=None,
+        bos_token=None,
+    )
     tok.chat_template = CHAT_TEMPLATE
     ids = {t: tok.convert_tokens_to_ids(t) for t in SPECIAL_TOKENS}
-    image_proc = Qwen2VLImageProcessor(patch_size=16, merge_size=2, temporal_patch_size=2,
-                                       image_mean=[0.5] * 3, image_std=[0.5] * 3,
-                                       min_pixels=16 * 16 * 4, max_pixels=512 * 384)
+    image_proc = Qwen2VLImageProcessor(
+        patch_size=16,
+        merge_size=2,
+        temporal_patch_size=2,
+        image_mean=[0.5] * 3,
+        image_std=[0.5] * 3,
+        min_pixels=16 * 16 * 4,
+        max_pixels=512 * 384,
+    )
     video_proc = Qwen3VLVideoProcessor(patch_size=16, merge_size=2, temporal_patch_size=2)
-    processor = Qwen3VLProcessor(image_processor=image_proc, tokenizer=tok, video_processor=video_proc,
-                                 chat_template=CHAT_TEMPLATE)
+    processor = Qwen3VLProcessor(
+        image_processor=image_proc, tokenizer=tok, video_processor=video_proc, chat_template=CHAT_TEMPLATE
+    )
     heads = 4
-    text = dict(vocab_size=len(tok), hidden_size=hidden, intermediate_size=2 * hidden, num_hidden_layers=layers,
-                num_attention_heads=heads, num_key_value_heads=2, head_dim=hidden // heads,
-                max_position_embeddings=8192,
-                rope_parameters={"rope_type": "default", "rope_theta": 10000.0, "mrope_section": [2, 3, 3],
-                                 "mrope_interleaved": True})
-    vision = dict(depth=2, hidden_size=hidden, intermediate_size=2 * hidden, num_heads=heads, out_hidden_size=hidden,
-                  num_position_embeddings=1024, deepstack_visual_indexes=[1])
+    text = dict(
+        vocab_size=len(tok),
+        hidden_size=hidden,
+        intermediate_size=2 * hidden,
+        num_hidden_layers=layers,
+        num_attention_heads=heads,
+        num_key_value_heads=2,
+        head_dim=hidden // heads,
+        max_position_embeddings=8192,
+        rope_parameters={
+            "rope_type": "default",
+            "rope_theta": 10000.0,
+            "mrope_section": [2, 3, 3],
+            "mrope_interleaved": True,
+        },
+    )
+    vision = dict(
+        depth=2,
+        hidden_size=hidden,
+        intermediate_size=2 * hidden,
+        num_heads=heads,
+        out_hidden_size=hidden,
+        num_position_embeddings=1024,
+        deepstack_visual_indexes=[1],
+    )
     if architecture == "qwen3-vl-2b":
         text, vision = dict(QWEN3_VL_2B["text"]), dict(QWEN3_VL_2B["vision"])
     config = qwen3_vl_config(text, vision, ids)

@@ -3,7 +3,8 @@ local folder, with one error that names the fix when it cannot be found."""
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 
 def load_from_vlm_path(loader: Callable[..., Any], vlm_path: str, what: str, **kwargs) -> Any:

@@ -35,8 +35,19 @@ def hidden_face(geom: str, center_body, normal_body) -> dict:
     return {"face_geom": geom, "face_center_body": tuple(center_body), "face_normal_body": tuple(normal_body)}
 
 
-def add_geom(body, gtype, size, pos=(0, 0, 0), rgba=(0.5, 0.5, 0.5, 1), mass=None, name=None, friction=None,
-             quat=None, material=None, collide: bool = True):
+def add_geom(
+    body,
+    gtype,
+    size,
+    pos=(0, 0, 0),
+    rgba=(0.5, 0.5, 0.5, 1),
+    mass=None,
+    name=None,
+    friction=None,
+    quat=None,
+    material=None,
+    collide: bool = True,
+):
     """Add a geom that collides with the world (or a visual-only one with ``collide=False``)."""
     g = body.add_geom()
     if name:
@@ -89,8 +100,14 @@ def static_body(spec: mujoco.MjSpec, name: str, pos, yaw: float) -> mujoco.MjsBo
     return body
 
 
-def add_texture_material(spec: mujoco.MjSpec, name: str, rgb: np.ndarray, rgba=(1, 1, 1, 1),
-                         texrepeat=(1, 1), texuniform: bool = False) -> str:
+def add_texture_material(
+    spec: mujoco.MjSpec,
+    name: str,
+    rgb: np.ndarray,
+    rgba=(1, 1, 1, 1),
+    texrepeat=(1, 1),
+    texuniform: bool = False,
+) -> str:
     """Register an (H, W, 3) uint8 image as a 2D texture with a material of the same name."""
     rgb = np.ascontiguousarray(np.asarray(rgb, dtype=np.uint8))
     if rgb.ndim != 3 or rgb.shape[2] != 3:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-
 import mujoco
 
 from .base import ObjectInfo, add_geom as _geom, free_body as _free_body
@@ -10,15 +9,36 @@ from .registry import register_asset
 
 
 @register_asset("can", footprint=0.035, role="task")
-def add_can(spec, name, pos, yaw=0.0, radius=0.033, height=0.12, mass=0.3, rgba=(0.75, 0.1, 0.1, 1)) -> ObjectInfo:
+def add_can(
+    spec, name, pos, yaw=0.0, radius=0.033, height=0.12, mass=0.3, rgba=(0.75, 0.1, 0.1, 1)
+) -> ObjectInfo:
     b = _free_body(spec, name, pos, yaw)
-    _geom(b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius, height / 2, 0), (0, 0, height / 2), rgba, mass, f"{name}_body")
-    _geom(b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius * 0.85, 0.004, 0), (0, 0, height + 0.004), (0.8, 0.8, 0.82, 1), 0.0)
-    return ObjectInfo(name, "can", name, (radius, radius, height / 2 + 0.004), (0, 0, height / 2 + 0.004), mass)
+    _geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius, height / 2, 0),
+        (0, 0, height / 2),
+        rgba,
+        mass,
+        f"{name}_body",
+    )
+    _geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius * 0.85, 0.004, 0),
+        (0, 0, height + 0.004),
+        (0.8, 0.8, 0.82, 1),
+        0.0,
+    )
+    return ObjectInfo(
+        name, "can", name, (radius, radius, height / 2 + 0.004), (0, 0, height / 2 + 0.004), mass
+    )
 
 
 @register_asset("block", footprint=0.036, role="task")
-def add_block(spec, name, pos, yaw=0.0, half=(0.025, 0.025, 0.025), mass=0.1, rgba=(0.2, 0.4, 0.8, 1)) -> ObjectInfo:
+def add_block(
+    spec, name, pos, yaw=0.0, half=(0.025, 0.025, 0.025), mass=0.1, rgba=(0.2, 0.4, 0.8, 1)
+) -> ObjectInfo:
     b = _free_body(spec, name, pos, yaw)
     _geom(b, mujoco.mjtGeom.mjGEOM_BOX, half, (0, 0, half[2]), rgba, mass, f"{name}_body")
     return ObjectInfo(name, "block", name, tuple(half), (0, 0, half[2]), mass)
@@ -27,20 +47,50 @@ def add_block(spec, name, pos, yaw=0.0, half=(0.025, 0.025, 0.025), mass=0.1, rg
 @register_asset("ball", footprint=0.032, role="distractor")
 def add_ball(spec, name, pos, yaw=0.0, radius=0.03, mass=0.05, rgba=(0.9, 0.7, 0.1, 1)) -> ObjectInfo:
     b = _free_body(spec, name, pos, yaw)
-    _geom(b, mujoco.mjtGeom.mjGEOM_SPHERE, (radius, 0, 0), (0, 0, radius), rgba, mass, f"{name}_body",
-          friction=(1.0, 0.01, 0.01))
+    _geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_SPHERE,
+        (radius, 0, 0),
+        (0, 0, radius),
+        rgba,
+        mass,
+        f"{name}_body",
+        friction=(1.0, 0.01, 0.01),
+    )
     return ObjectInfo(name, "ball", name, (radius,) * 3, (0, 0, radius), mass)
 
 
 @register_asset("bottle", footprint=0.032, role="task")
-def add_bottle(spec, name, pos, yaw=0.0, radius=0.03, height=0.18, mass=0.25, rgba=(0.2, 0.7, 0.4, 1)) -> ObjectInfo:
+def add_bottle(
+    spec, name, pos, yaw=0.0, radius=0.03, height=0.18, mass=0.25, rgba=(0.2, 0.7, 0.4, 1)
+) -> ObjectInfo:
     b = _free_body(spec, name, pos, yaw)
     body_h = height * 0.72
-    _geom(b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius, body_h / 2, 0), (0, 0, body_h / 2), rgba, mass * 0.9, f"{name}_body")
+    _geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius, body_h / 2, 0),
+        (0, 0, body_h / 2),
+        rgba,
+        mass * 0.9,
+        f"{name}_body",
+    )
     neck_h = height - body_h
-    _geom(b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius * 0.4, neck_h / 2, 0), (0, 0, body_h + neck_h / 2),
-          (0.9, 0.9, 0.9, 1), mass * 0.1)
+    _geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius * 0.4, neck_h / 2, 0),
+        (0, 0, body_h + neck_h / 2),
+        (0.9, 0.9, 0.9, 1),
+        mass * 0.1,
+    )
     # Held by the neck, just above the shoulder: the palm clears the cap.
-    return ObjectInfo(name, "bottle", name, (radius, radius, height / 2), (0, 0, height / 2), mass,
-                      {"grasp_point": (0.0, 0.0, body_h + 0.03)})
-
+    return ObjectInfo(
+        name,
+        "bottle",
+        name,
+        (radius, radius, height / 2),
+        (0, 0, height / 2),
+        mass,
+        {"grasp_point": (0.0, 0.0, body_h + 0.03)},
+    )

@@ -38,8 +38,14 @@ class AssetEntry:
 ASSETS: dict[str, AssetEntry] = {}
 
 
-def register_asset(category: str, footprint: float, role: str, family: str | None = None,
-                   randomize: Callable[[np.random.Generator], dict] | None = None, static: bool = False):
+def register_asset(
+    category: str,
+    footprint: float,
+    role: str,
+    family: str | None = None,
+    randomize: Callable[[np.random.Generator], dict] | None = None,
+    static: bool = False,
+):
     """Decorator registering a builder under ``category``."""
     if role not in ROLES:
         raise ValueError(f"asset role must be one of {ROLES}, got {role!r}")
@@ -47,14 +53,23 @@ def register_asset(category: str, footprint: float, role: str, family: str | Non
     def deco(fn):
         if category in ASSETS:
             raise ValueError(f"asset category {category!r} is registered twice")
-        ASSETS[category] = AssetEntry(category, fn, float(footprint), role, family or category, randomize, static)
+        ASSETS[category] = AssetEntry(
+            category, fn, float(footprint), role, family or category, randomize, static
+        )
         return fn
 
     return deco
 
 
-def build_asset(spec: mujoco.MjSpec, category: str, name: str, pos, yaw: float = 0.0,
-                rng: np.random.Generator | None = None, **params) -> ObjectInfo:
+def build_asset(
+    spec: mujoco.MjSpec,
+    category: str,
+    name: str,
+    pos,
+    yaw: float = 0.0,
+    rng: np.random.Generator | None = None,
+    **params,
+) -> ObjectInfo:
     """Add one object of ``category``; with ``rng`` its attributes are randomised (explicit
     ``params`` win over randomised ones)."""
     if category not in ASSETS:

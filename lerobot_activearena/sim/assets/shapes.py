@@ -12,8 +12,14 @@ from PIL import Image, ImageDraw, ImageFont
 from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
 
 G = mujoco.mjtGeom
-KIND = {"box": G.mjGEOM_BOX, "cyl": G.mjGEOM_CYLINDER, "sph": G.mjGEOM_SPHERE, "cap": G.mjGEOM_CAPSULE,
-        "ell": G.mjGEOM_ELLIPSOID, "mesh": G.mjGEOM_MESH}
+KIND = {
+    "box": G.mjGEOM_BOX,
+    "cyl": G.mjGEOM_CYLINDER,
+    "sph": G.mjGEOM_SPHERE,
+    "cap": G.mjGEOM_CAPSULE,
+    "ell": G.mjGEOM_ELLIPSOID,
+    "mesh": G.mjGEOM_MESH,
+}
 
 
 def quat_axis_angle(axis, angle: float) -> np.ndarray:
@@ -22,8 +28,17 @@ def quat_axis_angle(axis, angle: float) -> np.ndarray:
     return q
 
 
-def compound(spec, name: str, category: str, pos, yaw: float, parts: list[tuple], mass: float,
-             static: bool = False, extra: dict | None = None) -> ObjectInfo:
+def compound(
+    spec,
+    name: str,
+    category: str,
+    pos,
+    yaw: float,
+    parts: list[tuple],
+    mass: float,
+    static: bool = False,
+    extra: dict | None = None,
+) -> ObjectInfo:
     """``parts``: (kind, size, pos, rgba[, options]) with options ``quat``, ``visual`` (no collision),
     ``material``, ``mesh``. The first part is the main collision geom ``<name>_body``. Mass is spread
     over the colliding parts by volume; the bounding box is computed from the compiled parts."""
@@ -32,8 +47,17 @@ def compound(spec, name: str, category: str, pos, yaw: float, parts: list[tuple]
     for k, part in enumerate(parts):
         kind, size, ppos, rgba = part[:4]
         opt = part[4] if len(part) > 4 else {}
-        g = add_geom(body, KIND[kind], size, ppos, rgba, name=f"{name}_body" if k == 0 else f"{name}_part{k}",
-                     quat=opt.get("quat"), material=opt.get("material"), collide=not opt.get("visual", False))
+        g = add_geom(
+            body,
+            KIND[kind],
+            size,
+            ppos,
+            rgba,
+            name=f"{name}_body" if k == 0 else f"{name}_part{k}",
+            quat=opt.get("quat"),
+            material=opt.get("material"),
+            collide=not opt.get("visual", False),
+        )
         if kind == "mesh":
             g.meshname = opt["mesh"]
         geoms.append((g, opt.get("visual", False)))
@@ -99,8 +123,9 @@ def cone_mesh(spec, name: str, radius: float, height: float, n: int = 16) -> str
     return name
 
 
-def text_texture(spec, name: str, text: str, bg=(240, 240, 235), fg=(20, 20, 20), size=(128, 64),
-                 fill: float = 0.42) -> str:
+def text_texture(
+    spec, name: str, text: str, bg=(240, 240, 235), fg=(20, 20, 20), size=(128, 64), fill: float = 0.42
+) -> str:
     """A texture material with ``text`` written on it (for labels and boxes). ``fill``: font size
     as a fraction of the height, shrunk if the text would not fit 90 % of the width."""
     img = Image.new("RGB", size, bg)
@@ -114,8 +139,17 @@ def text_texture(spec, name: str, text: str, bg=(240, 240, 235), fg=(20, 20, 20)
     return add_texture_material(spec, name, np.asarray(img))
 
 
-def arc_label(spec, body_name: str, name: str, material: str, radius: float, z0: float, z1: float,
-              arc_deg: float = 45.0, n: int = 8):
+def arc_label(
+    spec,
+    body_name: str,
+    name: str,
+    material: str,
+    radius: float,
+    z0: float,
+    z1: float,
+    arc_deg: float = 45.0,
+    n: int = 8,
+):
     """A visual-only curved label: a cylindrical strip of ``arc_deg`` centred on the body's +x side,
     texture u along the arc (left to right seen from outside), v up."""
     a = np.radians(np.linspace(-arc_deg / 2, arc_deg / 2, n + 1))  # left to right seen from outside (+x)
@@ -135,7 +169,15 @@ def arc_label(spec, body_name: str, name: str, material: str, radius: float, z0:
     mesh.userfacetexcoord = np.asarray(faces, np.int32).reshape(-1)
     mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL  # an open strip has no volume
     body = spec.body(body_name)
-    g = add_geom(body, G.mjGEOM_MESH, (0, 0, 0), (0, 0, 0), (1, 1, 1, 1), name=f"{name}_geom", material=material,
-                 collide=False)
+    g = add_geom(
+        body,
+        G.mjGEOM_MESH,
+        (0, 0, 0),
+        (0, 0, 0),
+        (1, 1, 1, 1),
+        name=f"{name}_geom",
+        material=material,
+        collide=False,
+    )
     g.meshname = name
     return g

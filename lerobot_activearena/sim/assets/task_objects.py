@@ -17,9 +17,18 @@ from .registry import register_asset
 from .shapes import arc_label, compound, quat_axis_angle, text_texture
 
 MAT_COLORS = {
-    "red": (0.85, 0.15, 0.12), "green": (0.15, 0.65, 0.25), "blue": (0.15, 0.3, 0.85), "yellow": (0.95, 0.85, 0.15),
-    "black": (0.08, 0.08, 0.09), "silver": (0.75, 0.76, 0.78), "cyan": (0.1, 0.8, 0.85), "beige": (0.9, 0.82, 0.65),
-    "pink": (0.95, 0.55, 0.7), "orange": (0.95, 0.5, 0.1), "purple": (0.55, 0.25, 0.7), "white": (0.96, 0.96, 0.96),
+    "red": (0.85, 0.15, 0.12),
+    "green": (0.15, 0.65, 0.25),
+    "blue": (0.15, 0.3, 0.85),
+    "yellow": (0.95, 0.85, 0.15),
+    "black": (0.08, 0.08, 0.09),
+    "silver": (0.75, 0.76, 0.78),
+    "cyan": (0.1, 0.8, 0.85),
+    "beige": (0.9, 0.82, 0.65),
+    "pink": (0.95, 0.55, 0.7),
+    "orange": (0.95, 0.5, 0.1),
+    "purple": (0.55, 0.25, 0.7),
+    "white": (0.96, 0.96, 0.96),
 }
 DATE_RANGE = (dt.date(2023, 1, 1), dt.date(2026, 12, 31))  # paper: production dates
 SHELF_LIFE_DAYS = 365
@@ -35,16 +44,35 @@ def _color(rng, lo=0.15, hi=0.9):
     return tuple(float(x) for x in rng.uniform(lo, hi, 3))
 
 
-@register_asset("hammer", footprint=0.11, role="task", randomize=lambda rng: {"handle": _color(rng, 0.3, 0.9)})
+@register_asset(
+    "hammer", footprint=0.11, role="task", randomize=lambda rng: {"handle": _color(rng, 0.3, 0.9)}
+)
 def add_hammer(spec, name, pos, yaw=0.0, handle=(0.6, 0.4, 0.2)):
-    return compound(spec, name, "hammer", pos, yaw, [
-        ("box", (0.1, 0.012, 0.012), (0.0, 0, 0.012), _rgba(handle)),
-        ("box", (0.018, 0.05, 0.018), (0.11, 0, 0.018), (0.3, 0.3, 0.33, 1)),
-    ], 0.35, extra={"handle_point": (-0.03, 0.0, 0.012), "head_point": (0.11, 0.0, 0.018)})
+    return compound(
+        spec,
+        name,
+        "hammer",
+        pos,
+        yaw,
+        [
+            ("box", (0.1, 0.012, 0.012), (0.0, 0, 0.012), _rgba(handle)),
+            ("box", (0.018, 0.05, 0.018), (0.11, 0, 0.018), (0.3, 0.3, 0.33, 1)),
+        ],
+        0.35,
+        extra={"handle_point": (-0.03, 0.0, 0.012), "head_point": (0.11, 0.0, 0.018)},
+    )
 
 
-def _hinge(body, name: str, lo: float, hi: float, damping: float, stiffness: float = 0.0, springref: float = 0.0,
-           frictionloss: float = 0.0):
+def _hinge(
+    body,
+    name: str,
+    lo: float,
+    hi: float,
+    damping: float,
+    stiffness: float = 0.0,
+    springref: float = 0.0,
+    frictionloss: float = 0.0,
+):
     """A hinge about the body's y axis limited to [lo, hi] rad."""
     j = body.add_joint()
     j.name, j.type, j.axis = name, mujoco.mjtJoint.mjJNT_HINGE, (0, 1, 0)
@@ -63,20 +91,48 @@ def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
     (``extra['joint']``: 0 = open, ``STAPLER_OPEN`` = pressed shut; press point at the front end
     of the arm, in the arm body's frame)."""
     b = free_body(spec, name, pos, yaw)
-    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.075, 0.02, 0.006), (0, 0, 0.006), (0.15, 0.15, 0.16, 1), 0.2,
-             f"{name}_body")
-    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.012, 0.016, 0.012), (-0.062, 0, 0.024), (0.15, 0.15, 0.16, 1), 0.03,
-             f"{name}_post")
+    add_geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_BOX,
+        (0.075, 0.02, 0.006),
+        (0, 0, 0.006),
+        (0.15, 0.15, 0.16, 1),
+        0.2,
+        f"{name}_body",
+    )
+    add_geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_BOX,
+        (0.012, 0.016, 0.012),
+        (-0.062, 0, 0.024),
+        (0.15, 0.15, 0.16, 1),
+        0.03,
+        f"{name}_post",
+    )
     arm = b.add_body()
     arm.name = f"{name}_arm"
     arm.pos = (-0.062, 0, 0.036)
     arm.quat = quat_axis_angle([0, 1, 0], -STAPLER_OPEN)  # front end raised
     arm.gravcomp = 1.0
     _hinge(arm, f"{name}_joint", 0.0, STAPLER_OPEN, damping=0.05, stiffness=0.6, springref=-0.15)
-    add_geom(arm, mujoco.mjtGeom.mjGEOM_BOX, (0.068, 0.017, 0.008), (0.066, 0, 0.0), rgba, 0.05, f"{name}_arm_geom")
-    return ObjectInfo(name, "stapler", name, (0.075, 0.02, 0.03), (0, 0, 0.03), 0.28,
-                      {"joint": f"{name}_joint", "press_body": f"{name}_arm", "press_point": (0.115, 0.0, 0.008),
-                       "pressed_above": STAPLER_PRESSED, "grasp_point": (0.0, 0.0, 0.03)})
+    add_geom(
+        arm, mujoco.mjtGeom.mjGEOM_BOX, (0.068, 0.017, 0.008), (0.066, 0, 0.0), rgba, 0.05, f"{name}_arm_geom"
+    )
+    return ObjectInfo(
+        name,
+        "stapler",
+        name,
+        (0.075, 0.02, 0.03),
+        (0, 0, 0.03),
+        0.28,
+        {
+            "joint": f"{name}_joint",
+            "press_body": f"{name}_arm",
+            "press_point": (0.115, 0.0, 0.008),
+            "pressed_above": STAPLER_PRESSED,
+            "grasp_point": (0.0, 0.0, 0.03),
+        },
+    )
 
 
 SWITCH_TILT = 0.25  # rad the rocker rests tilted to each side of flat
@@ -96,22 +152,57 @@ def add_switch(spec, name, pos, yaw=0.0, rgba=(0.92, 0.92, 0.9, 1)):
     rocker.quat = quat_axis_angle([0, 1, 0], -SWITCH_TILT)  # +x end up: off
     rocker.gravcomp = 1.0
     _hinge(rocker, f"{name}_joint", 0.0, SWITCH_ON, damping=0.02, frictionloss=0.01)
-    add_geom(rocker, mujoco.mjtGeom.mjGEOM_BOX, (0.038, 0.02, 0.005), (0, 0, 0), (0.8, 0.1, 0.1, 1), 0.015,
-             f"{name}_rocker_geom")
-    add_geom(rocker, mujoco.mjtGeom.mjGEOM_BOX, (0.008, 0.012, 0.0005), (0.026, 0, 0.005), (1, 1, 1, 1),
-             name=f"{name}_mark", collide=False)
-    return ObjectInfo(name, "switch", name, (0.045, 0.03, 0.022), (0, 0, 0.022), 0.465,
-                      {"joint": f"{name}_joint", "press_body": f"{name}_rocker", "press_point": (0.026, 0.0, 0.005),
-                       "on_limit": SWITCH_ON})
+    add_geom(
+        rocker,
+        mujoco.mjtGeom.mjGEOM_BOX,
+        (0.038, 0.02, 0.005),
+        (0, 0, 0),
+        (0.8, 0.1, 0.1, 1),
+        0.015,
+        f"{name}_rocker_geom",
+    )
+    add_geom(
+        rocker,
+        mujoco.mjtGeom.mjGEOM_BOX,
+        (0.008, 0.012, 0.0005),
+        (0.026, 0, 0.005),
+        (1, 1, 1, 1),
+        name=f"{name}_mark",
+        collide=False,
+    )
+    return ObjectInfo(
+        name,
+        "switch",
+        name,
+        (0.045, 0.03, 0.022),
+        (0, 0, 0.022),
+        0.465,
+        {
+            "joint": f"{name}_joint",
+            "press_body": f"{name}_rocker",
+            "press_point": (0.026, 0.0, 0.005),
+            "on_limit": SWITCH_ON,
+        },
+    )
 
 
-@register_asset("pill_bottle", footprint=0.03, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.5, 0.95))})
+@register_asset(
+    "pill_bottle", footprint=0.03, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.5, 0.95))}
+)
 def add_pill_bottle(spec, name, pos, yaw=0.0, rgba=(0.95, 0.6, 0.15, 1)):
-    return compound(spec, name, "pill_bottle", pos, yaw, [
-        ("cyl", (0.022, 0.035, 0), (0, 0, 0.035), _rgba(rgba[:3], 1.0)),
-        ("cyl", (0.024, 0.009, 0), (0, 0, 0.079), (0.95, 0.95, 0.95, 1)),
-        ("cyl", (0.0225, 0.012, 0), (0, 0, 0.035), (0.97, 0.97, 0.97, 1), {"visual": True}),
-    ], 0.08)
+    return compound(
+        spec,
+        name,
+        "pill_bottle",
+        pos,
+        yaw,
+        [
+            ("cyl", (0.022, 0.035, 0), (0, 0, 0.035), _rgba(rgba[:3], 1.0)),
+            ("cyl", (0.024, 0.009, 0), (0, 0, 0.079), (0.95, 0.95, 0.95, 1)),
+            ("cyl", (0.0225, 0.012, 0), (0, 0, 0.035), (0.97, 0.97, 0.97, 1), {"visual": True}),
+        ],
+        0.08,
+    )
 
 
 def _facelets(size=96) -> np.ndarray:
@@ -122,29 +213,52 @@ def _facelets(size=96) -> np.ndarray:
     c = size // 3
     for i in range(3):
         for j in range(3):
-            d.rectangle([i * c + 3, j * c + 3, (i + 1) * c - 3, (j + 1) * c - 3], fill=colors[int(rng.integers(0, 6))])
+            d.rectangle(
+                [i * c + 3, j * c + 3, (i + 1) * c - 3, (j + 1) * c - 3], fill=colors[int(rng.integers(0, 6))]
+            )
     return np.asarray(img)
 
 
 @register_asset("rubiks_cube", footprint=0.04, role="task")
 def add_rubiks_cube(spec, name, pos, yaw=0.0, half=0.028):
     mat = add_texture_material(spec, f"{name}_facelets", _facelets())
-    return compound(spec, name, "rubiks_cube", pos, yaw, [("box", (half,) * 3, (0, 0, half), (1, 1, 1, 1),
-                                                            {"material": mat})], 0.1)
+    return compound(
+        spec,
+        name,
+        "rubiks_cube",
+        pos,
+        yaw,
+        [("box", (half,) * 3, (0, 0, half), (1, 1, 1, 1), {"material": mat})],
+        0.1,
+    )
 
 
 @register_asset("wooden_block", footprint=0.05, role="task")
 def add_wooden_block(spec, name, pos, yaw=0.0, half=(0.045, 0.03, 0.025)):
     mat = add_texture_material(spec, f"{name}_wood", table_texture(11, (0.72, 0.52, 0.3), 64))
-    return compound(spec, name, "wooden_block", pos, yaw, [("box", half, (0, 0, half[2]), (1, 1, 1, 1),
-                                                             {"material": mat})], 0.12)
+    return compound(
+        spec,
+        name,
+        "wooden_block",
+        pos,
+        yaw,
+        [("box", half, (0, 0, half[2]), (1, 1, 1, 1), {"material": mat})],
+        0.12,
+    )
 
 
 @register_asset("coffee_box", footprint=0.07, role="task")
 def add_coffee_box(spec, name, pos, yaw=0.0):
     mat = text_texture(spec, f"{name}_label", "COFFEE", bg=(110, 60, 30), fg=(250, 235, 200))
-    return compound(spec, name, "coffee_box", pos, yaw, [("box", (0.05, 0.035, 0.06), (0, 0, 0.06), (1, 1, 1, 1),
-                                                           {"material": mat})], 0.25)
+    return compound(
+        spec,
+        name,
+        "coffee_box",
+        pos,
+        yaw,
+        [("box", (0.05, 0.035, 0.06), (0, 0, 0.06), (1, 1, 1, 1), {"material": mat})],
+        0.25,
+    )
 
 
 def _open_box(rgba, inner, wall, height):
@@ -158,110 +272,256 @@ def _open_box(rgba, inner, wall, height):
     ]
 
 
-@register_asset("plastic_box", footprint=0.11, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.3, 0.9), 1.0)})
+@register_asset(
+    "plastic_box",
+    footprint=0.11,
+    role="task",
+    randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.3, 0.9), 1.0)},
+)
 def add_plastic_box(spec, name, pos, yaw=0.0, rgba=(0.3, 0.55, 0.85, 1)):
-    return compound(spec, name, "plastic_box", pos, yaw, _open_box(rgba, (0.16, 0.12), 0.006, 0.07), 0.2,
-                    extra={"inner_half": (0.08, 0.06), "floor_z": 0.006})
+    return compound(
+        spec,
+        name,
+        "plastic_box",
+        pos,
+        yaw,
+        _open_box(rgba, (0.16, 0.12), 0.006, 0.07),
+        0.2,
+        extra={"inner_half": (0.08, 0.06), "floor_z": 0.006},
+    )
 
 
 @register_asset("bread_basket", footprint=0.11, role="task")
 def add_bread_basket(spec, name, pos, yaw=0.0, rgba=(0.62, 0.42, 0.2, 1)):
-    return compound(spec, name, "bread_basket", pos, yaw, _open_box(rgba, (0.17, 0.12), 0.008, 0.05), 0.2,
-                    extra={"inner_half": (0.085, 0.06), "floor_z": 0.008})
+    return compound(
+        spec,
+        name,
+        "bread_basket",
+        pos,
+        yaw,
+        _open_box(rgba, (0.17, 0.12), 0.008, 0.05),
+        0.2,
+        extra={"inner_half": (0.085, 0.06), "floor_z": 0.008},
+    )
 
 
-@register_asset("container", footprint=0.06, role="task", randomize=lambda rng: {"lid": _rgba(_color(rng, 0.2, 0.9))})
+@register_asset(
+    "container", footprint=0.06, role="task", randomize=lambda rng: {"lid": _rgba(_color(rng, 0.2, 0.9))}
+)
 def add_container(spec, name, pos, yaw=0.0, lid=(0.2, 0.6, 0.3, 1)):
-    return compound(spec, name, "container", pos, yaw, [
-        ("box", (0.045, 0.035, 0.025), (0, 0, 0.025), (0.92, 0.92, 0.9, 0.95)),
-        ("box", (0.048, 0.038, 0.005), (0, 0, 0.055), lid),
-    ], 0.12)
+    return compound(
+        spec,
+        name,
+        "container",
+        pos,
+        yaw,
+        [
+            ("box", (0.045, 0.035, 0.025), (0, 0, 0.025), (0.92, 0.92, 0.9, 0.95)),
+            ("box", (0.048, 0.038, 0.005), (0, 0, 0.055), lid),
+        ],
+        0.12,
+    )
 
 
-@register_asset("plate", footprint=0.1, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.7, 0.98))})
+@register_asset(
+    "plate", footprint=0.1, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.7, 0.98))}
+)
 def add_plate(spec, name, pos, yaw=0.0, rgba=(0.96, 0.96, 0.94, 1)):
-    return compound(spec, name, "plate", pos, yaw, [
-        ("cyl", (0.065, 0.004, 0), (0, 0, 0.004), rgba),
-        ("cyl", (0.095, 0.003, 0), (0, 0, 0.011), rgba),
-        ("cyl", (0.07, 0.0005, 0), (0, 0, 0.0145), (0.85, 0.85, 0.83, 1), {"visual": True}),
-    ], 0.3, extra={"top": 0.014})
+    return compound(
+        spec,
+        name,
+        "plate",
+        pos,
+        yaw,
+        [
+            ("cyl", (0.065, 0.004, 0), (0, 0, 0.004), rgba),
+            ("cyl", (0.095, 0.003, 0), (0, 0, 0.011), rgba),
+            ("cyl", (0.07, 0.0005, 0), (0, 0, 0.0145), (0.85, 0.85, 0.83, 1), {"visual": True}),
+        ],
+        0.3,
+        extra={"top": 0.014},
+    )
 
 
-@register_asset("fan", footprint=0.08, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.95))})
+@register_asset(
+    "fan", footprint=0.08, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.95))}
+)
 def add_fan(spec, name, pos, yaw=0.0, rgba=(0.2, 0.5, 0.85, 1)):
     """Desk fan: base, stand, round guard facing the body's -x side (the front), hub."""
-    return compound(spec, name, "fan", pos, yaw, [
-        ("cyl", (0.055, 0.01, 0), (0, 0, 0.01), (0.2, 0.2, 0.22, 1)),
-        ("cyl", (0.008, 0.05, 0), (0, 0, 0.06), (0.3, 0.3, 0.32, 1)),
-        ("cyl", (0.07, 0.012, 0), (0, 0, 0.17), rgba, {"quat": YAXIS_90}),
-        ("cyl", (0.02, 0.016, 0), (-0.004, 0, 0.17), (0.15, 0.15, 0.15, 1), {"quat": YAXIS_90, "visual": True}),
-    ], 0.4, extra={"front_body": (-1.0, 0.0, 0.0)})
+    return compound(
+        spec,
+        name,
+        "fan",
+        pos,
+        yaw,
+        [
+            ("cyl", (0.055, 0.01, 0), (0, 0, 0.01), (0.2, 0.2, 0.22, 1)),
+            ("cyl", (0.008, 0.05, 0), (0, 0, 0.06), (0.3, 0.3, 0.32, 1)),
+            ("cyl", (0.07, 0.012, 0), (0, 0, 0.17), rgba, {"quat": YAXIS_90}),
+            (
+                "cyl",
+                (0.02, 0.016, 0),
+                (-0.004, 0, 0.17),
+                (0.15, 0.15, 0.15, 1),
+                {"quat": YAXIS_90, "visual": True},
+            ),
+        ],
+        0.4,
+        extra={"front_body": (-1.0, 0.0, 0.0)},
+    )
 
 
-@register_asset("mouse", footprint=0.045, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.05, 0.9))})
+@register_asset(
+    "mouse", footprint=0.045, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.05, 0.9))}
+)
 def add_mouse(spec, name, pos, yaw=0.0, rgba=(0.12, 0.12, 0.14, 1)):
-    return compound(spec, name, "mouse", pos, yaw, [
-        ("ell", (0.055, 0.032, 0.018), (0, 0, 0.018), rgba),
-        ("cyl", (0.006, 0.003, 0), (0.025, 0, 0.034), (0.6, 0.6, 0.62, 1), {"quat": XAXIS_90, "visual": True}),
-    ], 0.09)
+    return compound(
+        spec,
+        name,
+        "mouse",
+        pos,
+        yaw,
+        [
+            ("ell", (0.055, 0.032, 0.018), (0, 0, 0.018), rgba),
+            (
+                "cyl",
+                (0.006, 0.003, 0),
+                (0.025, 0, 0.034),
+                (0.6, 0.6, 0.62, 1),
+                {"quat": XAXIS_90, "visual": True},
+            ),
+        ],
+        0.09,
+    )
 
 
 @register_asset("electronic_scale", footprint=0.08, role="task")
 def add_electronic_scale(spec, name, pos, yaw=0.0):
     mat = text_texture(spec, f"{name}_display", "0.00 g", bg=(40, 70, 50), fg=(120, 255, 140), size=(96, 48))
-    return compound(spec, name, "electronic_scale", pos, yaw, [
-        ("box", (0.075, 0.065, 0.012), (0, 0, 0.012), (0.82, 0.83, 0.85, 1)),
-        ("box", (0.012, 0.03, 0.0008), (-0.058, 0, 0.0245), (1, 1, 1, 1), {"material": mat, "visual": True,
-                                                                           "quat": quat_axis_angle([0, 0, 1], -np.pi / 2)}),
-    ], 0.5, extra={"top": 0.024})
+    return compound(
+        spec,
+        name,
+        "electronic_scale",
+        pos,
+        yaw,
+        [
+            ("box", (0.075, 0.065, 0.012), (0, 0, 0.012), (0.82, 0.83, 0.85, 1)),
+            (
+                "box",
+                (0.012, 0.03, 0.0008),
+                (-0.058, 0, 0.0245),
+                (1, 1, 1, 1),
+                {"material": mat, "visual": True, "quat": quat_axis_angle([0, 0, 1], -np.pi / 2)},
+            ),
+        ],
+        0.5,
+        extra={"top": 0.024},
+    )
 
 
 @register_asset("display_stand", footprint=0.05, role="task")
 def add_display_stand(spec, name, pos, yaw=0.0, rgba=(0.9, 0.9, 0.92, 1)):
-    return compound(spec, name, "display_stand", pos, yaw, [
-        ("cyl", (0.045, 0.006, 0), (0, 0, 0.006), rgba),
-        ("cyl", (0.012, 0.03, 0), (0, 0, 0.042), rgba),
-        ("cyl", (0.04, 0.004, 0), (0, 0, 0.076), rgba),
-    ], 0.3, extra={"top": 0.08})
+    return compound(
+        spec,
+        name,
+        "display_stand",
+        pos,
+        yaw,
+        [
+            ("cyl", (0.045, 0.006, 0), (0, 0, 0.006), rgba),
+            ("cyl", (0.012, 0.03, 0), (0, 0, 0.042), rgba),
+            ("cyl", (0.04, 0.004, 0), (0, 0, 0.076), rgba),
+        ],
+        0.3,
+        extra={"top": 0.08},
+    )
 
 
-@register_asset("shoe", footprint=0.08, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.1, 0.9))})
+@register_asset(
+    "shoe", footprint=0.08, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.1, 0.9))}
+)
 def add_shoe(spec, name, pos, yaw=0.0, rgba=(0.75, 0.2, 0.2, 1)):
-    return compound(spec, name, "shoe", pos, yaw, [
-        ("box", (0.12, 0.04, 0.008), (0, 0, 0.008), (0.95, 0.95, 0.93, 1)),
-        ("ell", (0.09, 0.036, 0.03), (0.01, 0, 0.036), rgba),
-        ("box", (0.035, 0.036, 0.04), (-0.08, 0, 0.04), rgba),
-    ], 0.3)
+    return compound(
+        spec,
+        name,
+        "shoe",
+        pos,
+        yaw,
+        [
+            ("box", (0.12, 0.04, 0.008), (0, 0, 0.008), (0.95, 0.95, 0.93, 1)),
+            ("ell", (0.09, 0.036, 0.03), (0.01, 0, 0.036), rgba),
+            ("box", (0.035, 0.036, 0.04), (-0.08, 0, 0.04), rgba),
+        ],
+        0.3,
+    )
 
 
-@register_asset("seal", footprint=0.04, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.9))})
+@register_asset(
+    "seal", footprint=0.04, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.9))}
+)
 def add_seal(spec, name, pos, yaw=0.0, rgba=(0.55, 0.25, 0.15, 1)):
-    return compound(spec, name, "seal", pos, yaw, [
-        ("box", (0.025, 0.025, 0.01), (0, 0, 0.01), (0.7, 0.15, 0.12, 1)),
-        ("cyl", (0.012, 0.03, 0), (0, 0, 0.05), rgba),
-        ("sph", (0.018, 0, 0), (0, 0, 0.085), rgba),
-    ], 0.12, extra={"grasp_point": (0.0, 0.0, 0.06)})
+    return compound(
+        spec,
+        name,
+        "seal",
+        pos,
+        yaw,
+        [
+            ("box", (0.025, 0.025, 0.01), (0, 0, 0.01), (0.7, 0.15, 0.12, 1)),
+            ("cyl", (0.012, 0.03, 0), (0, 0, 0.05), rgba),
+            ("sph", (0.018, 0, 0), (0, 0, 0.085), rgba),
+        ],
+        0.12,
+        extra={"grasp_point": (0.0, 0.0, 0.06)},
+    )
 
 
-@register_asset("mat", footprint=0.085, role="task", static=True,
-                randomize=lambda rng: {"color_name": str(rng.choice(sorted(MAT_COLORS)))})
+@register_asset(
+    "mat",
+    footprint=0.085,
+    role="task",
+    static=True,
+    randomize=lambda rng: {"color_name": str(rng.choice(sorted(MAT_COLORS)))},
+)
 def add_mat(spec, name, pos, yaw=0.0, color_name: str = "black", half=(0.075, 0.06), text: str = ""):
     """Thin static mat in a named colour; ``text`` (e.g. 'EXPIRED') is printed across it in white,
     reading upright for a viewer on the body's -x side (the sampler yaws +x outward)."""
     if color_name not in MAT_COLORS:
         raise ValueError(f"unknown mat colour {color_name!r}; choose from {sorted(MAT_COLORS)}")
     b = static_body(spec, name, pos, yaw)
-    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (*half, 0.002), (0, 0, 0.002), _rgba(MAT_COLORS[color_name]), None,
-             f"{name}_body")
+    add_geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_BOX,
+        (*half, 0.002),
+        (0, 0, 0.002),
+        _rgba(MAT_COLORS[color_name]),
+        None,
+        f"{name}_body",
+    )
     if text:
         bg = tuple(int(255 * c) for c in MAT_COLORS[color_name])
         mat = text_texture(spec, f"{name}_text", text, bg=bg, fg=(250, 250, 250), size=(256, 96), fill=0.8)
         # Texture u runs along the box's x: turned -90 deg about z, the word runs along the mat's -y.
-        add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.95 * half[1], 0.36 * half[1], 0.0005), (0, 0, 0.0045),
-                 (1, 1, 1, 1), name=f"{name}_text", quat=quat_axis_angle([0, 0, 1], -np.pi / 2), material=mat,
-                 collide=False)
-    return ObjectInfo(name, "mat", name, (*half, 0.002), (0, 0, 0.002), 0.0,
-                      {"color_name": color_name, "top": 0.004, "text": text})
+        add_geom(
+            b,
+            mujoco.mjtGeom.mjGEOM_BOX,
+            (0.95 * half[1], 0.36 * half[1], 0.0005),
+            (0, 0, 0.0045),
+            (1, 1, 1, 1),
+            name=f"{name}_text",
+            quat=quat_axis_angle([0, 0, 1], -np.pi / 2),
+            material=mat,
+            collide=False,
+        )
+    return ObjectInfo(
+        name,
+        "mat",
+        name,
+        (*half, 0.002),
+        (0, 0, 0.002),
+        0.0,
+        {"color_name": color_name, "top": 0.004, "text": text},
+    )
 
 
 def random_date(rng: np.random.Generator) -> dt.date:
@@ -282,10 +542,23 @@ def date_label_image(date: str, size: tuple[int, int] = (128, 176)) -> np.ndarra
     return np.asarray(img)
 
 
-@register_asset("labeled_can", footprint=0.035, role="task", family="can",
-                randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.9))})
-def add_labeled_can(spec, name, pos, yaw=0.0, label_kind: str = "date", date: str = "2024-06-01",
-                    label_color: str = "red", rgba=(0.8, 0.1, 0.1, 1)):
+@register_asset(
+    "labeled_can",
+    footprint=0.035,
+    role="task",
+    family="can",
+    randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.9))},
+)
+def add_labeled_can(
+    spec,
+    name,
+    pos,
+    yaw=0.0,
+    label_kind: str = "date",
+    date: str = "2024-06-01",
+    label_color: str = "red",
+    rgba=(0.8, 0.1, 0.1, 1),
+):
     """A can (radius 0.0285 m) with an information label on a cylindrical arc of radius 0.029 m
     centred on the body's +x face: a colour on a 45 deg arc 3.6 cm high (paper: can-inspection
     assets), or a production date on a 100 deg arc 7 cm high (large enough to read at 512x384)."""
@@ -293,7 +566,14 @@ def add_labeled_can(spec, name, pos, yaw=0.0, label_kind: str = "date", date: st
         raise ValueError(f"label_kind must be 'date' or 'color', got {label_kind!r}")
     b = free_body(spec, name, pos, yaw)
     add_geom(b, mujoco.mjtGeom.mjGEOM_CYLINDER, (0.0285, 0.06, 0), (0, 0, 0.06), rgba, 0.3, f"{name}_body")
-    add_geom(b, mujoco.mjtGeom.mjGEOM_CYLINDER, (0.024, 0.003, 0), (0, 0, 0.123), (0.8, 0.8, 0.82, 1), collide=False)
+    add_geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (0.024, 0.003, 0),
+        (0, 0, 0.123),
+        (0.8, 0.8, 0.82, 1),
+        collide=False,
+    )
     if label_kind == "date":
         dt.date.fromisoformat(date)  # clear error on a malformed date
         img = date_label_image(date)
@@ -304,8 +584,11 @@ def add_labeled_can(spec, name, pos, yaw=0.0, label_kind: str = "date", date: st
     mat = add_texture_material(spec, f"{name}_label", img)
     (z0, z1), arc = ((0.018, 0.088), 100.0) if label_kind == "date" else ((0.042, 0.078), 45.0)
     arc_label(spec, name, f"{name}_label_mesh", mat, 0.029, z0, z1, arc_deg=arc)
-    extra = {"label_kind": label_kind, "grasp_point": (0.0, 0.0, 0.095),  # the palm clears the top
-             **hidden_face(f"{name}_label_mesh_geom", (0.029, 0.0, (z0 + z1) / 2), (1.0, 0.0, 0.0))}
+    extra = {
+        "label_kind": label_kind,
+        "grasp_point": (0.0, 0.0, 0.095),  # the palm clears the top
+        **hidden_face(f"{name}_label_mesh_geom", (0.029, 0.0, (z0 + z1) / 2), (1.0, 0.0, 0.0)),
+    }
     if label_kind == "date":
         extra["production_date"] = date
     else:

@@ -12,8 +12,12 @@ from .registry import register_asset
 
 G = mujoco.mjtGeom
 BLOCK_COLORS = {  # named colours shared by blocks, patches and pads
-    "red": (0.85, 0.12, 0.1, 1), "green": (0.12, 0.7, 0.2, 1), "blue": (0.12, 0.3, 0.85, 1),
-    "yellow": (0.95, 0.82, 0.1, 1), "purple": (0.55, 0.2, 0.7, 1), "orange": (0.95, 0.5, 0.1, 1),
+    "red": (0.85, 0.12, 0.1, 1),
+    "green": (0.12, 0.7, 0.2, 1),
+    "blue": (0.12, 0.3, 0.85, 1),
+    "yellow": (0.95, 0.82, 0.1, 1),
+    "purple": (0.55, 0.2, 0.7, 1),
+    "orange": (0.95, 0.5, 0.1, 1),
 }
 GRAY = (0.55, 0.55, 0.56, 1)
 NEUTRAL_PAD = (0.95, 0.95, 0.93, 1)
@@ -37,41 +41,84 @@ def _spring_slide(body, name: str, travel: float, stiffness: float, damping: flo
 
 
 @register_asset("bell", footprint=0.06, role="task")
-def add_bell(spec, name, pos, yaw=0.0, radius=0.05, rgba=(0.85, 0.72, 0.25, 1), base_rgba=(0.15, 0.15, 0.16, 1)):
+def add_bell(
+    spec, name, pos, yaw=0.0, radius=0.05, rgba=(0.85, 0.72, 0.25, 1), base_rgba=(0.15, 0.15, 0.16, 1)
+):
     """Desk bell: heavy base, dome, spring-loaded plunger on top (``extra['joint']``)."""
     b = free_body(spec, name, pos, yaw)
     add_geom(b, G.mjGEOM_CYLINDER, (radius, 0.008, 0), (0, 0, 0.008), base_rgba, 0.45, f"{name}_body")
-    add_geom(b, G.mjGEOM_ELLIPSOID, (radius * 0.85, radius * 0.85, 0.035), (0, 0, 0.016), rgba, name=f"{name}_dome",
-             collide=False)
-    add_geom(b, G.mjGEOM_CYLINDER, (radius * 0.7, 0.014, 0), (0, 0, 0.03), rgba, 0.05, f"{name}_dome_collision").group = 3
+    add_geom(
+        b,
+        G.mjGEOM_ELLIPSOID,
+        (radius * 0.85, radius * 0.85, 0.035),
+        (0, 0, 0.016),
+        rgba,
+        name=f"{name}_dome",
+        collide=False,
+    )
+    add_geom(
+        b, G.mjGEOM_CYLINDER, (radius * 0.7, 0.014, 0), (0, 0, 0.03), rgba, 0.05, f"{name}_dome_collision"
+    ).group = 3
     stem = b.add_body()
     stem.name = f"{name}_plunger"
     stem.pos = (0, 0, 0.051)
     _spring_slide(stem, f"{name}_plunger_joint", 0.008, 300.0, 2.0)
-    add_geom(stem, G.mjGEOM_CYLINDER, (0.004, 0.006, 0), (0, 0, 0.006), (0.3, 0.3, 0.3, 1), 0.005, f"{name}_stem")
-    add_geom(stem, G.mjGEOM_CYLINDER, (0.012, 0.003, 0), (0, 0, 0.013), (0.2, 0.2, 0.2, 1), 0.005, f"{name}_cap")
+    add_geom(
+        stem, G.mjGEOM_CYLINDER, (0.004, 0.006, 0), (0, 0, 0.006), (0.3, 0.3, 0.3, 1), 0.005, f"{name}_stem"
+    )
+    add_geom(
+        stem, G.mjGEOM_CYLINDER, (0.012, 0.003, 0), (0, 0, 0.013), (0.2, 0.2, 0.2, 1), 0.005, f"{name}_cap"
+    )
     top = 0.067
-    return ObjectInfo(name, "bell", name, (radius, radius, top / 2), (0, 0, top / 2), 0.51,
-                      {"joint": f"{name}_plunger_joint", "press_point": (0.0, 0.0, top), "pressed_below": BELL_PRESSED})
+    return ObjectInfo(
+        name,
+        "bell",
+        name,
+        (radius, radius, top / 2),
+        (0, 0, top / 2),
+        0.51,
+        {"joint": f"{name}_plunger_joint", "press_point": (0.0, 0.0, top), "pressed_below": BELL_PRESSED},
+    )
 
 
-@register_asset("cup", footprint=0.05, role="task",
-                randomize=lambda rng: {"rgba": (*rng.uniform([0.5, 0.5, 0.5], [0.98, 0.98, 0.98]), 1.0)})
+@register_asset(
+    "cup",
+    footprint=0.05,
+    role="task",
+    randomize=lambda rng: {"rgba": (*rng.uniform([0.5, 0.5, 0.5], [0.98, 0.98, 0.98]), 1.0)},
+)
 def add_cup(spec, name, pos, yaw=0.0, radius=0.034, height=0.09, rgba=(0.9, 0.9, 0.92, 1)):
     """Cup: cylinder body, dark inside disc at the rim (reads as empty), side handle."""
     b = free_body(spec, name, pos, yaw)
     add_geom(b, G.mjGEOM_CYLINDER, (radius, height / 2, 0), (0, 0, height / 2), rgba, 0.12, f"{name}_body")
-    add_geom(b, G.mjGEOM_CYLINDER, (radius * 0.85, 0.0008, 0), (0, 0, height), (0.25, 0.22, 0.2, 1), collide=False)
+    add_geom(
+        b, G.mjGEOM_CYLINDER, (radius * 0.85, 0.0008, 0), (0, 0, height), (0.25, 0.22, 0.2, 1), collide=False
+    )
     add_geom(b, G.mjGEOM_CAPSULE, (0.006, 0.022, 0), (-radius - 0.012, 0, height * 0.55), rgba, collide=False)
     return ObjectInfo(name, "cup", name, (radius + 0.018, radius, height / 2), (-0.009, 0, height / 2), 0.12)
 
 
-@register_asset("coaster", footprint=0.055, role="task",
-                randomize=lambda rng: {"rgba": tuple(BLOCK_COLORS[rng.choice(["orange", "purple", "blue"])])})
+@register_asset(
+    "coaster",
+    footprint=0.055,
+    role="task",
+    randomize=lambda rng: {"rgba": tuple(BLOCK_COLORS[rng.choice(["orange", "purple", "blue"])])},
+)
 def add_coaster(spec, name, pos, yaw=0.0, radius=0.052, rgba=(0.55, 0.2, 0.7, 1)):
     b = free_body(spec, name, pos, yaw)
-    add_geom(b, G.mjGEOM_CYLINDER, (radius, 0.003, 0), (0, 0, 0.003), rgba, 0.06, f"{name}_body", friction=(1.2, 0.01, 0.001))
-    add_geom(b, G.mjGEOM_CYLINDER, (radius * 0.8, 0.0004, 0), (0, 0, 0.0062), (0.9, 0.88, 0.8, 1), collide=False)
+    add_geom(
+        b,
+        G.mjGEOM_CYLINDER,
+        (radius, 0.003, 0),
+        (0, 0, 0.003),
+        rgba,
+        0.06,
+        f"{name}_body",
+        friction=(1.2, 0.01, 0.001),
+    )
+    add_geom(
+        b, G.mjGEOM_CYLINDER, (radius * 0.8, 0.0004, 0), (0, 0, 0.0062), (0.9, 0.88, 0.8, 1), collide=False
+    )
     return ObjectInfo(name, "coaster", name, (radius, radius, 0.003), (0, 0, 0.003), 0.06, {"top": 0.006})
 
 
@@ -99,11 +146,32 @@ def add_button(spec, name, pos, yaw=0.0, number: int = 1, cap_rgba=(0.85, 0.15, 
     g.contype, g.conaffinity = 0, 2
     mat = add_texture_material(spec, f"{name}_digit", digit_image(str(number)))
     # Number label on the base's top, on the robot's side of the cap (-x: the sampler yaws +x outward).
-    add_geom(b, G.mjGEOM_BOX, (0.018, 0.018, 0.0005), (-0.031, 0.0, 0.0245), (1, 1, 1, 1), name=f"{name}_label",
-             quat=_label_quat(), material=mat, collide=False)
-    return ObjectInfo(name, "button", name, (0.06, 0.04, 0.0155), (0, 0, 0.0155), 0.0,
-                      {"joint": f"{name}_joint", "number": int(number), "press_point": (0.022, 0.0, 0.038),
-                       "pressed_below": BUTTON_PRESSED, "reset_above": BUTTON_RESET})
+    add_geom(
+        b,
+        G.mjGEOM_BOX,
+        (0.018, 0.018, 0.0005),
+        (-0.031, 0.0, 0.0245),
+        (1, 1, 1, 1),
+        name=f"{name}_label",
+        quat=_label_quat(),
+        material=mat,
+        collide=False,
+    )
+    return ObjectInfo(
+        name,
+        "button",
+        name,
+        (0.06, 0.04, 0.0155),
+        (0, 0, 0.0155),
+        0.0,
+        {
+            "joint": f"{name}_joint",
+            "number": int(number),
+            "press_point": (0.022, 0.0, 0.038),
+            "pressed_below": BUTTON_PRESSED,
+            "reset_above": BUTTON_RESET,
+        },
+    )
 
 
 def _label_quat() -> np.ndarray:
@@ -122,10 +190,24 @@ def add_patch_block(spec, name, pos, yaw=0.0, patch_color: str = "red"):
     h = 0.024
     b = free_body(spec, name, pos, yaw)
     add_geom(b, G.mjGEOM_BOX, (h, h, h), (0, 0, h), GRAY, 0.08, f"{name}_body")
-    add_geom(b, G.mjGEOM_BOX, (0.0015, 0.012, 0.012), (h + 0.00005 - 0.0015, 0, h), BLOCK_COLORS[patch_color],
-             name=f"{name}_patch", collide=False)
-    return ObjectInfo(name, "patch_block", name, (h, h, h), (0, 0, h), 0.08,
-                      {"patch_color": patch_color, **hidden_face(f"{name}_patch", (h, 0.0, h), (1.0, 0.0, 0.0))})
+    add_geom(
+        b,
+        G.mjGEOM_BOX,
+        (0.0015, 0.012, 0.012),
+        (h + 0.00005 - 0.0015, 0, h),
+        BLOCK_COLORS[patch_color],
+        name=f"{name}_patch",
+        collide=False,
+    )
+    return ObjectInfo(
+        name,
+        "patch_block",
+        name,
+        (h, h, h),
+        (0, 0, h),
+        0.08,
+        {"patch_color": patch_color, **hidden_face(f"{name}_patch", (h, 0.0, h), (1.0, 0.0, 0.0))},
+    )
 
 
 @register_asset("color_pad", footprint=0.07, role="task", static=True)
@@ -136,4 +218,6 @@ def add_color_pad(spec, name, pos, yaw=0.0, color: str = "red", half: float = 0.
         raise ValueError(f"unknown pad colour {color!r}; choose from {sorted(colors)}")
     b = static_body(spec, name, pos, yaw)
     add_geom(b, G.mjGEOM_BOX, (half, half, 0.002), (0, 0, 0.002), colors[color], None, f"{name}_body")
-    return ObjectInfo(name, "color_pad", name, (half, half, 0.002), (0, 0, 0.002), 0.0, {"color": color, "top": 0.004})
+    return ObjectInfo(
+        name, "color_pad", name, (half, half, 0.002), (0, 0, 0.002), 0.0, {"color": color, "top": 0.004}
+    )

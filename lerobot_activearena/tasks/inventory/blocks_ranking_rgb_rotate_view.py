@@ -18,8 +18,7 @@ import math
 
 import numpy as np
 
-from ...expert import primitives as P
-from ...expert import routines as R
+from ...expert import primitives as P, routines as R
 from ...sim.assets.task_props import BLOCK_COLORS
 from .. import predicates as Pr
 from ..base import Subtask, Task
@@ -43,7 +42,9 @@ def neighbours(sim, a: str, b: str) -> bool:
     pa, pb = Pr.position(sim, a), Pr.position(sim, b)
     ra, rb = Pr.polar(pa)[0], Pr.polar(pb)[0]
     gap = float(np.linalg.norm(pa[:2] - pb[:2]))
-    return Pr.right_of(sim, b, a) and 0.05 <= gap <= 0.15 and abs(ra - rb) <= 0.06 and abs(pa[2] - pb[2]) < 0.01
+    return (
+        Pr.right_of(sim, b, a) and 0.05 <= gap <= 0.15 and abs(ra - rb) <= 0.06 and abs(pa[2] - pb[2]) < 0.01
+    )
 
 
 class BlocksRankingRgbRotateView(Task):
@@ -52,26 +53,45 @@ class BlocksRankingRgbRotateView(Task):
     instruction = "Arrange the red, green, and blue blocks from left to right."
     subtasks = (
         Subtask(1, "pick_green_block", "locate and grasp the green block", 0),
-        Subtask(2, "place_green_block_right_of_red", "place the green block to the right of the red block", 1),
+        Subtask(
+            2, "place_green_block_right_of_red", "place the green block to the right of the red block", 1
+        ),
         Subtask(3, "pick_blue_block", "locate and grasp the blue block", 2),
-        Subtask(4, "place_blue_block_right_of_green", "place the blue block to the right of the green block", 3),
+        Subtask(
+            4, "place_blue_block_right_of_green", "place the blue block to the right of the green block", 3
+        ),
     )
     max_episode_steps = 351
 
     def layout(self, draft):
         rng = draft.rng
         # Red anywhere with room for two slots on its right; the slots stay empty.
-        _, r_red, a_red = draft.place("block", "red_block", "red block", Region(angle=(50.0, 150.0)),
-                                      yaw=float(rng.uniform(-0.4, 0.4)), rgba=BLOCK_COLORS["red"], half=(HALF,) * 3,
-                                      arms=ARMS)
+        _, r_red, a_red = draft.place(
+            "block",
+            "red_block",
+            "red block",
+            Region(angle=(50.0, 150.0)),
+            yaw=float(rng.uniform(-0.4, 0.4)),
+            rgba=BLOCK_COLORS["red"],
+            half=(HALF,) * 3,
+            arms=ARMS,
+        )
         step = math.degrees(SPACING / r_red)
         for k in (1, 2):
             draft.reserve(r_red, a_red - k * step, 0.05)
         hidden_first = bool(rng.integers(0, 2))
         for name, hidden in (("green_block", hidden_first), ("blue_block", not hidden_first)):
             color = name.split("_")[0]
-            draft.place("block", name, f"{color} block", HIDDEN if hidden else REACH, yaw="random",
-                        rgba=BLOCK_COLORS[color], half=(HALF,) * 3, arms=ARMS)
+            draft.place(
+                "block",
+                name,
+                f"{color} block",
+                HIDDEN if hidden else REACH,
+                yaw="random",
+                rgba=BLOCK_COLORS[color],
+                half=(HALF,) * 3,
+                arms=ARMS,
+            )
         draft.params["red_polar"] = (round(r_red, 4), round(a_red, 2))
 
     def evaluate(self, sim, scene, monitor):

@@ -16,9 +16,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import inspection as I
-from ...expert import primitives as P
-from ...expert import routines as R
+from ...expert import inspection as I, primitives as P, routines as R
 from .. import predicates as Pr
 from ..base import Subtask, Task
 from ..draft import HIDDEN, Region
@@ -34,7 +32,9 @@ class CheckBlockColor(Task):
         Subtask(1, "pick_target_block", "locate and pick up the gray target block", 0),
         Subtask(2, "inspect_target_block_backside", "reveal and identify the block's backside color", 1),
         Subtask(3, "restore_target_block_pose", "restore the block to a placement-ready pose", 2),
-        Subtask(4, "place_target_block_on_matching_pad", "localize the matching pad and place the block on it", 3),
+        Subtask(
+            4, "place_target_block_on_matching_pad", "localize the matching pad and place the block on it", 3
+        ),
     )
     max_episode_steps = 296
 
@@ -42,12 +42,35 @@ class CheckBlockColor(Task):
         rng = draft.rng
         colors = list(rng.permutation(PAD_COLORS))
         arms = ("left", "right")
-        draft.place("color_pad", f"{colors[0]}_pad", f"{colors[0]} pad", HIDDEN, color=colors[0], margin=0.03, arms=arms)
+        draft.place(
+            "color_pad",
+            f"{colors[0]}_pad",
+            f"{colors[0]} pad",
+            HIDDEN,
+            color=colors[0],
+            margin=0.03,
+            arms=arms,
+        )
         for c in colors[1:]:
-            draft.place("color_pad", f"{c}_pad", f"{c} pad", Region(angle=(40.0, 140.0)), color=c, margin=0.03, arms=arms)
+            draft.place(
+                "color_pad",
+                f"{c}_pad",
+                f"{c} pad",
+                Region(angle=(40.0, 140.0)),
+                color=c,
+                margin=0.03,
+                arms=arms,
+            )
         patch = PAD_COLORS[int(rng.integers(0, 3))]
-        draft.place("patch_block", "gray_block", "gray block", Region(r=I.INSPECT_R, angle=(40.0, 140.0)), patch_color=patch,
-                    margin=0.04, arms=arms)
+        draft.place(
+            "patch_block",
+            "gray_block",
+            "gray block",
+            Region(r=I.INSPECT_R, angle=(40.0, 140.0)),
+            patch_color=patch,
+            margin=0.04,
+            arms=arms,
+        )
         draft.params["patch_color"] = patch
 
     def search_targets(self, scene):
@@ -59,8 +82,10 @@ class CheckBlockColor(Task):
     def evaluate(self, sim, scene, monitor):
         pad = f"{scene.params['patch_color']}_pad"
         info = scene.obj(pad)
-        return {"on_matching_pad": Pr.resting_on(sim, "gray_block", pad, info.half_extents[0], info.extra["top"]),
-                "block_released": Pr.released(sim, "gray_block")}
+        return {
+            "on_matching_pad": Pr.resting_on(sim, "gray_block", pad, info.half_extents[0], info.extra["top"]),
+            "block_released": Pr.released(sim, "gray_block"),
+        }
 
     def expert(self, ctx, scene):
         block = ctx.idx("gray_block")

@@ -43,10 +43,24 @@ class CheckColaColor(InspectCanTask):
         colors = [str(c) for c in rng.choice(AREA_COLORS, size=2, replace=False)]
         side = draft.side()
         other = "left" if side == "right" else "right"
-        draft.place("mat", f"{colors[0]}_area", f"{colors[0]} area", HIDDEN.on(side), color_name=colors[0],
-                    margin=0.03, arms=ARMS)
-        draft.place("mat", f"{colors[1]}_area", f"{colors[1]} area", REACH.on(other), color_name=colors[1],
-                    margin=0.03, arms=ARMS)
+        draft.place(
+            "mat",
+            f"{colors[0]}_area",
+            f"{colors[0]} area",
+            HIDDEN.on(side),
+            color_name=colors[0],
+            margin=0.03,
+            arms=ARMS,
+        )
+        draft.place(
+            "mat",
+            f"{colors[1]}_area",
+            f"{colors[1]} area",
+            REACH.on(other),
+            color_name=colors[1],
+            margin=0.03,
+            arms=ARMS,
+        )
         return {"label_kind": "color", "label_color": colors[int(rng.integers(0, 2))]}
 
     def area_for(self, scene, label):

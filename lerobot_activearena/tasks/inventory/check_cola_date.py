@@ -43,18 +43,27 @@ class CheckColaDate(InspectCanTask):
         Subtask(1, "pick_cola_can", "pick up the can", 0),
         Subtask(2, "inspect_cola_backside_date", "expose and read the production-date label", 1),
         Subtask(3, "restore_cola_after_inspection", "restore the can to a placement-ready pose", 2),
-        Subtask(4, "place_cola_by_expiry", "infer expiry status, localize the corresponding area, and place the can", 3),
+        Subtask(
+            4,
+            "place_cola_by_expiry",
+            "infer expiry status, localize the corresponding area, and place the can",
+            3,
+        ),
     )
     max_episode_steps = 280
     fine_print = True
 
     def instruction_for(self, params):
-        return (f"{self.instruction} Today is {params['today']}; a can expires {SHELF_LIFE_DAYS} days after "
-                "its production date.")
+        return (
+            f"{self.instruction} Today is {params['today']}; a can expires {SHELF_LIFE_DAYS} days after "
+            "its production date."
+        )
 
     def place_areas(self, draft):
         rng = draft.rng
-        today = TODAY_RANGE[0] + dt.timedelta(days=int(rng.integers(0, (TODAY_RANGE[1] - TODAY_RANGE[0]).days + 1)))
+        today = TODAY_RANGE[0] + dt.timedelta(
+            days=int(rng.integers(0, (TODAY_RANGE[1] - TODAY_RANGE[0]).days + 1))
+        )
         is_expired = bool(rng.integers(0, 2))
         if is_expired:
             oldest = (today - DATE_RANGE[0]).days
@@ -69,8 +78,16 @@ class CheckColaDate(InspectCanTask):
         order = list(AREAS) if rng.integers(0, 2) else list(AREAS)[::-1]
         for status, region in zip(order, (HIDDEN.on(side), REACH.on(other))):
             color, text = AREAS[status]
-            draft.place("mat", f"{status}_area", f"{status} area", region, color_name=color, text=text, margin=0.03,
-                        arms=ARMS)
+            draft.place(
+                "mat",
+                f"{status}_area",
+                f"{status} area",
+                region,
+                color_name=color,
+                text=text,
+                margin=0.03,
+                arms=ARMS,
+            )
         return {"label_kind": "date", "date": production}
 
     def area_for(self, scene, label):

@@ -38,10 +38,18 @@ class ClickBellRotateView(Task):
     def evaluate(self, sim, scene, monitor):
         upright, in_place = P.upright(sim, "bell"), P.in_place(sim, "bell", 0.03)
         top = P.body_point(sim, "bell", scene.obj("bell").extra["press_point"])
-        pressed = monitor.event("pressed", P.joint_below(sim, "bell_plunger_joint", BELL_PRESSED)
-                                and P.pressed_by(sim, "left", "bell", top, centered_within=CENTER_TOL)
-                                and upright and in_place)
-        return {"pressed_top_center_with_left_gripper": pressed, "bell_upright": upright, "bell_in_place": in_place}
+        pressed = monitor.event(
+            "pressed",
+            P.joint_below(sim, "bell_plunger_joint", BELL_PRESSED)
+            and P.pressed_by(sim, "left", "bell", top, centered_within=CENTER_TOL)
+            and upright
+            and in_place,
+        )
+        return {
+            "pressed_top_center_with_left_gripper": pressed,
+            "bell_upright": upright,
+            "bell_in_place": in_place,
+        }
 
     def failure(self, sim, scene, monitor):
         if P.knocked_over(sim, "bell"):

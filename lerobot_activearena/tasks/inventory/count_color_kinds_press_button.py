@@ -48,8 +48,15 @@ class CountColorKindsPressButton(CountAndPressTask):
         colors = [colors[i] for i in rng.permutation(N_BLOCKS)]
         for k, color in enumerate(colors):
             region = Region(r=BLOCK_R, hidden=True) if k == 0 else Region(r=BLOCK_R)
-            draft.place("block", f"{color}_block_{k}", f"{color} block", region, yaw="random",
-                        rgba=BLOCK_COLORS[color], half=(0.022,) * 3)
+            draft.place(
+                "block",
+                f"{color}_block_{k}",
+                f"{color} block",
+                region,
+                yaw="random",
+                rgba=BLOCK_COLORS[color],
+                half=(0.022,) * 3,
+            )
         draft.params["block_colors"] = colors
 
     def counted_objects(self, scene):

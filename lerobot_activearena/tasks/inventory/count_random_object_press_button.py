@@ -23,7 +23,13 @@ from ..base import Subtask
 from ..counting import PRESS_SUBTASK, CountAndPressTask
 from ..draft import Region
 
-CATEGORIES = {"can": "cans", "pill_bottle": "pill bottles", "mouse": "mice", "stapler": "staplers", "bell": "bells"}
+CATEGORIES = {
+    "can": "cans",
+    "pill_bottle": "pill bottles",
+    "mouse": "mice",
+    "stapler": "staplers",
+    "bell": "bells",
+}
 N_DISTRACTORS = 3
 OBJECT_R = (0.36, 0.8)
 
@@ -33,7 +39,12 @@ class CountRandomObjectPressButton(CountAndPressTask):
     category = "MD"
     instruction = "Count the instructed objects and press the matching button."
     subtasks = (
-        Subtask(1, "count_random_target_objects", "scan the scene and count instances of the instructed category", 0),
+        Subtask(
+            1,
+            "count_random_target_objects",
+            "scan the scene and count instances of the instructed category",
+            0,
+        ),
         PRESS_SUBTASK,
     )
     max_episode_steps = 152
@@ -49,7 +60,9 @@ class CountRandomObjectPressButton(CountAndPressTask):
         draft.params["target_category"] = target
         for k in range(count):
             region = Region(r=OBJECT_R, hidden=True) if k == 0 else Region(r=OBJECT_R)
-            draft.place(target, f"target_{target}_{k}", f"{target.replace('_', ' ')} {k + 1}", region, yaw="random")
+            draft.place(
+                target, f"target_{target}_{k}", f"{target.replace('_', ' ')} {k + 1}", region, yaw="random"
+            )
         for k in range(N_DISTRACTORS):
             cat = others[int(rng.integers(0, len(others)))]
             draft.place(cat, f"other_{cat}_{k}", cat.replace("_", " "), Region(r=OBJECT_R), yaw="random")

@@ -30,7 +30,9 @@ class CountTargetPressButton(CountAndPressTask):
     category = "MD"
     instruction = "Count the target blocks and press the matching button."
     subtasks = (
-        Subtask(1, "count_green_target_blocks", "scan targets and distractors and infer the green-block count", 0),
+        Subtask(
+            1, "count_green_target_blocks", "scan targets and distractors and infer the green-block count", 0
+        ),
         PRESS_SUBTASK,
     )
     max_episode_steps = 152
@@ -39,12 +41,26 @@ class CountTargetPressButton(CountAndPressTask):
         rng = draft.rng
         for k in range(count):
             region = Region(r=BLOCK_R, hidden=True) if k == 0 else Region(r=BLOCK_R)
-            draft.place("block", f"green_block_{k}", f"green block {k + 1}", region, yaw="random",
-                        rgba=BLOCK_COLORS["green"], half=(0.022,) * 3)
+            draft.place(
+                "block",
+                f"green_block_{k}",
+                f"green block {k + 1}",
+                region,
+                yaw="random",
+                rgba=BLOCK_COLORS["green"],
+                half=(0.022,) * 3,
+            )
         for k in range(int(rng.integers(2, 4))):
             color = OTHER_COLORS[int(rng.integers(0, len(OTHER_COLORS)))]
-            draft.place("block", f"{color}_block_{k}", f"{color} block", Region(r=BLOCK_R), yaw="random",
-                        rgba=BLOCK_COLORS[color], half=(0.022,) * 3)
+            draft.place(
+                "block",
+                f"{color}_block_{k}",
+                f"{color} block",
+                Region(r=BLOCK_R),
+                yaw="random",
+                rgba=BLOCK_COLORS[color],
+                half=(0.022,) * 3,
+            )
 
     def counted_objects(self, scene):
         return [i for i, n in enumerate(scene.objects) if n.startswith("green_block")]

@@ -21,9 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...expert import inspection as I
-from ...expert import primitives as P
-from ...expert import routines as R
+from ...expert import inspection as I, primitives as P, routines as R
 from .. import predicates as Pr
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH, Region
@@ -39,11 +37,18 @@ class MatchBacksideTwoBlocks(Task):
     category = "IA"
     instruction = "Inspect two gray blocks and place each on its matching pad."
     subtasks = tuple(
-        Subtask(3 * k + j + 1, name, text, j) for k in range(2) for j, (name, text) in enumerate((
-            ("pick_a_grey_block", "locate and pick the next gray block"),
-            ("inspect_a_grey_block_backside_color", "expose and infer the carried block's backside color"),
-            ("place_a_grey_block_on_matching_pad", "localize the matching pad and place the block"),
-        ))
+        Subtask(3 * k + j + 1, name, text, j)
+        for k in range(2)
+        for j, (name, text) in enumerate(
+            (
+                ("pick_a_grey_block", "locate and pick the next gray block"),
+                (
+                    "inspect_a_grey_block_backside_color",
+                    "expose and infer the carried block's backside color",
+                ),
+                ("place_a_grey_block_on_matching_pad", "localize the matching pad and place the block"),
+            )
+        )
     )
     max_episode_steps = 488
 
@@ -53,13 +58,36 @@ class MatchBacksideTwoBlocks(Task):
         patches = [pads[int(rng.integers(0, 2))] for _ in BLOCKS]
         hidden_side = draft.side()
         other = "left" if hidden_side == "right" else "right"
-        draft.place("patch_block", BLOCKS[0], "gray block 1", Region(r=I.INSPECT_R, hidden=True, side=hidden_side), patch_color=patches[0],
-                    margin=0.04, arms=ARMS)
-        draft.place("color_pad", f"{pads[0]}_pad", f"{pads[0]} pad", HIDDEN.on(other), color=pads[0], margin=0.03,
-                    arms=ARMS)
-        draft.place("color_pad", f"{pads[1]}_pad", f"{pads[1]} pad", REACH, color=pads[1], margin=0.03, arms=ARMS)
-        draft.place("patch_block", BLOCKS[1], "gray block 2", Region(r=I.INSPECT_R, angle=(40.0, 140.0)), patch_color=patches[1],
-                    margin=0.04, arms=ARMS)
+        draft.place(
+            "patch_block",
+            BLOCKS[0],
+            "gray block 1",
+            Region(r=I.INSPECT_R, hidden=True, side=hidden_side),
+            patch_color=patches[0],
+            margin=0.04,
+            arms=ARMS,
+        )
+        draft.place(
+            "color_pad",
+            f"{pads[0]}_pad",
+            f"{pads[0]} pad",
+            HIDDEN.on(other),
+            color=pads[0],
+            margin=0.03,
+            arms=ARMS,
+        )
+        draft.place(
+            "color_pad", f"{pads[1]}_pad", f"{pads[1]} pad", REACH, color=pads[1], margin=0.03, arms=ARMS
+        )
+        draft.place(
+            "patch_block",
+            BLOCKS[1],
+            "gray block 2",
+            Region(r=I.INSPECT_R, angle=(40.0, 140.0)),
+            patch_color=patches[1],
+            margin=0.04,
+            arms=ARMS,
+        )
         draft.params["patch_colors"] = patches
 
     def search_targets(self, scene):
@@ -73,8 +101,9 @@ class MatchBacksideTwoBlocks(Task):
         checks = {}
         for k, (block, color) in enumerate(zip(BLOCKS, scene.params["patch_colors"])):
             pad = scene.obj(f"{color}_pad")
-            checks[f"block_{k}_on_matching_pad"] = Pr.resting_on(sim, block, pad.name, pad.half_extents[0],
-                                                                 pad.extra["top"])
+            checks[f"block_{k}_on_matching_pad"] = Pr.resting_on(
+                sim, block, pad.name, pad.half_extents[0], pad.extra["top"]
+            )
         checks["blocks_released"] = all(Pr.released(sim, b) for b in BLOCKS)
         return checks
 
@@ -94,7 +123,9 @@ class MatchBacksideTwoBlocks(Task):
             with ctx.subtask(3 * k + 3):
                 pad = ctx.idx(f"{color}_pad")
                 yield from R.find_and_face(ctx, pad, turn.side)
-                target = pad_spot(ctx, pad, used.get(pad, 0), shared=scene.params["patch_colors"].count(color) == 2)
+                target = pad_spot(
+                    ctx, pad, used.get(pad, 0), shared=scene.params["patch_colors"].count(color) == 2
+                )
                 used[pad] = used.get(pad, 0) + 1
                 P.start_action(ctx, {block, pad})
                 ctx.intent.carried = {block}

@@ -12,8 +12,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import primitives as P
-from ...expert import routines as R
+from ...expert import primitives as P, routines as R
 from .. import predicates as Pr
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH
@@ -38,9 +37,14 @@ class PlaceEmptyCupRotateView(Task):
 
     def evaluate(self, sim, scene, monitor):
         coaster = scene.obj("coaster")
-        on = Pr.resting_on(sim, "cup", "coaster", coaster.half_extents[0] / 2 ** 0.5, coaster.extra["top"],
-                           margin=0.0) and Pr.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
-        return {"cup_on_coaster": on, "cup_upright": Pr.upright(sim, "cup"), "cup_released": Pr.released(sim, "cup")}
+        on = Pr.resting_on(
+            sim, "cup", "coaster", coaster.half_extents[0] / 2**0.5, coaster.extra["top"], margin=0.0
+        ) and Pr.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
+        return {
+            "cup_on_coaster": on,
+            "cup_upright": Pr.upright(sim, "cup"),
+            "cup_released": Pr.released(sim, "cup"),
+        }
 
     def expert(self, ctx, scene):
         cup, coaster = ctx.idx("cup"), ctx.idx("coaster")

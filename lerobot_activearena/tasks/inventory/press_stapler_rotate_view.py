@@ -29,15 +29,23 @@ class PressStaplerRotateView(Task):
     max_episode_steps = 143
 
     def layout(self, draft):
-        draft.place("stapler", "stapler", "stapler", Region(r=(0.40, 0.48), hidden=True), yaw="random",
-                    arms=("left", "right"))
+        draft.place(
+            "stapler",
+            "stapler",
+            "stapler",
+            Region(r=(0.40, 0.48), hidden=True),
+            yaw="random",
+            arms=("left", "right"),
+        )
 
     def evaluate(self, sim, scene, monitor):
         extra = scene.obj("stapler").extra
         upright, in_place = P.upright(sim, "stapler"), P.in_place(sim, "stapler", 0.03)
         front = P.body_point(sim, extra["press_body"], extra["press_point"])
         down = P.joint_pos(sim, extra["joint"]) >= extra["pressed_above"]
-        pressed = monitor.event("pressed", down and P.pressed_by_either(sim, "stapler", front) and upright and in_place)
+        pressed = monitor.event(
+            "pressed", down and P.pressed_by_either(sim, "stapler", front) and upright and in_place
+        )
         return {"pressed_front_of_arm": pressed, "stapler_upright": upright, "stapler_in_place": in_place}
 
     def failure(self, sim, scene, monitor):

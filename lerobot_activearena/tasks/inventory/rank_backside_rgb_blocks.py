@@ -20,9 +20,7 @@ from __future__ import annotations
 
 import math
 
-from ...expert import inspection as I
-from ...expert import primitives as P
-from ...expert import routines as R
+from ...expert import inspection as I, primitives as P, routines as R
 from .. import predicates as Pr
 from ..base import Subtask, Task
 from ..draft import Region
@@ -38,11 +36,18 @@ class RankBacksideRgbBlocks(Task):
     category = "IA"
     instruction = "Inspect three gray blocks and arrange them in red--green--blue order."
     subtasks = tuple(
-        Subtask(3 * k + j + 1, name, text, j) for k in range(3) for j, (name, text) in enumerate((
-            ("pick_a_grey_block", "locate and pick the next gray block"),
-            ("inspect_a_grey_block_backside_color", "expose and infer its hidden backside color"),
-            ("place_a_grey_block_on_rgb_rank_pad", "localize the color-implied rank pad and place the block"),
-        ))
+        Subtask(3 * k + j + 1, name, text, j)
+        for k in range(3)
+        for j, (name, text) in enumerate(
+            (
+                ("pick_a_grey_block", "locate and pick the next gray block"),
+                ("inspect_a_grey_block_backside_color", "expose and infer its hidden backside color"),
+                (
+                    "place_a_grey_block_on_rgb_rank_pad",
+                    "localize the color-implied rank pad and place the block",
+                ),
+            )
+        )
     )
     max_episode_steps = 697
 
@@ -52,12 +57,25 @@ class RankBacksideRgbBlocks(Task):
         center = float(rng.uniform(55.0, 125.0))
         step = math.degrees(2 * math.asin(PAD_SPACING / (2 * r)))
         for slot, angle in (("left", center + step), ("middle", center), ("right", center - step)):
-            draft.place("color_pad", f"{slot}_pad", f"{slot} pad", r=r, angle=angle, yaw=math.radians(angle),
-                        color="neutral", margin=0.0, arms=ARMS)
+            draft.place(
+                "color_pad",
+                f"{slot}_pad",
+                f"{slot} pad",
+                r=r,
+                angle=angle,
+                yaw=math.radians(angle),
+                color="neutral",
+                margin=0.0,
+                arms=ARMS,
+            )
         colors = [str(c) for c in rng.permutation(list(RANK))]
         for k, (block, color) in enumerate(zip(BLOCKS, colors)):
-            region = Region(r=I.INSPECT_R, hidden=True) if k == 0 else Region(r=I.INSPECT_R, angle=(40.0, 140.0))
-            draft.place("patch_block", block, f"gray block {k + 1}", region, patch_color=color, margin=0.04, arms=ARMS)
+            region = (
+                Region(r=I.INSPECT_R, hidden=True) if k == 0 else Region(r=I.INSPECT_R, angle=(40.0, 140.0))
+            )
+            draft.place(
+                "patch_block", block, f"gray block {k + 1}", region, patch_color=color, margin=0.04, arms=ARMS
+            )
         draft.params["patch_colors"] = colors
         draft.params["row"] = (round(r, 4), round(center, 2))
 
@@ -68,11 +86,16 @@ class RankBacksideRgbBlocks(Task):
         checks = {}
         for block, color in zip(BLOCKS, scene.params["patch_colors"]):
             pad = scene.obj(f"{RANK[color]}_pad")
-            checks[f"{color}_on_{RANK[color]}_pad"] = Pr.resting_on(sim, block, pad.name, pad.half_extents[0],
-                                                                    pad.extra["top"])
+            checks[f"{color}_on_{RANK[color]}_pad"] = Pr.resting_on(
+                sim, block, pad.name, pad.half_extents[0], pad.extra["top"]
+            )
         checks["blocks_released"] = all(Pr.released(sim, b) for b in BLOCKS)
-        return dict(sorted(checks.items(), key=lambda kv: list(RANK).index(kv[0].split("_")[0])
-                           if kv[0] != "blocks_released" else 3))
+        return dict(
+            sorted(
+                checks.items(),
+                key=lambda kv: list(RANK).index(kv[0].split("_")[0]) if kv[0] != "blocks_released" else 3,
+            )
+        )
 
     def expert(self, ctx, scene):
         todo = [ctx.idx(b) for b in BLOCKS]

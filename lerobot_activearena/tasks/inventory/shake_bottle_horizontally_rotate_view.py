@@ -24,8 +24,11 @@ class ShakeBottleHorizontallyRotateView(ShakeBottleTask):
     name = "shake_bottle_horizontally_rotate_view"
     category = "SS"
     instruction = "Pick up the bottle and shake it horizontally."
-    subtasks = (Subtask(1, "_shake_bottle_horizontally",
-                        "locate and grasp the bottle, then execute horizontal shaking", 0),)
+    subtasks = (
+        Subtask(
+            1, "_shake_bottle_horizontally", "locate and grasp the bottle, then execute horizontal shaking", 0
+        ),
+    )
     max_episode_steps = 298
     horizontal = True
     bottle_r = (0.34, 0.48)  # release: 0.30-0.45; the table starts at 0.30 (a bottle there hangs off it)

@@ -23,6 +23,8 @@ class ShakeBottleRotateView(ShakeBottleTask):
     name = "shake_bottle_rotate_view"
     category = "SS"
     instruction = "Pick up the bottle and shake it."
-    subtasks = (Subtask(1, "_shake_bottle", "locate and grasp the bottle, then execute the shaking motion", 0),)
+    subtasks = (
+        Subtask(1, "_shake_bottle", "locate and grasp the bottle, then execute the shaking motion", 0),
+    )
     max_episode_steps = 249
     bottle_r = (0.35, 0.45)

@@ -34,15 +34,23 @@ class TurnSwitchRotateView(Task):
     max_episode_steps = 143
 
     def layout(self, draft):
-        draft.place("switch", "switch", "switch", Region(r=(0.37, 0.45), hidden=True), yaw_jitter=math.radians(45),
-                    arms=("left", "right"))
+        draft.place(
+            "switch",
+            "switch",
+            "switch",
+            Region(r=(0.37, 0.45), hidden=True),
+            yaw_jitter=math.radians(45),
+            arms=("left", "right"),
+        )
 
     def evaluate(self, sim, scene, monitor):
         extra = scene.obj("switch").extra
         upright, in_place = P.upright(sim, "switch"), P.in_place(sim, "switch", 0.03)
         end = P.body_point(sim, extra["press_body"], extra["press_point"])
         on = P.joint_pos(sim, extra["joint"]) >= extra["on_limit"] - ON_TOL
-        pressed = any(P.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL) for arm in ("left", "right"))
+        pressed = any(
+            P.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL) for arm in ("left", "right")
+        )
         switched = monitor.event("switched_on", on and pressed and upright and in_place)
         return {"switched_on": switched, "switch_upright": upright, "switch_in_place": in_place}
 
