@@ -1,4 +1,8 @@
-"""Discovery shim: LeRobot imports installed ``lerobot_env_*`` distributions by name; this imports
-``lerobot_activearena``, which registers the ``activearena`` env and the project's policy types."""
+"""Discovery shim: LeRobot imports installed ``lerobot_env_*`` distributions by name
+(``register_third_party_plugins``); importing this registers ``--env.type=activearena`` and the
+policy types ``activearena_expert`` and ``activearena_oft``."""
 
-import lerobot_activearena  # noqa: F401
+from lerobot_activearena.envs import configs as env_configs
+from lerobot_activearena.policies import activearena_expert, activearena_oft
+
+__all__ = ["activearena_expert", "activearena_oft", "env_configs"]

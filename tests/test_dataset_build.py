@@ -40,26 +40,9 @@ def _exe(name):
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
+def built(bell_count_dataset):
     """Two tasks, one episode each, two shards built by two datatrove worker processes."""
-    root = tmp_path_factory.mktemp("ds") / "bench_id"
-    build_main(
-        [
-            "--repo-id",
-            "local/bench_id",
-            "--root",
-            str(root),
-            "--tasks",
-            f"{BELL},{COUNT}",
-            "--episodes",
-            "1",
-            "--episodes-per-shard",
-            "1",
-            "--workers",
-            "2",
-        ]
-    )
-    return root
+    return bell_count_dataset
 
 
 def _episodes(root):

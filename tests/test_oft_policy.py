@@ -31,7 +31,7 @@ from lerobot_activearena.policies.activearena_oft.processor_activearena_oft impo
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
 from lerobot_activearena.tasks.rollout import run_expert_episode
 
-REPO = "local/oft_tiny"
+REPO = "local/bench_id"  # conftest.DATASET_REPO
 COUNT = "count_target_press_button"
 CONFIGS = Path(__file__).resolve().parents[1] / "configs" / "policy"
 
@@ -46,13 +46,8 @@ def vlm(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def root(tmp_path_factory):
-    root = tmp_path_factory.mktemp("oft_ds") / "ds"
-    plan = BuildPlan(
-        repo_id=REPO, split="id", tasks=["click_bell_rotate_view", COUNT], episodes=1, episodes_per_shard=1
-    )
-    build_dataset(plan, root, workers=2, progress=False)
-    return root
+def root(bell_count_dataset):
+    return bell_count_dataset
 
 
 def _setup(vlm, root, **overrides):

@@ -26,7 +26,7 @@ import draccus
 from lerobot.configs.policies import PreTrainedConfig
 
 from ..envs.configs import ActiveArenaEnvConfig
-from ..eval.protocol import uses_expert_channel
+from ..eval.protocol import register_policy_types, uses_expert_channel
 from .args import int_ranges
 
 RESERVED_ENV = {
@@ -52,7 +52,9 @@ class _EnvArgs:
 
 
 def parse_policy(policy_args: list[str]):
-    """A PreTrainedConfig from lerobot-eval style ``--policy.*`` arguments (``path`` or ``type``)."""
+    """A PreTrainedConfig from lerobot-eval style ``--policy.*`` arguments (``path`` or ``type``) of
+    any policy type lerobot-eval knows."""
+    register_policy_types()
     path = next((a.split("=", 1)[1] for a in policy_args if a.startswith("--policy.path=")), None)
     rest = [a for a in policy_args if not a.startswith("--policy.path=")]
     if path:

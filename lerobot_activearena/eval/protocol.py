@@ -30,6 +30,16 @@ from ..tasks import get_task, task_names
 RUN_FILE = "run.json"
 
 
+def register_policy_types() -> None:
+    """Every policy type lerobot-eval knows: LeRobot's built-in ones (importing ``lerobot.policies``
+    registers their configs) and those of installed plugins (``lerobot_policy_*`` / ``lerobot_env_*``
+    distributions, this project's included), found as lerobot-eval finds them."""
+    import lerobot.policies  # noqa: F401
+    from lerobot.utils.import_utils import register_third_party_plugins
+
+    register_third_party_plugins()
+
+
 def uses_expert_channel(policy_type: str | None) -> bool:
     """Only the scripted oracle gets the env's privileged expert channel."""
     return policy_type == "activearena_expert"

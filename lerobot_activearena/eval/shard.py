@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .protocol import EvalPlan, EvalShard, uses_expert_channel
+from .protocol import EvalPlan, EvalShard, register_policy_types, uses_expert_channel
 
 log = logging.getLogger(__name__)
 
@@ -73,6 +73,7 @@ def run_shard(
     from lerobot.scripts import lerobot_eval
     from lerobot.utils.device_utils import get_safe_torch_device
     from lerobot.utils.io_utils import write_video
+    from lerobot.utils.random_utils import set_seed
     from tqdm import trange
 
     run_dir = Path(run_dir)
@@ -83,6 +84,7 @@ def run_shard(
     if not pending:
         return {"episodes": len(shard.episodes), "ran": 0}
     # the run shows its own per-shard and overall bars instead of one per rollout
+    register_policy_types()  # a fresh worker process: LeRobot's types and the plugins' ones
     lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})
 
     cfg = PreTrainedConfig.from_pretrained(run_dir / "policy")
@@ -90,6 +92,8 @@ def run_shard(
         Path(plan.policy_path) if plan.policy_path else None
     )  # a Hub id or a folder, as lerobot-eval
     env_cfg = env_config(plan, shard.task, shard.split, folder)
+    # as lerobot-eval seeds its run: a shard that plays a whole task and split samples what lerobot-eval samples
+    set_seed(plan.seed_base)
     device = get_safe_torch_device(cfg.device)
     policy = make_policy(cfg=cfg, env_cfg=env_cfg)
     policy.eval()

@@ -1,0 +1,113 @@
+"""LeRobot's own policy types on the benchmark: ACT and diffusion trained for 2 steps by LeRobot's
+training loop on a builder dataset (no pretrained backbone), then evaluated by ``activearena-eval``
+(``--policy.path``) and by lerobot-eval on the same seeds, with the same episode records; and
+``activearena-eval --policy.type`` of a built-in type."""
+
+import json
+from pathlib import Path
+
+import draccus
+import pytest
+from conftest import BELL, DATASET_REPO
+from lerobot.configs.default import EvalConfig
+from lerobot.configs.eval import EvalPipelineConfig
+from lerobot.configs.policies import PreTrainedConfig
+from lerobot.configs.train import TrainPipelineConfig
+from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
+from lerobot.scripts.lerobot_train import train as lerobot_train
+
+from lerobot_activearena.cli.eval import main as activearena_eval, parse_policy
+from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
+
+EPISODE_LENGTH = 12  # steps per evaluation episode: enough to compare trajectories
+POLICY_OPTIONS = {  # small networks: the test is about the plumbing, not the policy
+    "act": [
+        "--policy.pretrained_backbone_weights=null",
+        "--policy.chunk_size=8",
+        "--policy.n_action_steps=8",
+        "--policy.dim_model=64",
+        "--policy.dim_feedforward=128",
+        "--policy.n_heads=2",
+    ],
+    "diffusion": [
+        "--policy.pretrained_backbone_weights=null",
+        "--policy.num_inference_steps=2",
+        "--policy.horizon=8",
+        "--policy.n_action_steps=4",
+        "--policy.down_dims=[32,64]",
+        "--policy.diffusion_step_embed_dim=32",
+    ],
+}
+
+
+def _train(policy_type: str, dataset: Path, out: Path) -> Path:
+    args = [
+        f"--policy.type={policy_type}",
+        *POLICY_OPTIONS[policy_type],
+        "--policy.device=cpu",
+        "--policy.push_to_hub=false",
+        f"--dataset.repo_id={DATASET_REPO}",
+        f"--dataset.root={dataset}",
+        "--dataset.video_backend=pyav",
+        "--steps=2",
+        "--batch_size=2",
+        "--num_workers=0",
+        "--save_freq=2",
+        "--wandb.enable=false",
+        f"--output_dir={out}",
+    ]
+    lerobot_train(draccus.parse(TrainPipelineConfig, args=args))
+    return out / "checkpoints" / "last" / "pretrained_model"
+
+
+def _records(folder: Path) -> dict[int, dict]:
+    recs = [json.loads(line) for f in sorted(folder.rglob("*.jsonl")) for line in f.read_text().splitlines()]
+    return {r["episode"]: r for r in recs}
+
+
+@pytest.mark.parametrize("policy_type", ["act", "diffusion"])
+def test_lerobot_policy_trained_on_a_builder_dataset_plays_in_activearena_eval(
+    policy_type, bell_count_dataset, tmp_path
+):
+    ckpt = _train(policy_type, bell_count_dataset, tmp_path / "train")
+    run = tmp_path / "protocol"
+    activearena_eval(
+        [
+            f"--policy.path={ckpt}",
+            "--policy.device=cpu",
+            f"--env.episode_length={EPISODE_LENGTH}",
+            f"--tasks={BELL}",
+            "--splits=id",
+            "--episodes=2",
+            "--videos=0",
+            f"--out={run}",
+        ]
+    )
+    info = json.loads((run / "id" / "eval_info.json").read_text())
+    assert info["overall"]["n_episodes"] == 2 and info["per_task"][0]["task_id"] == BELL
+    mine = {
+        json.loads(line)["episode"]: json.loads(line) for line in (run / "id/episodes/records.jsonl").open()
+    }
+
+    # lerobot-eval, same checkpoint and seeds: the same episodes, step for step
+    policy = PreTrainedConfig.from_pretrained(ckpt)
+    policy.pretrained_path = ckpt
+    policy.device = "cpu"
+    out = tmp_path / "lerobot_eval"
+    env = ActiveArenaEnvConfig(task=BELL, episode_length=EPISODE_LENGTH, episode_log_dir=str(out / "records"))
+    cfg = EvalPipelineConfig(
+        env=env, policy=policy, eval=EvalConfig(n_episodes=2, batch_size=1), output_dir=out, seed=1000
+    )
+    lerobot_eval_main(cfg)
+    theirs = _records(out / "records")
+    assert sorted(mine) == sorted(theirs) == [0, 1]
+    for k in (0, 1):
+        assert mine[k]["steps"] == EPISODE_LENGTH
+        for key in ("scene_seed", "steps", "success", "failure_state", "view_targets"):
+            assert mine[k][key] == theirs[k][key], (k, key)
+
+
+def test_built_in_policy_types_parse_by_type():
+    for policy_type in ("act", "diffusion", "smolvla", "pi05"):
+        cfg, path = parse_policy([f"--policy.type={policy_type}", "--policy.device=cpu"])
+        assert cfg.type == policy_type and path is None
