@@ -17,7 +17,8 @@ import numpy as np
 
 def visible_band(radius: float, angles: np.ndarray, height: float) -> tuple[float, float] | None:
     """Smallest and largest angle whose tabletop point at ``height`` projects into the home image."""
-    from lerobot_activearena.tasks.draft import TABLE_TOP, in_home_view
+    from lerobot_activearena.sim.workspace import TABLE_TOP
+    from lerobot_activearena.tasks.draft import in_home_view
 
     a = np.radians(angles)
     inside = np.array(

@@ -6,9 +6,10 @@ import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
+import pytest  # noqa: E402
+
 import lerobot_activearena  # noqa: E402,F401  (selects the GL backend before mujoco loads)
 import lerobot_env_activearena  # noqa: E402,F401  (registers the env and policy types, as LeRobot's CLIs do)
-import pytest  # noqa: E402
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 DATASET_REPO = "local/bench_id"

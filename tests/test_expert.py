@@ -101,10 +101,10 @@ def test_count_expert_counts_what_it_saw(episodes):
 
 def test_search_never_finds_an_object_outside_every_view():
     """The expert searches with the camera: an object behind the robot is never 'found'."""
-    from lerobot_activearena.annotations.recorder import AnnotationRecorder
     from lerobot_activearena.expert import primitives as P
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
     from lerobot_activearena.expert.kinematics import shared_kinematics
+    from lerobot_activearena.sim.perception import PerceptionMemory
     from lerobot_activearena.sim.scene import SceneBuilder
     from lerobot_activearena.sim.simulator import ActiveArenaSim
 
@@ -112,7 +112,7 @@ def test_search_never_finds_an_object_outside_every_view():
     b.add_object_at("block", "hidden_block", (0.0, -0.9, 0.0))  # on the floor behind the robot
     model, info = b.compile()
     sim = ActiveArenaSim(model, info)
-    rec = AnnotationRecorder(sim, 1)
+    rec = PerceptionMemory(sim, 1)
     ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, ["hidden_block"], rec, ik, gaze)
     rec.observe()
@@ -147,17 +147,17 @@ def test_same_seed_same_actions_and_annotations_across_processes():
 
 
 def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
-    from lerobot_activearena.annotations.recorder import AnnotationRecorder
     from lerobot_activearena.expert import primitives as P
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
     from lerobot_activearena.expert.kinematics import shared_kinematics
+    from lerobot_activearena.sim.perception import PerceptionMemory
     from lerobot_activearena.sim.scene import SceneBuilder
     from lerobot_activearena.sim.simulator import ActiveArenaSim
 
     model, info = SceneBuilder().compile()
     sim = ActiveArenaSim(model, info)
     ik, gaze = shared_kinematics()
-    ctx = ExpertContext(sim, [], AnnotationRecorder(sim, 0), ik, gaze)
+    ctx = ExpertContext(sim, [], PerceptionMemory(sim, 0), ik, gaze)
     acts = np.array(
         list(P.move_torso_to(ctx, 1.1)) + list(P.move_head(ctx, -0.5)) + list(P.move_torso(ctx, -2.0))
     )

@@ -1,12 +1,15 @@
 """The gym env over the task registry: observation contract, manifests, fixed view, failure states,
 and the LeRobot EnvConfig's task suites."""
 
+import json
+
 import numpy as np
 import pytest
 
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
-from lerobot_activearena.envs.gym_env import ActiveArenaEnv, failure_state
+from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.envs.manifests import PROTOCOL_EPISODES, load_manifest
+from lerobot_activearena.tasks.episode import failure_state
 
 
 def test_reset_step_observation_contract():
@@ -69,10 +72,9 @@ def test_failure_states():
 
 
 def test_idle_episode_ends_as_dm_when_the_target_was_never_seen(tmp_path):
-    import json
-
-    env = ActiveArenaEnv("click_bell_rotate_view", use_manifest=False, episode_log_dir=str(tmp_path))
-    env._max_episode_steps = 3
+    env = ActiveArenaEnv(
+        "click_bell_rotate_view", use_manifest=False, episode_log_dir=str(tmp_path), max_episode_steps=3
+    )
     obs, _ = env.reset(seed=1004)
     for _ in range(3):
         obs, _, terminated, truncated, info = env.step(obs["agent_pos"])
@@ -102,3 +104,36 @@ def test_config_builds_category_suites_of_task_envs():
     ]
     assert lazy._env is None, "async workers start only when the suite is evaluated"
     lazy.close()
+
+
+@pytest.mark.parametrize("blowup", ["nan_velocity", "huge_velocity"])
+def test_a_physics_blowup_ends_the_episode_as_a_failure_for_any_policy(blowup, tmp_path):
+    env = ActiveArenaEnv("click_bell_rotate_view", render_pixels=False, episode_log_dir=str(tmp_path))
+    obs, _ = env.reset(seed=env.seed_base)
+    obs, *_ = env.step(obs["agent_pos"])
+    if blowup == "nan_velocity":
+        env.sim.data.qvel[:] = np.nan
+    else:
+        env.sim.data.qvel[-6:] = 1e9  # a free object flung: MuJoCo finds a diverging acceleration
+    obs, reward, terminated, truncated, info = env.step(obs["agent_pos"])
+    assert terminated and not truncated and reward == 0.0 and info["is_success"] is False
+    assert info["failure_reason"].startswith("physics: the simulation diverged"), info["failure_reason"]
+    assert np.isfinite(obs["agent_pos"]).all()
+    # the outcome stays: further steps (a batch waiting for its other envs) change nothing
+    obs, _, terminated, _, info = env.step(obs["agent_pos"])
+    assert terminated and info["failure_reason"].startswith("physics:")
+    rec = json.loads(next(tmp_path.glob("*.jsonl")).read_text().splitlines()[0])
+    assert rec["failure_reason"].startswith("physics:") and not rec["success"] and rec["steps"] == 2
+    env.close()
+
+
+def test_step_limit_is_a_constructor_argument():
+    assert ActiveArenaEnv("click_bell_rotate_view")._max_episode_steps == 137
+    assert ActiveArenaEnv("click_bell_rotate_view", max_episode_steps=5)._max_episode_steps == 5
+    with pytest.raises(ValueError, match="max_episode_steps must be >= 1"):
+        ActiveArenaEnv("click_bell_rotate_view", max_episode_steps=0)
+    vec = ActiveArenaEnvConfig(task="click_bell_rotate_view", episode_length=7).create_envs(1)["SS"][
+        "click_bell_rotate_view"
+    ]
+    assert vec.call("_max_episode_steps") == (7,)
+    vec.close()

@@ -18,6 +18,7 @@ from lerobot_activearena.tasks.inventory.rank_backside_rgb_blocks import RANK
 from lerobot_activearena.tasks.rollout import run_expert_episode
 from lerobot_activearena.tasks.sampling import sample_scene
 from lerobot_activearena.tasks.shaking import ShakeDetector, reversals
+from lerobot_activearena.tasks.success import SuccessMonitor
 
 
 def test_count_color_kinds_counts_distinct_colours_of_four_blocks():
@@ -74,7 +75,7 @@ def test_blocks_on_their_pads_without_every_patch_seen_is_not_success(name):
     task = get_task(name)
     scene = sample_scene(task, 0, "id")
     sim = ActiveArenaSim(scene.model, scene.info)
-    mon = task.monitor(sim, scene)
+    mon = SuccessMonitor(task, sim, scene)
     assert len(task.information_faces(scene)) >= 2 and not mon.info_seen
     for block, color in zip(task.information_faces(scene), scene.params["patch_colors"]):
         pad = scene.obj(f"{RANK[color]}_pad" if name.startswith("rank") else f"{color}_pad")

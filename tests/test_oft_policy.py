@@ -18,8 +18,6 @@ from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
 
 from lerobot_activearena.annotations.keyframes import motion_keyframes
-from lerobot_activearena.datasets_build.pipeline import build_dataset
-from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.dataset_annotations import DatasetAnnotations
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
@@ -29,6 +27,7 @@ from lerobot_activearena.policies.activearena_oft.processor_activearena_oft impo
     THINK_MASK,
 )
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
+from lerobot_activearena.tasks.registry import task_texts
 from lerobot_activearena.tasks.rollout import run_expert_episode
 
 REPO = "local/bench_id"  # conftest.DATASET_REPO
@@ -42,7 +41,7 @@ def _exe(name):
 
 @pytest.fixture(scope="module")
 def vlm(tmp_path_factory):
-    return make_tiny_vlm(tmp_path_factory.mktemp("vlm") / "tiny_qwen3_vl")
+    return make_tiny_vlm(tmp_path_factory.mktemp("vlm") / "tiny_qwen3_vl", texts=task_texts())
 
 
 @pytest.fixture(scope="module")

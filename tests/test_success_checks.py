@@ -9,14 +9,14 @@ from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 from lerobot_activearena.tasks import get_task
 from lerobot_activearena.tasks.sampling import sample_scene
-from lerobot_activearena.tasks.success import STABLE_FRAMES
+from lerobot_activearena.tasks.success import STABLE_FRAMES, SuccessMonitor
 
 
 def _sim(task_name, seed=0, split="id"):
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
     sim = ActiveArenaSim(scene.model, scene.info)
-    return task, scene, sim, task.monitor(sim, scene)
+    return task, scene, sim, SuccessMonitor(task, sim, scene)
 
 
 def _set_free_pose(sim, body, pos, quat=(1, 0, 0, 0)):

@@ -26,6 +26,7 @@ import draccus
 from lerobot.configs.policies import PreTrainedConfig
 
 from ..envs.configs import ActiveArenaEnvConfig
+from ..envs.manifests import DEFAULT_SEED_BASE
 from ..eval.protocol import register_policy_types, uses_expert_channel
 from .args import int_ranges
 
@@ -107,7 +108,7 @@ def config_file_defaults(paths: list[Path]) -> dict:
             "episodes": ev.get("n_episodes"),
             "batch_size": ev.get("batch_size"),
             "async_envs": ev.get("use_async_envs"),
-            "seed_base": d.get("seed", 1000),
+            "seed_base": d.get("seed", DEFAULT_SEED_BASE),
         }
         for k, v in vals.items():
             if v is None:
@@ -256,7 +257,7 @@ def main(argv: list[str] | None = None) -> None:
             episodes=episodes,
             fixed_view=fixed_view,
             env=env_options,
-            seed_base=int(pick("seed_base", 1000)),
+            seed_base=int(pick("seed_base", DEFAULT_SEED_BASE)),
             episodes_per_shard=args.episodes_per_shard or len(episodes),
         )
     except (ValueError, KeyError, FileNotFoundError) as exc:

@@ -28,9 +28,15 @@ def main(argv: list[str] | None = None) -> None:
     if args.hidden % 4 or args.hidden < 32:
         p.error("--hidden must be a multiple of 4 and >= 32")
     from ..policies.activearena_oft.tiny_vlm import make_tiny_vlm
+    from ..tasks.registry import task_texts
 
     out = make_tiny_vlm(
-        args.out_dir, hidden=args.hidden, layers=args.layers, seed=args.seed, architecture=args.architecture
+        args.out_dir,
+        hidden=args.hidden,
+        layers=args.layers,
+        seed=args.seed,
+        architecture=args.architecture,
+        texts=task_texts(),
     )
     n = sum(f.stat().st_size for f in out.iterdir())
     what = (

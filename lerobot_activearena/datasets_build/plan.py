@@ -13,8 +13,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from ..tasks import task_names
-
-SPLITS = ("id", "ood")
+from ..tasks.base import SPLITS
 
 
 @dataclass(frozen=True)

@@ -3,17 +3,18 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import partial
 
 import gymnasium as gym
 from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.envs.configs import EnvConfig
-from lerobot.envs.utils import _LazyAsyncVectorEnv, freeze_after_episode_end
+from lerobot.envs.utils import freeze_after_episode_end
 from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 from ..sim.action import ACTION_DIM
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
-
-SPLITS = ("id", "ood")
+from ..tasks.base import SPLITS
+from .manifests import DEFAULT_SEED_BASE
 
 
 @EnvConfig.register_subclass("activearena")
@@ -29,7 +30,7 @@ class ActiveArenaEnvConfig(EnvConfig):
     split: str = "id"
     fixed_view: bool = False
     use_manifest: bool = True
-    seed_base: int = 1000
+    seed_base: int = DEFAULT_SEED_BASE
     expert_channel: bool = False  # privileged: the scripted expert's next action for `activearena_expert`
     episode_log_dir: str | None = None  # one JSON line per finished episode (failure states, view targets)
     fps: int = CONTROL_HZ
@@ -69,6 +70,7 @@ class ActiveArenaEnvConfig(EnvConfig):
             "expert_channel": self.expert_channel,
             "episode_log_dir": self.episode_log_dir,
             "render_pixels": self.render_pixels,
+            "max_episode_steps": self.episode_length,
         }
 
     def create_envs(
@@ -82,18 +84,14 @@ class ActiveArenaEnvConfig(EnvConfig):
             raise ValueError(f"n_envs must be >= 1, got {n_envs}")
         suites: dict[str, dict[str, gym.vector.VectorEnv]] = {}
         for name in task_names(self.task):
-            kwargs = dict(self.gym_kwargs, task=name)
-            limit = self.episode_length
-
-            def make(kwargs=kwargs, limit=limit):
-                env = ActiveArenaEnv(**kwargs)
-                if limit is not None:
-                    env._max_episode_steps = limit
-                return env
-
-            fns = [make for _ in range(n_envs)]
+            fns = [partial(ActiveArenaEnv, **self.gym_kwargs, task=name) for _ in range(n_envs)]
             if use_async_envs and n_envs > 1:
-                vec = _LazyAsyncVectorEnv(fns)  # workers (and GL contexts) start on first use
+                # LeRobot's own multi-task envs use this private class; no public route defers the
+                # worker processes (and their GL contexts) to first use, so one task's run at a time
+                # holds processes instead of every task's at once.
+                from lerobot.envs.utils import _LazyAsyncVectorEnv
+
+                vec = _LazyAsyncVectorEnv(fns)
             else:
                 # A sub-env whose episode ended waits for the batch (no autoreset into an unplanned scene).
                 vec = gym.vector.SyncVectorEnv([freeze_after_episode_end(fn) for fn in fns])

@@ -5,31 +5,21 @@ episode at once: ``terminated=True``, ``is_success=False``, ``info["failure_reas
 
 from __future__ import annotations
 
+import json
+import os
+from pathlib import Path
+
 import gymnasium as gym
 import numpy as np
 
-from ..annotations.recorder import AnnotationRecorder
 from ..sim import action as A, embodiment as E
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..tasks import get_task
+from ..tasks.episode import Episode
 from ..tasks.rollout import ExpertDriver
 from ..tasks.sampling import sample_scene
-from .manifests import manifest_seed
-
-DEFAULT_SEED_BASE = 1000  # lerobot-eval's default --seed
-
-
-def failure_state(success: bool, ever_seen: np.ndarray, visible_now: np.ndarray) -> str:
-    """'' on success; DM: some task-relevant object never observed; CO: all observed but the final
-    view does not cover them all; CR: the final view covers all and the task still failed."""
-    if success:
-        return ""
-    if not ever_seen.all():
-        return "DM"
-    if not visible_now.all():
-        return "CO"
-    return "CR"
+from .manifests import DEFAULT_SEED_BASE, manifest_seed
 
 
 class ActiveArenaEnv(gym.Env):
@@ -46,6 +36,7 @@ class ActiveArenaEnv(gym.Env):
         episode_log_dir: str | None = None,
         render_mode: str = "rgb_array",
         render_pixels: bool = True,
+        max_episode_steps: int | None = None,
     ):
         """``use_manifest``: reset(seed=s) plays the (s - seed_base)-th seed of the task's evaluation
         manifest (so lerobot-eval's seeds seed_base, seed_base+1, ... give the protocol's episodes in
@@ -56,7 +47,8 @@ class ActiveArenaEnv(gym.Env):
         ``episode_log_dir``: append one JSON line per finished episode (seed, success, failure state,
         commanded torso/head targets) to ``<dir>/<task>_<split>_<pid>.jsonl`` for the report.
         ``render_pixels=False``: observations carry a black image (for policies that look at nothing,
-        e.g. the validity suite's adversaries); visibility and failure states are still computed."""
+        e.g. the validity suite's adversaries); visibility and failure states are still computed.
+        ``max_episode_steps``: the step limit (default: the task's own, the protocol's)."""
         self.spec_task = get_task(task)
         self.task = task
         self.task_description = self.spec_task.instruction
@@ -66,9 +58,14 @@ class ActiveArenaEnv(gym.Env):
         self.render_mode = render_mode
         self.render_pixels = render_pixels
         self._black = np.zeros((HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)
-        self._max_episode_steps = self.spec_task.max_episode_steps
-        self.sim: ActiveArenaSim | None = None
-        self.scene = None
+        if max_episode_steps is not None and max_episode_steps < 1:
+            raise ValueError(
+                f"max_episode_steps must be >= 1 (or None for the task's limit), got {max_episode_steps}"
+            )
+        self._max_episode_steps = (
+            max_episode_steps or self.spec_task.max_episode_steps
+        )  # read by lerobot-eval
+        self.episode: Episode | None = None
         spaces = {
             "pixels": gym.spaces.Dict(
                 {"head": gym.spaces.Box(0, 255, (HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)}
@@ -91,63 +88,59 @@ class ActiveArenaEnv(gym.Env):
             scene_seed = manifest_seed(self.task, self.split, int(seed) - self.seed_base)
         else:
             scene_seed = int(seed)
-        if self.sim is not None:
-            self.sim.close()
-        self.scene = sample_scene(self.spec_task, scene_seed, self.split)
+        if self.episode is not None:
+            self.episode.close()
+        self.episode = Episode(self.spec_task, sample_scene(self.spec_task, scene_seed, self.split))
         self.task_description = self.scene.instruction
-        self.sim = ActiveArenaSim(self.scene.model, self.scene.info)
         self._home = self.sim.home_action()
-        self.monitor = self.spec_task.monitor(self.sim, self.scene)
-        self.recorder = AnnotationRecorder(self.sim, len(self.scene.objects))
-        self.recorder.observe()
-        self.monitor.observe(self.recorder.discovered)
-        self._steps = 0
-        self._episode = None if seed is None else int(seed) - self.seed_base
+        self._episode_index = None if seed is None else int(seed) - self.seed_base
         self._scene_seed = scene_seed
         self._view_targets: list[list[float]] = []
         if self.expert_channel:
             self._start_expert()
         return self._obs(), {"is_success": False, "scene_seed": scene_seed}
 
+    # the running episode's parts
+    @property
+    def sim(self) -> ActiveArenaSim | None:
+        return None if self.episode is None else self.episode.sim
+
+    @property
+    def scene(self):
+        return None if self.episode is None else self.episode.scene
+
+    @property
+    def monitor(self):
+        return None if self.episode is None else self.episode.monitor
+
     def step(self, action):
-        if self.sim is None:
+        if self.episode is None:
             raise RuntimeError("call reset() before step()")
         action = A.validate_action(action)
         if self.fixed_view:  # ActiveArena-Fixed: head and torso stay at home whatever the policy says
             action = action.copy()
             action[A.TORSO_YAW], action[A.HEAD_PITCH] = E.HOME_TORSO_YAW, E.HOME_HEAD_PITCH
-        clip = self.sim.step(action)
-        self._steps += 1
+        ep = self.episode
+        clip = ep.step(action)
         self._view_targets.append([float(action[A.TORSO_YAW]), float(action[A.HEAD_PITCH])])
-        success = bool(self.monitor.update())
-        failure_reason = self.monitor.failure_reason
-        self.recorder.observe()
-        self.monitor.observe(self.recorder.discovered)
         if self.expert_channel:
             self._advance_expert()
-        terminated = success or failure_reason is not None
-        truncated = self._steps >= self._max_episode_steps and not terminated
+        success, terminated = ep.success, ep.done
+        truncated = ep.steps >= self._max_episode_steps and not terminated
         info = {"is_success": success, "clipped_action": clip.as_dict()}
         if terminated or truncated:
-            t = self.scene.search_targets
-            seen = np.append(self.recorder.discovered[t], self.monitor.info_seen)
-            info["failure_state"] = failure_state(success, seen, self.recorder.visible[t])
-            info["failure_reason"] = failure_reason or (
+            info["failure_state"] = ep.failure_state()
+            info["failure_reason"] = ep.failure_reason or (
                 ""
                 if success
-                else f"step limit {self._max_episode_steps} reached; "
-                f"unmet: {', '.join(self.monitor.failed_checks)}"
+                else f"step limit {self._max_episode_steps} reached; unmet: {', '.join(ep.unmet_checks())}"
             )
-            info["checks"] = dict(self.monitor.checks)
+            info["checks"] = dict(ep.monitor.checks)
             if self.episode_log_dir:
                 self._log_episode(success, info["failure_state"], info["failure_reason"])
         return self._obs(), float(success), terminated, truncated, info
 
     def _log_episode(self, success: bool, failure: str, reason: str) -> None:
-        import json
-        import os
-        from pathlib import Path
-
         d = Path(self.episode_log_dir)
         d.mkdir(parents=True, exist_ok=True)
         rec = {
@@ -155,12 +148,12 @@ class ActiveArenaEnv(gym.Env):
             "category": self.spec_task.category,
             "split": self.split,
             "fixed_view": self.fixed_view,
-            "episode": self._episode,
+            "episode": self._episode_index,
             "scene_seed": self._scene_seed,
             "success": success,
             "failure_state": failure,
             "failure_reason": reason,
-            "steps": self._steps,
+            "steps": self.episode.steps,
             "view_targets": self._view_targets,
         }
         with open(d / f"{self.task}_{self.split}_{os.getpid()}.jsonl", "a") as f:
@@ -170,9 +163,9 @@ class ActiveArenaEnv(gym.Env):
         return self.sim.render_head() if self.sim is not None else None
 
     def close(self):
-        if self.sim is not None:
-            self.sim.close()
-            self.sim = None
+        if self.episode is not None:
+            self.episode.close()
+            self.episode = None
 
     def _obs(self) -> dict:
         pixels = self.sim.render_head() if self.render_pixels else self._black
@@ -183,7 +176,9 @@ class ActiveArenaEnv(gym.Env):
 
     # ---- privileged expert channel -------------------------------------------------------------
     def _start_expert(self) -> None:
-        self._driver = ExpertDriver(self.spec_task, self.scene, self.sim, self.recorder, contain_errors=True)
+        self._driver = ExpertDriver(
+            self.spec_task, self.scene, self.sim, self.episode.perception, contain_errors=True
+        )
         self._expert_action = self._driver.next_action()
         if self._expert_action is None:
             self._expert_action = self._home.copy()

@@ -15,6 +15,7 @@ MANIFEST_DIR = Path(__file__).with_name("manifests")
 EVAL_SEED_START = 100_000
 MANIFEST_SIZE = 100
 PROTOCOL_EPISODES = 50
+DEFAULT_SEED_BASE = 1000  # lerobot-eval's default --seed: episode k of a run plays seed DEFAULT_SEED_BASE + k
 
 
 def manifest_path(task: str) -> Path:

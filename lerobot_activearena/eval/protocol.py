@@ -23,9 +23,9 @@ import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from ..envs.configs import SPLITS
-from ..envs.manifests import PROTOCOL_EPISODES, load_manifest
+from ..envs.manifests import DEFAULT_SEED_BASE, PROTOCOL_EPISODES, load_manifest
 from ..tasks import get_task, task_names
+from ..tasks.base import SPLITS
 
 RUN_FILE = "run.json"
 
@@ -69,7 +69,7 @@ class EvalPlan:
     env: dict = field(
         default_factory=dict
     )  # further ActiveArenaEnvConfig options (render_pixels, episode_length)
-    seed_base: int = 1000
+    seed_base: int = DEFAULT_SEED_BASE
     episodes_per_shard: int = PROTOCOL_EPISODES
     shards: list[EvalShard] = field(init=False)
 

@@ -17,9 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..annotations.keyframes import CHUNK
 from ..tasks.base import CATEGORIES
-
-CHUNK = 16
 
 
 @dataclass

@@ -6,8 +6,9 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from ..annotations.recorder import AnnotationRecorder, Intent
+from ..annotations.writer import Intent
 from ..sim import action as A
+from ..sim.perception import PerceptionMemory
 from ..sim.simulator import ActiveArenaSim
 from .gaze import Gaze
 from .ik import ArmIK
@@ -25,12 +26,12 @@ class ExpertContext:
         self,
         sim: ActiveArenaSim,
         objects: list[str],
-        recorder: AnnotationRecorder,
+        perception: PerceptionMemory,
         ik: ArmIK,
         gaze: Gaze,
         n_subtasks: int = 1,
     ):
-        self.sim, self.recorder, self.ik, self.gaze = sim, recorder, ik, gaze
+        self.sim, self.perception, self.ik, self.gaze = sim, perception, ik, gaze
         self.n_subtasks = n_subtasks
         self.objects = list(objects)
         self.info = {o.name: o for o in sim.info.objects}
@@ -76,7 +77,7 @@ class ExpertContext:
         return float(self.center(i)[2] - np.abs(R[2]) @ np.asarray(self.obj(i).half_extents))
 
     def update_memory(self) -> None:
-        for i in np.flatnonzero(self.recorder.visible):
+        for i in np.flatnonzero(self.perception.visible):
             self.memory[int(i)] = self.center(int(i))
 
     # ---- command -----------------------------------------------------------------------------

@@ -10,9 +10,6 @@ import numpy as np
 
 from ..sim import embodiment as E
 
-TORSO_LIMIT = 1.2
-HEAD_LIMIT = 1.22
-
 
 def heading_deg(point) -> float:
     """Workspace angle of a world point around the robot base (90 deg = straight ahead)."""
@@ -57,8 +54,8 @@ class Gaze:
             else:
                 dx = -np.linalg.solve(J, e)
             x = x + np.clip(dx, -0.5, 0.5)
-            x[0] = np.clip(x[0], -TORSO_LIMIT, TORSO_LIMIT)
-            x[1] = np.clip(x[1], -HEAD_LIMIT, HEAD_LIMIT)
+            x[0] = np.clip(x[0], *E.TORSO_YAW_RANGE)
+            x[1] = np.clip(x[1], *E.HEAD_PITCH_RANGE)
             if np.max(np.abs(dx)) < 1e-4:
                 break
         return float(x[0]), float(x[1])

@@ -17,8 +17,8 @@ import numpy as np
 
 from ..annotations.schema import CAMERA_INSPECT, STAGE_ANCHOR, STAGE_SEARCH
 from ..sim import embodiment as E
-from ..tasks.draft import TABLE_TOP
-from ..tasks.predicates import hidden_face_visible
+from ..sim.head_camera import hidden_face_visible
+from ..sim.workspace import TABLE_TOP
 from . import primitives as P, routines as R
 from .context import ExpertContext, ExpertError
 from .ik import grasp_rotation, rot_z

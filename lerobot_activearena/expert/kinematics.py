@@ -7,6 +7,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..sim import embodiment as E
 from .gaze import Gaze, heading_deg
 from .ik import ArmIK, IKFailed, grasp_rotation
 
@@ -21,13 +22,12 @@ def shared_kinematics() -> tuple[ArmIK, Gaze]:
 
 def torso_yaw_for_arm(point, side: str) -> float:
     offset = -ARM_TORSO_OFFSET_DEG if side == "left" else ARM_TORSO_OFFSET_DEG
-    return float(np.clip(math.radians(heading_deg(point) - 90.0 + offset), -1.2, 1.2))
+    return float(np.clip(math.radians(heading_deg(point) - 90.0 + offset), *E.TORSO_YAW_RANGE))
 
 
 def top_down_reachable(point, side: str, heights=(0.0, 0.10)) -> bool:
     """Whether ``side``'s gripper reaches straight down over ``point`` (at each of ``heights`` above
     it) with the torso turned as the expert turns it, for either finger orientation."""
-    from ..sim import embodiment as E
 
     ik, _ = shared_kinematics()
     yaw = torso_yaw_for_arm(point, side)

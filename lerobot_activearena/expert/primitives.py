@@ -25,6 +25,7 @@ from ..annotations.schema import (
     STAGE_SEARCH,
 )
 from ..sim import action as A, embodiment as E
+from ..sim.head_camera import SEARCH_PITCH, SEARCH_VIEWS
 from .context import ExpertContext, ExpertError
 from .gaze import heading_deg
 from .ik import IKFailed, grasp_rotation, interpolate_pose, rot_z
@@ -33,8 +34,7 @@ from .motion import CONTROL_DT, arm_of, gripper_index, interpolate_joints, trape
 
 Actions = Iterator[np.ndarray]
 
-SECTOR_YAWS = (0.0, -0.95, 0.95)  # torso yaw of each search sector (heading 90, 36, 144 deg)
-SEARCH_PITCH = 1.0
+SECTOR_YAWS = tuple(yaw for yaw, _ in SEARCH_VIEWS)  # torso yaw of each search sector
 TORSO_VMAX, TORSO_AMAX = E.TORSO_LIMITS  # the paper's 2.5 rad/s, 10 rad/s^2
 HEAD_VMAX, HEAD_AMAX = E.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^2
 FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
@@ -47,8 +47,8 @@ def move_head_torso_to(
 ) -> Iterator[np.ndarray]:
     """Turn torso and head together to (yaw, pitch); returns True if ``stop_when`` fired."""
     y0, p0 = ctx.yaw, ctx.pitch
-    yaw = float(np.clip(yaw, -1.2, 1.2))
-    pitch = float(np.clip(pitch, -1.22, 1.22))
+    yaw = float(np.clip(yaw, *E.TORSO_YAW_RANGE))
+    pitch = float(np.clip(pitch, *E.HEAD_PITCH_RANGE))
     sy = trapezoid(yaw - y0, TORSO_VMAX, TORSO_AMAX)
     sp = trapezoid(pitch - p0, HEAD_VMAX, HEAD_AMAX)
     s = sy if len(sy) >= len(sp) else sp
@@ -138,13 +138,13 @@ def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
                 SECTOR_YAWS[s],
                 SEARCH_PITCH,
                 CAMERA_SEARCH,
-                stop_when=lambda: bool(ctx.recorder.visible[i]),
+                stop_when=lambda: bool(ctx.perception.visible[i]),
             )
-            if ctx.recorder.visible[i]:
+            if ctx.perception.visible[i]:
                 break
             yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
             ctx.explored.add(s)
-            if ctx.recorder.visible[i]:
+            if ctx.perception.visible[i]:
                 break
         else:
             raise ExpertError(f"{ctx.objects[i]} not found in any search sector")

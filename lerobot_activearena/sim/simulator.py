@@ -12,8 +12,9 @@ from . import action as A, embodiment as E
 from .camera import cam2world_gl, extrinsic_cv, intrinsics
 from .controller import JointTargetController
 from .gl_backend import rendering_error
+from .head_camera import head_visibility_checker
 from .scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH, SUBSTEPS, WRIST_HEIGHT, WRIST_WIDTH, SceneInfo
-from .visibility import Visibility, VisibilityChecker
+from .visibility import Visibility
 
 log = logging.getLogger(__name__)
 
@@ -58,9 +59,7 @@ class ActiveArenaSim:
         self.head_cam_id = model.camera(E.HEAD_CAMERA).id
         self.head_K = intrinsics(float(model.cam_fovy[self.head_cam_id]), HEAD_WIDTH, HEAD_HEIGHT)
         self._renderers: dict[tuple[int, int], mujoco.Renderer] = {}
-        self.visibility_checker = VisibilityChecker(
-            model, info.objects, E.HEAD_CAMERA, HEAD_WIDTH, HEAD_HEIGHT, exclude_body=f"{E.PREFIX}head_link_2"
-        )
+        self.visibility_checker = head_visibility_checker(model, info.objects)
         self.last_clip: A.ClipReport | None = None
         self.clip_count = 0
         self.reset()

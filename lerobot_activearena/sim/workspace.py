@@ -15,6 +15,7 @@ import numpy as np
 
 WORLD_CONTYPE, WORLD_CONAFFINITY = 1, 1
 TABLE_RGBA = (0.62, 0.52, 0.42, 1.0)
+TABLE_TOP = 0.74  # m: height of the lower fan's top
 
 
 @dataclass(frozen=True)
@@ -79,14 +80,14 @@ class Workspace:
 
 def fan_workspace() -> Workspace:
     """The benchmark fan: annulus 0.30-1.08 m, 180 deg centred at 90 deg, top at 0.74 m."""
-    return Workspace(levels=(FanLevel(0.30, 1.08, 180.0, 90.0, 0.74),))
+    return Workspace(levels=(FanLevel(0.30, 1.08, 180.0, 90.0, TABLE_TOP),))
 
 
 def two_level_workspace(shift_deg: float = 0.0) -> Workspace:
     """Lower fan plus an upper band 0.60-0.90 m at 1.09 m (0.35 m gap); optional angular shift."""
     if shift_deg not in (0.0, 20.0, -20.0):
         raise ValueError(f"shift_deg must be 0 or +/-20 (paper's two-level variant), got {shift_deg}")
-    lower = FanLevel(0.30, 1.08, 180.0, 90.0, 0.74)
+    lower = FanLevel(0.30, 1.08, 180.0, 90.0, TABLE_TOP)
     upper = FanLevel(0.60, 0.90, 180.0, 90.0 + shift_deg, 1.09)
     return Workspace(levels=(lower, upper))
 

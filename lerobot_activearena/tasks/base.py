@@ -96,7 +96,7 @@ class Task:
         faces = self.information_faces(scene)
         if not faces:
             return False
-        from .predicates import hidden_face_visible
+        from ..sim.head_camera import hidden_face_visible
 
         data = mujoco.MjData(scene.model)
         mujoco.mj_forward(scene.model, data)
@@ -110,11 +110,6 @@ class Task:
     def failure(self, sim: ActiveArenaSim, scene: TaskScene, monitor: SuccessMonitor) -> str | None:
         """An irreversible mistake that ends the episode as a failure (reason), else None."""
         return None
-
-    def monitor(self, sim: ActiveArenaSim, scene: TaskScene) -> SuccessMonitor:
-        from .success import SuccessMonitor
-
-        return SuccessMonitor(self, sim, scene)
 
     # ---- expert ------------------------------------------------------------------------------
     def expert(self, ctx: ExpertContext, scene: TaskScene) -> Iterator[np.ndarray]:

@@ -70,7 +70,7 @@ class CountAndPressTask(Task):
         candidates = [i for i, n in enumerate(ctx.objects) if not n.startswith("button_")]
         with ctx.subtask(1):
             yield from P.sweep_all(ctx, candidates)
-            seen = [i for i in candidates if ctx.recorder.discovered[i]]
+            seen = [i for i in candidates if ctx.perception.discovered[i]]
             count = self.count_seen(ctx, scene, seen)
             ctx.notes["count"] = count
             if count not in BUTTONS:

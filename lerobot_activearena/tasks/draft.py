@@ -18,6 +18,7 @@ import numpy as np
 from ..sim.appearance import random_appearance
 from ..sim.assets import ASSETS, categories
 from ..sim.scene import SceneBuilder
+from ..sim.workspace import TABLE_TOP
 
 REACH_R = (0.34, 0.45)  # top-down grasps and presses reach here at every angle (benchmarks/initial_view.py)
 CLUTTER_R = (0.55, 1.0)  # beyond the arms' working band
@@ -26,7 +27,6 @@ SIDE_ANGLES = {"right": (20.0, 90.0), "left": (90.0, 160.0)}
 # Out of the home view candidates (paper's release: |theta - 90| in [38.5, 70] deg); each placement
 # is then checked against the home camera's projection.
 HIDDEN_ANGLES = {"right": (20.0, 51.5), "left": (128.5, 160.0)}
-TABLE_TOP = 0.74
 
 
 class SamplingFailed(RuntimeError):

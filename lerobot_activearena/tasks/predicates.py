@@ -12,10 +12,8 @@ import mujoco
 import numpy as np
 
 from ..sim import action as A, embodiment as E
-from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
-from ..sim.visibility import surface_point_visible
-from .draft import TABLE_TOP
+from ..sim.workspace import TABLE_TOP
 
 GRIPPER_CLOSED_BELOW = 0.3  # normalised gripper state (0 closed, 1 open)
 
@@ -237,24 +235,3 @@ def right_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
 
 def ordered_left_to_right(sim: ActiveArenaSim, bodies: list[str]) -> bool:
     return all(left_of(sim, a, b) for a, b in zip(bodies, bodies[1:]))
-
-
-def hidden_face_visible(model: mujoco.MjModel, data: mujoco.MjData, info) -> bool:
-    """Whether the head camera sees object ``info``'s information face (its ``extra['face_*']``:
-    a back patch, a date label) right now: facing the camera, in the image and not occluded."""
-    body = data.body(info.body)
-    R = body.xmat.reshape(3, 3)
-    point = body.xpos + R @ np.asarray(info.extra["face_center_body"])
-    normal = R @ np.asarray(info.extra["face_normal_body"])
-    cam = model.camera(E.HEAD_CAMERA).id
-    return surface_point_visible(
-        model,
-        data,
-        cam,
-        point,
-        normal,
-        model.geom(info.extra["face_geom"]).id,
-        HEAD_WIDTH,
-        HEAD_HEIGHT,
-        exclude_body=model.body(f"{E.PREFIX}head_link_2").id,
-    )

@@ -28,6 +28,15 @@ def get_task(name: str) -> Task:
     return TASKS[name]()
 
 
+def task_texts() -> list[str]:
+    """Every task's instruction, subtask texts and spoken name (a tokenizer's corpus)."""
+    out = []
+    for name in task_names("all"):
+        task = get_task(name)
+        out += [task.instruction, *(s.text for s in task.subtasks), name.replace("_", " ")]
+    return out
+
+
 def task_names(selector: str = "all") -> list[str]:
     """Resolve 'all', a category (SS/SL/ML/MD/IA), a task name, or a comma list of those."""
     _load()

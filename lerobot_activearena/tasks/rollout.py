@@ -1,7 +1,9 @@
-"""The scripted expert's episode driver (``ExpertDriver``, also used by the env's expert channel)
-and ``run_expert_episode``: one (task, seed, split) -> actions, per-frame annotations, sidecar,
-success and physics health. The single entry point for videos, datasets and expert evaluation.
-Like an evaluation episode, it ends at the first reported success or irreversible failure."""
+"""The scripted expert's episodes: ``ExpertDriver`` steps a task's expert script (also behind the
+env's expert channel) and ``run_expert_episode`` plays one (task, seed, split) on the episode
+stepper, returning actions, per-frame annotations, sidecar, success and physics health. The single
+entry point for videos, datasets and expert evaluation. Demonstrations must also keep every contact
+shallower than ``PENETRATION_LIMIT``.
+"""
 
 from __future__ import annotations
 
@@ -10,21 +12,20 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-import mujoco
 import numpy as np
 
-from ..annotations.recorder import AnnotationRecorder
+from ..annotations.writer import AnnotationWriter
 from ..expert.context import ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
+from ..sim.health import PENETRATION_LIMIT
+from ..sim.perception import PerceptionMemory
 from ..sim.simulator import ActiveArenaSim
 from .base import Task, TaskScene
+from .episode import Episode
 from .registry import get_task
 from .sampling import sample_scene
 
 log = logging.getLogger(__name__)
-
-PENETRATION_LIMIT = 0.01  # m
-WORLD_RADIUS = 2.5  # m; free objects beyond this (or below z = 0.3) have left the world
 
 
 @dataclass
@@ -46,37 +47,11 @@ class EpisodeResult:
         return len(self.frames)
 
 
-class PhysicsHealth:
-    """NaNs, objects leaving the world, deepest penetration."""
-
-    def __init__(self, sim: ActiveArenaSim):
-        self.sim = sim
-        m = sim.model
-        self.free_qadr = [
-            m.jnt_qposadr[j] for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE
-        ]
-        self.max_penetration = 0.0
-        self.problem: str | None = None
-
-    def check(self) -> str | None:
-        d = self.sim.data
-        if not (np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()):
-            self.problem = "NaN in the simulation state"
-        for a in self.free_qadr:
-            p = d.qpos[a : a + 3]
-            if p[2] < 0.3 or np.hypot(p[0], p[1]) > WORLD_RADIUS:
-                self.problem = f"an object left the world (at {np.round(p, 2).tolist()})"
-        if d.ncon:
-            self.max_penetration = max(self.max_penetration, float(-d.contact.dist[: d.ncon].min()))
-        if self.max_penetration > PENETRATION_LIMIT:
-            self.problem = f"penetration {self.max_penetration * 1000:.1f} mm"
-        return self.problem
-
-
 def make_sidecar(
     task,
     scene: TaskScene,
-    recorder: AnnotationRecorder,
+    writer: AnnotationWriter,
+    perception: PerceptionMemory,
     ctx: ExpertContext,
     success: bool,
     failure: str | None,
@@ -99,8 +74,8 @@ def make_sidecar(
         "search_targets": list(scene.search_targets),
         "params": {k: v for k, v in scene.params.items() if k not in ("rejected_attempts", "placements")},
         "placements": scene.params.get("placements", []),
-        "transitions": recorder.transitions,
-        "final_discovered": {scene.objects[i]: bool(d) for i, d in enumerate(recorder.discovered)},
+        "transitions": writer.transitions,
+        "final_discovered": {scene.objects[i]: bool(d) for i, d in enumerate(perception.discovered)},
         "expert_notes": ctx.notes,
         "success": success,
         "failure": failure,
@@ -109,7 +84,7 @@ def make_sidecar(
 
 class ExpertDriver:
     """Steps a task's expert script. Call ``next_action()`` before each simulator step and
-    ``observed()`` after the recorder has observed the new state. An expert that gives up
+    ``observed()`` after the episode has observed the new state. An expert that gives up
     (``ExpertError``: object never found, grasp lost) ends its script: ``failure`` says why and
     ``next_action()`` returns None from then on, as it does when the script is finished.
     ``contain_errors`` (the env's expert channel): any other exception from the script is logged
@@ -120,12 +95,13 @@ class ExpertDriver:
         task: Task,
         scene: TaskScene,
         sim: ActiveArenaSim,
-        recorder: AnnotationRecorder,
+        perception: PerceptionMemory,
         contain_errors: bool = False,
     ):
         ik, gaze = shared_kinematics()
-        self.task, self.recorder = task, recorder
-        self.ctx = ExpertContext(sim, scene.objects, recorder, ik, gaze, n_subtasks=len(task.subtasks))
+        self.task = task
+        self.writer = AnnotationWriter(sim, perception)
+        self.ctx = ExpertContext(sim, scene.objects, perception, ik, gaze, n_subtasks=len(task.subtasks))
         self._script = task.expert(self.ctx, scene)
         self.finished = False
         self.failure: str | None = None
@@ -155,7 +131,7 @@ class ExpertDriver:
     def annotation(self, t: int) -> dict:
         """The per-frame annotation of frame ``t`` (the observation before action ``t``)."""
         sub = self.task.subtask(self.ctx.intent.subtask)
-        return self.recorder.frame(t, self.ctx.intent, sub.instruction_idx)
+        return self.writer.frame(t, self.ctx.intent, sub.instruction_idx)
 
 
 def run_expert_episode(
@@ -170,13 +146,9 @@ def run_expert_episode(
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
-    sim = ActiveArenaSim(scene.model, scene.info)
-    recorder = AnnotationRecorder(sim, len(scene.objects))
-    recorder.observe()
-    driver = ExpertDriver(task, scene, sim, recorder)
-    monitor = task.monitor(sim, scene)
-    monitor.observe(recorder.discovered)
-    health = PhysicsHealth(sim)
+    episode = Episode(task, scene, max_penetration=PENETRATION_LIMIT)
+    sim = episode.sim
+    driver = ExpertDriver(task, scene, sim, episode.perception)
     frames, actions, states = [], [], []
     failure = None
     for t in range(task.max_episode_steps + 1):
@@ -193,27 +165,25 @@ def run_expert_episode(
         actions.append(action)
         if on_frame is not None:
             on_frame(t, sim, frame, action)
-        sim.step(action)
-        monitor.update()
-        if health.check():
-            failure = f"physics: {health.problem}"
+        episode.step(action)
+        if episode.physics_problem:
+            failure = episode.failure_reason
             break
-        if monitor.failure_reason:
-            failure = f"task failure: {monitor.failure_reason}"
+        if episode.monitor.failure_reason:
+            failure = f"task failure: {episode.monitor.failure_reason}"
             break
-        if monitor.success:
+        if episode.success:
             break
-        recorder.observe()
-        monitor.observe(recorder.discovered)
         driver.observed()
-    success = bool(monitor.success) and failure is None
+    success = episode.success and failure is None
     if failure is None and not success:
         failure = (
-            f"task not accomplished when the expert script ended (failed checks: {monitor.failed_checks})"
+            f"task not accomplished when the expert script ended (failed checks: {episode.unmet_checks()})"
         )
-    sidecar = make_sidecar(task, scene, recorder, driver.ctx, success, failure)
-    sidecar["final_checks"] = monitor.checks
-    sim.close()
+    sidecar = make_sidecar(task, scene, driver.writer, episode.perception, driver.ctx, success, failure)
+    sidecar["final_checks"] = episode.monitor.checks
+    episode.close()
+    health = {"max_penetration_m": episode.health.max_penetration, "problem": episode.physics_problem}
     return EpisodeResult(
         task.name,
         seed,
@@ -224,6 +194,6 @@ def run_expert_episode(
         np.array(states),
         frames,
         sidecar,
-        {"max_penetration_m": health.max_penetration, "problem": health.problem},
+        health,
         time.perf_counter() - t0,
     )

@@ -14,12 +14,12 @@ import numpy as np
 
 from ..expert.kinematics import top_down_reachable
 from ..sim import embodiment as E
+from ..sim.head_camera import SEARCH_VIEWS, head_visibility_checker
 from ..sim.simulator import ActiveArenaSim
-from ..sim.visibility import VisibilityChecker
 from .base import SPLITS, Task, TaskScene
 from .draft import SamplingFailed, SceneDraft
+from .success import SuccessMonitor
 
-SECTOR_VIEWS = ((0.0, 1.0), (-0.95, 1.0), (0.95, 1.0))  # (torso yaw, head pitch) the expert searches
 MAX_ATTEMPTS = 25
 
 
@@ -28,13 +28,11 @@ def derived_rng(task: str, seed: int, split: str, attempt: int) -> np.random.Gen
     return np.random.default_rng(np.random.SeedSequence(key))
 
 
-def sector_visibility(model: mujoco.MjModel, info, views=SECTOR_VIEWS) -> np.ndarray:
+def sector_visibility(model: mujoco.MjModel, info, views=SEARCH_VIEWS) -> np.ndarray:
     """(n_views, n_objects) visibility of the registered objects from each (torso yaw, head pitch)
     with the robot at home (no physics step: spawn poses)."""
     data = mujoco.MjData(model)
-    checker = VisibilityChecker(
-        model, info.objects, E.HEAD_CAMERA, 512, 384, exclude_body=f"{E.PREFIX}head_link_2"
-    )
+    checker = head_visibility_checker(model, info.objects)
     qy = model.joint(E.TORSO_YAW_JOINT).qposadr[0]
     qp = model.joint(E.HEAD_PITCH_JOINT).qposadr[0]
     out = []
@@ -88,7 +86,7 @@ def goal_holds_at_reset(task: Task, scene: TaskScene) -> list[str]:
     """The task's success checks that already hold in the spawned scene (all of them: reject)."""
     sim = ActiveArenaSim(scene.model, scene.info)
     try:
-        checks = task.evaluate(sim, scene, task.monitor(sim, scene))
+        checks = task.evaluate(sim, scene, SuccessMonitor(task, sim, scene))
     finally:
         sim.close()
     return ["the goal already holds at reset"] if checks and all(checks.values()) else []

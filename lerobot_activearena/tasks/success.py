@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..sim.head_camera import hidden_face_visible
 from . import predicates as P
 
 if TYPE_CHECKING:
@@ -49,7 +50,7 @@ class SuccessMonitor:
             self.faces_seen |= {
                 n
                 for n, o in self._faces.items()
-                if n not in self.faces_seen and P.hidden_face_visible(model, data, o)
+                if n not in self.faces_seen and hidden_face_visible(model, data, o)
             }
             self.info_seen = len(self.faces_seen) == len(self._faces)
         self.informed = bool(np.asarray(discovered)[self.scene.search_targets].all()) and self.info_seen

@@ -7,6 +7,7 @@ BPE trained with ``tokenizers`` on the benchmark's instructions, with Qwen's cha
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 CHAT_TEMPLATE = (
@@ -28,18 +29,12 @@ SPECIAL_TOKENS = [
 ]
 
 
-def _corpus() -> list[str]:
-    from ...tasks import get_task, task_names
-
+def _corpus(texts: Sequence[str]) -> list[str]:
     lines = [
         "Frames: total history current. Now the subtask is",
         "The images are ordered from earliest to latest.",
+        *texts,
     ]
-    for name in task_names("all"):
-        task = get_task(name)
-        lines.append(getattr(task, "instruction", name))
-        lines += [str(v) for v in getattr(task, "subtask_texts", [])]
-        lines.append(name.replace("_", " "))
     return lines * 4
 
 
@@ -103,9 +98,11 @@ def make_tiny_vlm(
     vocab: int = 1024,
     seed: int = 0,
     architecture: str = "tiny",
+    texts: Sequence[str] = (),
 ) -> Path:
     """Write a random Qwen3-VL, tokenizer and processor to ``out_dir``: tiny (``hidden`` / ``layers``), or
-    with ``architecture="qwen3-vl-2b"`` the real 2B model's dimensions (saved in bfloat16, ~4.3 GB)."""
+    with ``architecture="qwen3-vl-2b"`` the real 2B model's dimensions (saved in bfloat16, ~4.3 GB).
+    ``texts`` (e.g. the benchmark's instructions and subtasks) join the tiny tokenizer's corpus."""
     if architecture not in ("tiny", "qwen3-vl-2b"):
         raise ValueError(f"architecture must be 'tiny' or 'qwen3-vl-2b', got {architecture!r}")
     import torch
@@ -129,7 +126,7 @@ def make_tiny_vlm(
         initial_alphabet=pre_tokenizers.ByteLevel.alphabet(),
         show_progress=False,
     )
-    bpe.train_from_iterator(_corpus(), trainer)
+    bpe.train_from_iterator(_corpus(texts), trainer)
     tok = Qwen2TokenizerFast(
         tokenizer_object=bpe,
         eos_token="<|im_end|>",

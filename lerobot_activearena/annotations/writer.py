@@ -1,4 +1,5 @@
-"""Per-frame annotations computed online from simulator and expert state, plus the episode sidecar."""
+"""The per-frame annotation writer: the paper's schema from the simulator, the perception memory
+and what the expert declares (``Intent``), plus the stage transitions of the episode sidecar."""
 
 from __future__ import annotations
 
@@ -8,13 +9,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..sim import action as A
+from ..sim.perception import PerceptionMemory
 from ..sim.simulator import ActiveArenaSim
 from .schema import CAMERA_HOLD, FRAME_FIELDS, STAGE_NAMES, STAGE_SEARCH
 
 
 @dataclass
 class Intent:
-    """What the expert is doing now; the expert updates it, the recorder writes it every frame."""
+    """What the expert is doing now; the expert updates it, the writer writes it every frame."""
 
     subtask: int = 1
     stage: int = STAGE_SEARCH
@@ -27,24 +29,14 @@ class Intent:
     carried: set[int] = field(default_factory=set)
 
 
-class AnnotationRecorder:
-    """Observes the scene once per control step (visibility) and emits the paper's per-frame schema."""
+class AnnotationWriter:
+    """Emits the paper's per-frame schema; visibility comes from the episode's perception memory."""
 
-    def __init__(self, sim: ActiveArenaSim, n_objects: int):
-        self.sim = sim
-        self.n = n_objects
-        self.visible = np.zeros(n_objects, bool)
-        self.discovered = np.zeros(n_objects, bool)
-        self.uv = -np.ones((n_objects, 2))
+    def __init__(self, sim: ActiveArenaSim, perception: PerceptionMemory):
+        self.sim, self.perception = sim, perception
+        self.n = perception.n
         self.transitions: list[dict] = []
         self._last_key: tuple | None = None
-
-    def observe(self) -> None:
-        """Update visibility and discovery from the current simulator state."""
-        vis = self.sim.visibility()
-        self.visible = vis.visible[: self.n].copy()
-        self.uv = vis.uv_norm[: self.n].copy()
-        self.discovered |= self.visible
 
     def _mask(self, idx: set[int]) -> np.ndarray:
         m = np.zeros(self.n, np.int8)
@@ -57,7 +49,8 @@ class AnnotationRecorder:
         cam = self.sim.head_camera()
         eef = self.sim.end_effector_poses()
         f = intent.focus
-        focus_visible = bool(f >= 0 and self.visible[f])
+        seen = self.perception
+        focus_visible = bool(f >= 0 and seen.visible[f])
         rec = {
             "subtask": intent.subtask,
             "stage": intent.stage,
@@ -68,12 +61,12 @@ class AnnotationRecorder:
             "camera_mode": intent.camera_mode,
             "camera_target_theta": intent.camera_target_theta,
             "waist_heading_deg": 90.0 + math.degrees(state[A.TORSO_YAW]),
-            "visible_object_mask": self.visible.astype(np.int8),
-            "discovered_object_mask": self.discovered.astype(np.int8),
+            "visible_object_mask": seen.visible.astype(np.int8),
+            "discovered_object_mask": seen.discovered.astype(np.int8),
             "search_target_mask": self._mask(intent.search_targets),
             "action_target_mask": self._mask(intent.action_targets),
             "carried_object_mask": self._mask(intent.carried),
-            "target_uv_norm": self.uv[f] if focus_visible else np.array([-1.0, -1.0]),
+            "target_uv_norm": seen.uv[f] if focus_visible else np.array([-1.0, -1.0]),
             "intrinsic_cv": cam["intrinsic_cv"],
             "extrinsic_cv": cam["extrinsic_cv"],
             "cam2world_gl": cam["cam2world_gl"],

@@ -1,0 +1,42 @@
+"""Head-camera facts shared by the simulator, the scene sampler and the success checks: the
+visibility checker of the head image, whether an object's information face is seen, and the search
+views (torso yaw, head pitch) that together cover the fan."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from . import embodiment as E
+from .assets.base import ObjectInfo
+from .scene import HEAD_HEIGHT, HEAD_WIDTH
+from .visibility import VisibilityChecker, surface_point_visible
+
+HEAD_BODY = f"{E.PREFIX}head_link_2"  # the camera's own body: never an occluder
+SEARCH_PITCH = 1.0  # rad: the home pitch
+# (torso yaw, head pitch) of the three search sectors: headings 90, 36 and 144 deg
+SEARCH_VIEWS = ((0.0, SEARCH_PITCH), (-0.95, SEARCH_PITCH), (0.95, SEARCH_PITCH))
+
+
+def head_visibility_checker(model: mujoco.MjModel, objects: list[ObjectInfo]) -> VisibilityChecker:
+    return VisibilityChecker(model, objects, E.HEAD_CAMERA, HEAD_WIDTH, HEAD_HEIGHT, exclude_body=HEAD_BODY)
+
+
+def hidden_face_visible(model: mujoco.MjModel, data: mujoco.MjData, info: ObjectInfo) -> bool:
+    """Whether the head camera sees object ``info``'s information face (its ``extra['face_*']``:
+    a back patch, a date label) right now: facing the camera, in the image and not occluded."""
+    body = data.body(info.body)
+    rot = body.xmat.reshape(3, 3)
+    point = body.xpos + rot @ np.asarray(info.extra["face_center_body"])
+    normal = rot @ np.asarray(info.extra["face_normal_body"])
+    return surface_point_visible(
+        model,
+        data,
+        model.camera(E.HEAD_CAMERA).id,
+        point,
+        normal,
+        model.geom(info.extra["face_geom"]).id,
+        HEAD_WIDTH,
+        HEAD_HEIGHT,
+        exclude_body=model.body(HEAD_BODY).id,
+    )
