@@ -11,9 +11,19 @@ from __future__ import annotations
 import numpy as np
 
 
+def side_grasp_frames(obj_center: np.ndarray, standoff: float) -> tuple[np.ndarray, np.ndarray]:
+    """TCP position ``standoff`` m short of the object along the robot-to-object ray, and the
+    gripper rotation (approach horizontal and radial, fingers closing horizontally)."""
+    from lerobot_activearena.expert.ik import grasp_rotation
+
+    radial = np.array([obj_center[0], obj_center[1], 0.0])
+    radial /= np.linalg.norm(radial)
+    closing = np.array([-radial[1], radial[0], 0.0])
+    return obj_center - standoff * radial, grasp_rotation(radial, closing)
+
+
 def main() -> None:
     from lerobot_activearena.expert.ik import ArmIK, IKFailed
-    from lerobot_activearena.expert.pick import side_grasp_frames
     from lerobot_activearena.sim import embodiment as E
 
     ik = ArmIK()

@@ -1,12 +1,12 @@
 """Expert primitives (paper App. "New Action Primitives"). Each is a generator of 18-D actions;
 head/torso moves and arm/gripper moves are separate primitives and never share a step.
 
-Camera: ``move_head[_to]``, ``move_torso[_to]``, ``move_head_torso_to`` (trapezoidal profiles under
+Camera: ``move_head``, ``move_torso[_to]``, ``move_head_torso_to`` (trapezoidal profiles under
 the joint limits), ``look_at`` (a world point) and ``look_at_object`` (where it was last seen),
 ``face_for_arm`` (torso turns so the object sits in front of the chosen arm) and ``search`` (discrete
 sector sweep with memory of explored sectors; stops when the target appears, then centres it).
 Arm: ``move_arm_joint``, ``arm_line`` (straight TCP line, IK every step), ``pick``, ``place``,
-``press``, ``rotate_carried``, ``retreat``.
+``press``, ``retreat``.
 """
 
 from __future__ import annotations
@@ -76,11 +76,6 @@ def settle(ctx: ExpertContext, tol: float = 0.015, max_steps: int = 12) -> Actio
         if err.max() < tol:
             return
         yield ctx.emit()
-
-
-def move_head_to(ctx: ExpertContext, pitch: float, mode: int = CAMERA_CENTER) -> Actions:
-    """Absolute head pitch (torso holds)."""
-    yield from move_head_torso_to(ctx, ctx.yaw, pitch, mode)
 
 
 def move_head(ctx: ExpertContext, delta: float, mode: int = CAMERA_CENTER) -> Actions:
@@ -386,19 +381,6 @@ def press(
     yield from arm_line(ctx, side, stroke[1], R, 0.0, speed=0.06)
     yield from hold(ctx, 4)
     yield from arm_line(ctx, side, stroke[0], R, 0.0, speed=0.1)
-
-
-def rotate_carried(ctx: ExpertContext, side: str, angle: float, steps_per_rad: int = 12) -> Actions:
-    """Turn the gripper (and what it holds) about the vertical by ``angle`` rad, in IK steps."""
-    p, R = tcp_pose(ctx, side)
-    n = max(4, int(abs(angle) * steps_per_rad))
-    q = arm_of(ctx.action, side)
-    for k in range(1, n + 1):
-        s = 0.5 - 0.5 * math.cos(math.pi * k / n)
-        th = s * angle
-        q = solve_ik(ctx, side, q, p, rot_z(th) @ R, max_step=MAX_PATH_STEP)
-        ctx.action = with_arm(ctx.action, side, q)
-        yield ctx.emit()
 
 
 def carry_and_turn(

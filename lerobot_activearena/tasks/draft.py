@@ -62,7 +62,6 @@ class Region:
 
 REACH = Region()  # anywhere in the arms' band
 HIDDEN = Region(hidden=True)  # in the arms' band, out of the home view, random side
-VISIBLE = Region(hidden=False)  # in the arms' band and in the home view
 CLUTTER = Region(r=CLUTTER_R)
 
 

@@ -231,7 +231,3 @@ def left_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
 
 def right_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
     return left_of(sim, b, a, min_deg)
-
-
-def ordered_left_to_right(sim: ActiveArenaSim, bodies: list[str]) -> bool:
-    return all(left_of(sim, a, b) for a, b in zip(bodies, bodies[1:]))

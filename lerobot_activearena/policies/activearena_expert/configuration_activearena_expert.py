@@ -9,7 +9,7 @@ from lerobot.configs.types import NormalizationMode
 from lerobot.optim.optimizers import AdamWConfig
 from lerobot.utils.constants import OBS_ENV_STATE
 
-ACTION_DIM = 18
+from ...sim.action import ACTION_DIM
 
 
 @PreTrainedConfig.register_subclass("activearena_expert")

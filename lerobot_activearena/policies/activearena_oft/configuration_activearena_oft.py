@@ -14,13 +14,14 @@ from lerobot.optim.schedulers import CosineDecayWithWarmupSchedulerConfig
 from lerobot.utils.constants import ACTION, OBS_STATE
 
 from ...annotations.keyframes import STRIDE, WRITE_POLICIES
+from ...sim.action import ACTION_DIM
+from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
 IMAGE_KEY = "observation.images.head"
 THINK_TARGETS = ("none", "instruction", "subtask")
 DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
 WEIGHT_DTYPES = ("float32", "bfloat16")
-ACTION_DIM = 18
 
 
 @PreTrainedConfig.register_subclass("activearena_oft")
@@ -40,7 +41,9 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
     state_hidden: int = 1024
     head_blocks: int = 2
     head_hidden_mult: int = 2  # MLPResNet hidden = 2 x VLM width (2048 -> 4096 for the 2B model)
-    image_max_pixels: int = 512 * 384  # the head camera's native size: 192 visual tokens per image
+    image_max_pixels: int = (
+        HEAD_WIDTH * HEAD_HEIGHT
+    )  # the head camera's native size: 192 visual tokens per image
     # Where the dataset's annotations are read at training time (subtask text, keyframe columns);
     # filled by lerobot-train from the dataset, unused at evaluation.
     dataset_root: str | None = None

@@ -15,6 +15,7 @@ from lerobot.processor import PolicyAction, PolicyProcessorPipeline, ProcessorSt
 from lerobot.processor.factory import make_default_policy_processor_steps, make_policy_processor_pipelines
 from lerobot.utils.constants import OBS_STATE
 
+from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from .configuration_activearena_oft import IMAGE_KEY, ActiveArenaOFTConfig
 from .vlm_loading import load_from_vlm_path
 
@@ -107,7 +108,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
 
     vlm_path: str = "Qwen/Qwen3-VL-2B-Instruct"
     think: str = "none"
-    image_max_pixels: int = 512 * 384
+    image_max_pixels: int = HEAD_WIDTH * HEAD_HEIGHT
     # Where the image processor runs: the policy's device, so on a GPU the resizing and patching of
     # the 13 frames per sample happen there and do not hold up the training loop's CPU.
     device: str = "cpu"

@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
+from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+
 CHAT_TEMPLATE = (
     "{% for m in messages %}<|im_start|>{{ m['role'] }}\n"
     "{% if m['content'] is string %}{{ m['content'] }}{% else %}{% for c in m['content'] %}"
@@ -143,7 +145,7 @@ def make_tiny_vlm(
         image_mean=[0.5] * 3,
         image_std=[0.5] * 3,
         min_pixels=16 * 16 * 4,
-        max_pixels=512 * 384,
+        max_pixels=HEAD_WIDTH * HEAD_HEIGHT,
     )
     video_proc = Qwen3VLVideoProcessor(patch_size=16, merge_size=2, temporal_patch_size=2)
     processor = Qwen3VLProcessor(

@@ -10,8 +10,8 @@ Success Conditions:
     shaken_horizontally_while_held: while a gripper held the bottle at least 5 cm above where it
     stood with its centre within 0.8 cm of the bottle's axis, the bottle reversed direction at
     least 3 times, each swing at least 3 cm, within 3 s, along a horizontal axis, moving less than
-    2 cm vertically meanwhile (a vertical shake does not count); bottle_not_dropped: it is still on
-    the table or in the hand.
+    2 cm vertically meanwhile (a vertical shake does not count). A bottle dropped off the table
+    ends the episode.
 """
 
 from __future__ import annotations

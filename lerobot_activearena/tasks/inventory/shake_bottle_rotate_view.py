@@ -9,7 +9,7 @@ Success Conditions:
     shaken_while_held: while a gripper held the bottle at least 5 cm above where it stood with its
     centre within 0.8 cm of the bottle's axis, the bottle reversed direction at least 3 times, each
     swing at least 3 cm, within 3 s, along one axis (measured on the bottle, not on the arm);
-    bottle_not_dropped: it is still on the table or in the hand. Lifting and holding still, slow
+    a bottle dropped off the table ends the episode. Lifting and holding still, slow
     waving, or shaking a bottle caught by its edge does not count.
 """
 
