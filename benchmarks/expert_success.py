@@ -25,27 +25,27 @@ def _run(job):
     cb = (lambda t, sim, frame, action: sim.render_head()) if render else None
     try:
         r = run_expert_episode(task, seed, split, on_frame=cb)
-        return dict(
-            task=task,
-            seed=seed,
-            split=split,
-            success=r.success,
-            failure=r.failure,
-            frames=r.length,
-            seconds=r.seconds,
-            penetration=r.health["max_penetration_m"],
-        )
+        return {
+            "task": task,
+            "seed": seed,
+            "split": split,
+            "success": r.success,
+            "failure": r.failure,
+            "frames": r.length,
+            "seconds": r.seconds,
+            "penetration": r.health["max_penetration_m"],
+        }
     except Exception as exc:  # a sampler or framework error is a failure to report, not a crash
-        return dict(
-            task=task,
-            seed=seed,
-            split=split,
-            success=False,
-            failure=f"error: {exc!r}"[:200],
-            frames=0,
-            seconds=0.0,
-            penetration=0.0,
-        )
+        return {
+            "task": task,
+            "seed": seed,
+            "split": split,
+            "success": False,
+            "failure": f"error: {exc!r}"[:200],
+            "frames": 0,
+            "seconds": 0.0,
+            "penetration": 0.0,
+        }
 
 
 def main() -> None:

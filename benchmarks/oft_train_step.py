@@ -86,7 +86,7 @@ def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: 
     from lerobot_activearena.annotations.keyframes import STRIDE
     from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
 
-    dim, K = 18, cfg.history
+    dim, history = 18, cfg.history
     cfg.input_features = {
         "observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
         "observation.state": PolicyFeature(FeatureType.STATE, (dim,)),
@@ -100,12 +100,12 @@ def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: 
     def batches():
         while True:
             t = torch.randint(0, episode_frames, (batch_size,), generator=g)
-            present = torch.full_like(t, K) if all_valid else torch.clamp(t // STRIDE, max=K)
-            slot = torch.arange(K + 1)[None]
+            present = torch.full_like(t, history) if all_valid else torch.clamp(t // STRIDE, max=history)
+            slot = torch.arange(history + 1)[None]
             yield {
-                "observation.images.head": torch.rand(batch_size, K + 1, 3, 384, 512, generator=g),
-                "observation.images.head_is_pad": slot < (K - present)[:, None],
-                "observation.state": torch.randn(batch_size, K + 1, dim, generator=g),
+                "observation.images.head": torch.rand(batch_size, history + 1, 3, 384, 512, generator=g),
+                "observation.images.head_is_pad": slot < (history - present)[:, None],
+                "observation.state": torch.randn(batch_size, history + 1, dim, generator=g),
                 "action": torch.randn(batch_size, cfg.chunk_size, dim, generator=g),
                 "action_is_pad": torch.zeros(batch_size, cfg.chunk_size, dtype=torch.bool),
                 "task": ["Press the bell's top center using the left arm."] * batch_size,
@@ -250,7 +250,7 @@ def main() -> None:
     policy.eval()
     policy.reset()
     item = (
-        {k: v for k, v in ds[len(ds) // 2].items()}
+        dict(ds[len(ds) // 2].items())
         if ds is not None
         else {k: (v[0] if k != "task" else v[0]) for k, v in next(loader).items()}
     )
@@ -272,12 +272,16 @@ def main() -> None:
 
     # chunk boundary with an empty memory, then one with a full bank (K frames, as K chunk boundaries
     # of memory=chunk would have written; their content does not change the compute)
-    from lerobot_activearena.policies.activearena_oft import processor_activearena_oft as P
+    from lerobot_activearena.policies.activearena_oft import processor_activearena_oft
 
     policy.reset()
     b = pre(dict(obs))
     lat = [timed(lambda: policy.select_action(b))[0]]
-    entry = {"pixels": b[P.PIXELS][0, -1], "grid": b[P.GRID][0, -1], "state": b["observation.state"][0]}
+    entry = {
+        "pixels": b[processor_activearena_oft.PIXELS][0, -1],
+        "grid": b[processor_activearena_oft.GRID][0, -1],
+        "state": b["observation.state"][0],
+    }
     policy._bank[0] = [dict(entry, t=16 * k) for k in range(args.history)]
     for _ in range(2):  # cold: every memory frame through the vision tower; warm: their features reused
         policy._queue.clear()
@@ -296,9 +300,9 @@ def main() -> None:
             grid,
             valid,
             state if policy.state_encoder is not None else None,
-            b[P.PREFIX_IDS],
-            b[P.PROMPT_IDS],
-            b[P.PROMPT_MASK],
+            b[processor_activearena_oft.PREFIX_IDS],
+            b[processor_activearena_oft.PROMPT_IDS],
+            b[processor_activearena_oft.PROMPT_MASK],
         )
         with torch.no_grad():
             cached, (tokens, _, _) = timed(

@@ -93,7 +93,7 @@ def main() -> None:
         ax.fill_betweenx(radii, np.radians(lo), np.radians(hi), color="#cfe8ff", alpha=0.6, label="home view")
         for role, pts in sorted(data[name].items(), key=lambda kv: kv[0] == "clutter", reverse=True):
             a = np.array(pts)
-            style = dict(s=4, alpha=0.35, color="0.6") if role == "clutter" else dict(s=7, alpha=0.7)
+            style = {"s": 4, "alpha": 0.35, "color": "0.6"} if role == "clutter" else {"s": 7, "alpha": 0.7}
             ax.scatter(
                 np.radians(a[:, 1]), a[:, 0], label=role, marker="x" if "hidden" in role else "o", **style
             )

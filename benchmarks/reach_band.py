@@ -23,8 +23,8 @@ def side_grasp_frames(obj_center: np.ndarray, standoff: float) -> tuple[np.ndarr
 
 
 def main() -> None:
-    from lerobot_activearena.expert.ik import ArmIK, IKFailed
-    from lerobot_activearena.sim import embodiment as E
+    from lerobot_activearena.expert.ik import ArmIK, IKError
+    from lerobot_activearena.sim import embodiment
 
     ik = ArmIK()
     distances = np.round(np.arange(0.30, 0.81, 0.05), 2)
@@ -41,9 +41,9 @@ def main() -> None:
                 center = np.array([d * np.cos(a), d * np.sin(a), 0.80])
                 pos, rot = side_grasp_frames(center, 0.0)
                 try:
-                    ik.solve(side, E.HOME_ARM[side], torso, pos, rot, max_iters=400)
+                    ik.solve(side, embodiment.HOME_ARM[side], torso, pos, rot, max_iters=400)
                     ok.append(d)
-                except IKFailed:
+                except IKError:
                     pass
             band = f"{min(ok):.2f}-{max(ok):.2f}" if ok else "none"
             print(f"  {angle:4d}: {band}  ({len(ok)}/{len(distances)} grid points)")

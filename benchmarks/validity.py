@@ -27,18 +27,11 @@ def main() -> None:
     p.add_argument("--out", type=Path, default=Path("outputs/validity_bench"))
     args = p.parse_args()
     os.environ.setdefault("MUJOCO_GL", "egl")
-    from lerobot_activearena.eval.validity import (
-        ADVERSARIES,
-        EPISODES_FILE,
-        load_records,
-        missed,
-        run_suite,
-        summarise,
-        write_report,
-    )
+    from lerobot_activearena.eval.adversaries import ADVERSARIES
+    from lerobot_activearena.eval.validity import load_all_records, missed, run_suite, summarise, write_report
     from lerobot_activearena.tasks import task_names
 
-    before = set(load_records(args.out / EPISODES_FILE))
+    before = set(load_all_records(args.out))
     splits = ("id", "ood") if args.ood else ("id",)
     t0 = time.perf_counter()
     records = run_suite(task_names(args.tasks), list(ADVERSARIES), args.seeds, splits, args.out, args.workers)

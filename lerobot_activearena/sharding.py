@@ -5,6 +5,7 @@ one-task merge job."""
 from __future__ import annotations
 
 import os
+import sys
 import threading
 from pathlib import Path
 
@@ -16,11 +17,12 @@ SLURM_ONLY_FOR_SHARDS = ("workers", "gpus_per_task")  # the merge job needs neit
 
 def one_core() -> None:
     """For a worker that shares the machine one process per core: keep Mesa's rasteriser and
-    torch's threads on its core."""
+    torch's threads (when the worker uses torch) on its core, without importing torch here."""
     os.environ.setdefault("LP_NUM_THREADS", "1")
-    import torch
-
-    torch.set_num_threads(1)
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    torch = sys.modules.get("torch")
+    if torch is not None:
+        torch.set_num_threads(1)
 
 
 class ProgressBars(threading.Thread):

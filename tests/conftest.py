@@ -5,14 +5,29 @@ and a small builder dataset (``bell_count_dataset``)."""
 import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")
+if os.environ.get("PYTEST_XDIST_WORKER"):  # one core per worker: torch, BLAS and Mesa's rasteriser
+    for var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "LP_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
 
 import pytest  # noqa: E402
+import torch  # noqa: E402
+
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    torch.set_num_threads(1)
 
 import lerobot_activearena  # noqa: E402,F401  (selects the GL backend before mujoco loads)
 import lerobot_env_activearena  # noqa: E402,F401  (registers the env and policy types, as LeRobot's CLIs do)
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 DATASET_REPO = "local/bench_id"
+
+
+def expert_task_params():
+    """Every registered task as a parameter grouped by task, so ``--dist loadgroup`` sends a task's
+    tests to one worker and the session cache serves its expert episodes once."""
+    from lerobot_activearena.tasks import task_names
+
+    return [pytest.param(t, marks=pytest.mark.xdist_group(t)) for t in task_names("all")]
 
 
 @pytest.fixture(scope="session")
@@ -32,14 +47,55 @@ def expert_episode():
 
 
 @pytest.fixture(scope="session")
-def bell_count_dataset(tmp_path_factory):
+def bell_count_dataset(tmp_path_factory, worker_id):
     """The bell and count tasks, one episode each, two shards built by two datatrove worker processes
-    through ``activearena-build-dataset`` (repo id ``DATASET_REPO``). Read-only for the tests."""
+    through ``activearena-build-dataset`` (repo id ``DATASET_REPO``); built once for all xdist
+    workers. Read-only for the tests."""
+    from filelock import FileLock
+
     from lerobot_activearena.cli.build_dataset import main as build_main
 
-    root = tmp_path_factory.mktemp("ds") / "bench_id"
-    build_main(
-        ["--repo-id", DATASET_REPO, "--root", str(root), "--tasks", f"{BELL},{COUNT}", "--episodes", "1"]
-        + ["--episodes-per-shard", "1", "--workers", "2"]
-    )
+    shared = tmp_path_factory.getbasetemp()
+    if worker_id != "master":
+        shared = shared.parent  # the run's folder, above each worker's own
+    root = shared / "bell_count_dataset" / "bench_id"
+    with FileLock(str(shared / "bell_count_dataset.lock")):
+        if not (root / "meta" / "activearena" / "build.json").exists():
+            build_main(
+                ["--repo-id", DATASET_REPO, "--root", str(root), "--tasks", f"{BELL},{COUNT}"]
+                + ["--episodes", "1", "--episodes-per-shard", "1", "--workers", "2"]
+            )
     return root
+
+
+# ---- the suite's cost per registered task ----------------------------------------------------------
+_DURATIONS: dict[str, float] = {}
+
+
+def pytest_runtest_logreport(report):
+    _DURATIONS[report.nodeid] = _DURATIONS.get(report.nodeid, 0.0) + report.duration
+
+
+def pytest_terminal_summary(terminalreporter):
+    """Test time (setup + call + teardown, summed over workers) that grows with the task registry:
+    tests parametrised by a task name, and that time per registered task."""
+    from lerobot_activearena.tasks import task_names
+
+    tasks = task_names("all")
+    if not _DURATIONS:
+        return
+    per_task = dict.fromkeys(tasks, 0.0)
+    for nodeid, seconds in _DURATIONS.items():
+        params = nodeid.partition("[")[2].rstrip("]").split("-")
+        for t in tasks:
+            if t in params:
+                per_task[t] += seconds
+                break
+    total, tasked = sum(_DURATIONS.values()), sum(per_task.values())
+    slowest = sorted(per_task.items(), key=lambda kv: -kv[1])[:3]
+    terminalreporter.write_sep("-", "test time per registered task")
+    terminalreporter.write_line(
+        f"{total:.0f} s of test time (all workers); {tasked:.0f} s in tests parametrised by task: "
+        f"{tasked / len(tasks):.1f} s per task x {len(tasks)} tasks; slowest: "
+        + ", ".join(f"{t} {s:.1f} s" for t, s in slowest)
+    )

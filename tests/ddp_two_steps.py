@@ -40,7 +40,7 @@ def main(vlm: str, root: str, repo: str, out: str) -> None:
     )
     policy, opt, loader = acc.prepare(policy, opt, loader)
     losses = []
-    for _, raw in zip(range(2), loader):
+    for _, raw in zip(range(2), loader, strict=False):
         loss, _ = policy(pre(raw))
         acc.backward(loss)
         opt.step()

@@ -15,18 +15,19 @@ def sim():
 
 
 def test_head_intrinsics_match_paper(sim):
-    K = sim.head_camera()["intrinsic_cv"]
-    assert K[0, 0] == pytest.approx(332.55, abs=0.01) and K[1, 1] == pytest.approx(332.55, abs=0.01)
-    assert (K[0, 2], K[1, 2]) == (256.0, 192.0)
+    intrinsic_matrix = sim.head_camera()["intrinsic_cv"]
+    assert intrinsic_matrix[0, 0] == pytest.approx(332.55, abs=0.01)
+    assert intrinsic_matrix[1, 1] == pytest.approx(332.55, abs=0.01)
+    assert (intrinsic_matrix[0, 2], intrinsic_matrix[1, 2]) == (256.0, 192.0)
     assert sim.render_head().shape == (384, 512, 3)
 
 
 def test_extrinsics_are_inverse_conventions(sim):
     cam = sim.head_camera()
-    E, G = cam["extrinsic_cv"], cam["cam2world_gl"]
-    cv2world = np.linalg.inv(E)
-    np.testing.assert_allclose(cv2world[:3, 3], G[:3, 3], atol=1e-9)
-    np.testing.assert_allclose(cv2world[:3, :3], G[:3, :3] @ np.diag([1, -1, -1]), atol=1e-9)
+    extrinsic, gl2world = cam["extrinsic_cv"], cam["cam2world_gl"]
+    cv2world = np.linalg.inv(extrinsic)
+    np.testing.assert_allclose(cv2world[:3, 3], gl2world[:3, 3], atol=1e-9)
+    np.testing.assert_allclose(cv2world[:3, :3], gl2world[:3, :3] @ np.diag([1, -1, -1]), atol=1e-9)
 
 
 def test_projection_lands_on_rendered_object(sim):

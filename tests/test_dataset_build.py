@@ -29,7 +29,6 @@ from lerobot_activearena.datasets_build.features import (
 from lerobot_activearena.datasets_build.pipeline import build_dataset, push
 from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.datasets_build.record import record_episode
-from lerobot_activearena.tasks.rollout import run_expert_episode
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one
@@ -77,18 +76,18 @@ def test_dataset_opens_in_lerobot_with_stride16_history(built):
     )
 
 
-def test_columns_match_the_expert_and_keyframe_definitions(built):
+def test_columns_match_the_expert_and_keyframe_definitions(built, expert_episode):
     ds = LeRobotDataset("local/bench_id", root=built, video_backend="pyav")
     first, ep = _episodes(built)  # the second is the count task: several objects, subtask changes
-    ref = run_expert_episode(ep["task"], ep["seed"], "id")  # deterministic: same seed, same trajectory
-    T = ref.length
-    rows = ds.hf_dataset.with_format("numpy")[first["length"] : first["length"] + T]
-    assert (rows["episode_index"] == 1).all() and len(rows["frame_index"]) == T
+    ref = expert_episode(ep["task"], ep["seed"], "id")  # deterministic: same seed, same trajectory
+    length = ref.length
+    rows = ds.hf_dataset.with_format("numpy")[first["length"] : first["length"] + length]
+    assert (rows["episode_index"] == 1).all() and len(rows["frame_index"]) == length
     assert np.array_equal(rows["action"], ref.actions.astype(np.float32))
     assert np.array_equal(rows["observation.state"], ref.states.astype(np.float32))
     n = len(ref.sidecar["objects"])
     visible = np.stack(rows["visible_object_mask"])
-    assert visible.shape == (T, MAX_OBJECTS) and (visible[:, n:] == MASK_PAD).all()
+    assert visible.shape == (length, MAX_OBJECTS) and (visible[:, n:] == MASK_PAD).all()
     assert np.array_equal(visible[:, :n], np.stack([f["visible_object_mask"] for f in ref.frames]))
     assert np.array_equal(rows["subtask_index"].ravel(), [f["subtask"] for f in ref.frames])
     theta = np.array([f["camera_target_theta"] for f in ref.frames])
@@ -99,7 +98,7 @@ def test_columns_match_the_expert_and_keyframe_definitions(built):
         rows["subtask_keyframe"].ravel(), subtask_keyframes([f["subtask"] for f in ref.frames])
     )
     assert np.array_equal(rows["motion_keyframe"].ravel(), motion_keyframes(ref.states))
-    assert np.array_equal(rows["chunk_keyframe"].ravel(), chunk_keyframes(T))
+    assert np.array_equal(rows["chunk_keyframe"].ravel(), chunk_keyframes(length))
     assert rows["subtask_keyframe"].sum() >= 2  # the count task changes subtask at least once
 
 

@@ -5,7 +5,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from lerobot_activearena.sim import embodiment as E
+from lerobot_activearena.sim import embodiment
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 
@@ -31,13 +31,13 @@ def _json_joints():
 def test_official_names_and_18_controlled_joints(sim):
     m = sim.model
     for side in ("left", "right"):
-        for j in E.ARM_JOINTS[side]:
+        for j in embodiment.ARM_JOINTS[side]:
             assert m.joint(j).type == mujoco.mjtJoint.mjJNT_HINGE
     assert m.joint("astribot_torso_joint_4") and m.joint("astribot_head_joint_2")
     assert m.camera("astribot_head").id >= 0
     assert m.nu == 20  # 18 joint targets + velocity targets of torso yaw and head pitch
     # Torso joints 1-3 and head yaw are baked into the standing pose, not simulated.
-    for fixed in E.STANDING_POSE:
+    for fixed in embodiment.STANDING_POSE:
         with pytest.raises(KeyError):
             m.joint(fixed)
 
@@ -45,10 +45,10 @@ def test_official_names_and_18_controlled_joints(sim):
 def test_joint_limits_follow_reference_and_paper(sim):
     ref = _json_joints()
     for side in ("left", "right"):
-        for j in E.ARM_JOINTS[side]:
+        for j in embodiment.ARM_JOINTS[side]:
             np.testing.assert_allclose(sim.model.joint(j).range, ref[j]["range"])
-    np.testing.assert_allclose(sim.model.joint(E.TORSO_YAW_JOINT).range, [-1.2, 1.2])
-    np.testing.assert_allclose(sim.model.joint(E.HEAD_PITCH_JOINT).range, [-1.22, 1.22])
+    np.testing.assert_allclose(sim.model.joint(embodiment.TORSO_YAW_JOINT).range, [-1.2, 1.2])
+    np.testing.assert_allclose(sim.model.joint(embodiment.HEAD_PITCH_JOINT).range, [-1.22, 1.22])
 
 
 def test_home_state_and_standing_geometry(sim):

@@ -66,7 +66,7 @@ def test_merged_results_are_lerobot_eval_output_per_split(protocol_run):
     header, row = [
         line.split(",") for line in (protocol_run / "report" / "leaderboard.csv").read_text().splitlines()
     ]
-    board = dict(zip(header, row))
+    board = dict(zip(header, row, strict=True))
     assert (
         board["policy"] == "activearena_expert" and float(board["SS ID"]) == float(board["MD OOD"]) == 100.0
     )

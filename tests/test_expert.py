@@ -1,27 +1,33 @@
 """The scripted expert: solves each task, annotates every frame in the paper's schema, searches
 only from what it saw, and is bit-for-bit deterministic across processes."""
 
+import hashlib
 import math
 import subprocess
 import sys
 
 import numpy as np
 import pytest
+from conftest import expert_task_params
 
 from lerobot_activearena.annotations.schema import CAMERA_HOLD, FRAME_FIELDS, STAGE_ACTION, STAGE_SEARCH
 from lerobot_activearena.tasks import get_task, task_names
-from lerobot_activearena.tasks.rollout import run_expert_episode
 from lerobot_activearena.tasks.sampling import sample_scene
 
 TASKS = task_names("all")
+EXPERT_TASKS = expert_task_params()  # one xdist worker per task: its expert episodes run once
 
 
-@pytest.fixture(scope="module")
-def episodes():
-    return {name: run_expert_episode(name, 0, "id") for name in TASKS}
+@pytest.fixture
+def episodes(expert_episode):
+    class _ById(dict):
+        def __missing__(self, name):
+            return expert_episode(name, 0, "id")
+
+    return _ById()
 
 
-@pytest.mark.parametrize("name", TASKS)
+@pytest.mark.parametrize("name", EXPERT_TASKS)
 def test_expert_solves_the_task_without_physics_problems(episodes, name):
     r = episodes[name]
     assert r.success, r.failure
@@ -30,7 +36,7 @@ def test_expert_solves_the_task_without_physics_problems(episodes, name):
     assert r.actions.shape == (r.length, 18) and np.isfinite(r.actions).all()
 
 
-@pytest.mark.parametrize("name", TASKS)
+@pytest.mark.parametrize("name", EXPERT_TASKS)
 def test_every_frame_follows_the_schema(episodes, name):
     r = episodes[name]
     n = len(r.sidecar["objects"])
@@ -65,15 +71,15 @@ def test_every_frame_follows_the_schema(episodes, name):
     assert r.sidecar["instruction"] == task.instruction_for(r.sidecar["params"])
 
 
-def test_search_targets_start_hidden_and_get_found(episodes):
-    for name in TASKS:
-        r = episodes[name]
-        targets = r.sidecar["search_targets"]
-        first = r.frames[0]["visible_object_mask"][targets]
-        # An IA task's deciding information is on a face turned away at reset: its objects may all show.
-        if not get_task(name).information_faces(sample_scene(get_task(name), 0, "id")):
-            assert not first.all(), f"{name}: every search target was visible in the first frame"
-        assert r.frames[-1]["discovered_object_mask"][targets].all()
+@pytest.mark.parametrize("name", EXPERT_TASKS)
+def test_search_targets_start_hidden_and_get_found(episodes, name):
+    r = episodes[name]
+    targets = r.sidecar["search_targets"]
+    first = r.frames[0]["visible_object_mask"][targets]
+    # An IA task's deciding information is on a face turned away at reset: its objects may all show.
+    if not get_task(name).information_faces(sample_scene(get_task(name), 0, "id")):
+        assert not first.all(), f"{name}: every search target was visible in the first frame"
+    assert r.frames[-1]["discovered_object_mask"][targets].all()
 
 
 def test_expert_turns_the_camera_before_acting(episodes):
@@ -101,7 +107,7 @@ def test_count_expert_counts_what_it_saw(episodes):
 
 def test_search_never_finds_an_object_outside_every_view():
     """The expert searches with the camera: an object behind the robot is never 'found'."""
-    from lerobot_activearena.expert import primitives as P
+    from lerobot_activearena.expert import primitives
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
     from lerobot_activearena.expert.kinematics import shared_kinematics
     from lerobot_activearena.sim.perception import PerceptionMemory
@@ -116,7 +122,7 @@ def test_search_never_finds_an_object_outside_every_view():
     ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, ["hidden_block"], rec, ik, gaze)
     rec.observe()
-    gen = P.search(ctx, 0)
+    gen = primitives.search(ctx, 0)
     with pytest.raises(ExpertError, match="not found in any search sector"):
         for a in gen:
             sim.step(a)
@@ -134,20 +140,26 @@ for f in r.frames:
     for k in sorted(f):
         h.update(np.ascontiguousarray(f[k]).tobytes())
 print(r.success, h.hexdigest())
-"""
+"""  # the same hash as _episode_hash, in a fresh process
 
 
-def test_same_seed_same_actions_and_annotations_across_processes():
-    outs = []
-    for _ in range(2):
-        p = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True, timeout=600)
-        assert p.returncode == 0, p.stderr[-2000:]
-        outs.append(p.stdout.strip().splitlines()[-1])
-    assert outs[0] == outs[1] and outs[0].startswith("True")
+def _episode_hash(r) -> str:
+    h = hashlib.sha256(r.actions.tobytes())
+    for f in r.frames:
+        for k in sorted(f):
+            h.update(np.ascontiguousarray(f[k]).tobytes())
+    return f"{r.success} {h.hexdigest()}"
+
+
+def test_same_seed_same_actions_and_annotations_across_processes(expert_episode):
+    p = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr[-2000:]
+    here = _episode_hash(expert_episode("click_bell_rotate_view", 7, "ood"))
+    assert p.stdout.strip().splitlines()[-1] == here and here.startswith("True")
 
 
 def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
-    from lerobot_activearena.expert import primitives as P
+    from lerobot_activearena.expert import primitives
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
     from lerobot_activearena.expert.kinematics import shared_kinematics
     from lerobot_activearena.sim.perception import PerceptionMemory
@@ -159,7 +171,9 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
     ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, [], PerceptionMemory(sim, 0), ik, gaze)
     acts = np.array(
-        list(P.move_torso_to(ctx, 1.1)) + list(P.move_head(ctx, -0.5)) + list(P.move_torso(ctx, -2.0))
+        list(primitives.move_torso_to(ctx, 1.1))
+        + list(primitives.move_head(ctx, -0.5))
+        + list(primitives.move_torso(ctx, -2.0))
     )
     dt = 1 / 15
     v = np.abs(np.diff(acts[:, 16:18], axis=0)) / dt
@@ -169,4 +183,4 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
     np.testing.assert_allclose(acts[:, :16], acts[:1, :16].repeat(len(acts), 0))
     with pytest.raises(ExpertError, match="has not been seen"):
         ctx.objects = ["ghost"]
-        list(P.look_at_object(ctx, 0))
+        list(primitives.look_at_object(ctx, 0))

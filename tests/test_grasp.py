@@ -6,7 +6,7 @@ import numpy as np
 
 from lerobot_activearena.expert.ik import ArmIK, grasp_rotation, interpolate_pose
 from lerobot_activearena.expert.motion import CONTROL_DT, arm_of, interpolate_joints, with_arm
-from lerobot_activearena.sim import action as act_layout
+from lerobot_activearena.sim.action import TORSO_YAW
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 
@@ -34,7 +34,7 @@ def pick_and_shake(
     body = sim.data.body(info.body)
     center = body.xpos + body.xmat.reshape(3, 3) @ np.asarray(info.center_offset)
     action = sim.home_action()
-    torso = action[act_layout.TORSO_YAW] = sim.state()[act_layout.TORSO_YAW]
+    torso = action[TORSO_YAW] = sim.state()[TORSO_YAW]
     q = arm_of(action, side)
 
     def goto(phase, pos, rot, gripper, vel=1.0):
@@ -49,11 +49,11 @@ def pick_and_shake(
     def line(phase, pos, rot, gripper, speed=0.15):
         """Straight Cartesian TCP segment at ``speed`` m/s, IK at every control step."""
         nonlocal q, action
-        p0, R0 = ik.tcp_pose(side, q, torso)
+        p0, rot0 = ik.tcp_pose(side, q, torso)
         n = max(2, int(np.ceil(np.linalg.norm(np.asarray(pos) - p0) / (speed * CONTROL_DT))))
         for k in range(1, n + 1):
-            pk, Rk = interpolate_pose(p0, R0, pos, rot, k / n)
-            q = ik.solve(side, q, torso, pk, Rk)
+            pk, rot_k = interpolate_pose(p0, rot0, pos, rot, k / n)
+            q = ik.solve(side, q, torso, pk, rot_k)
             action = with_arm(action, side, q, gripper)
             yield phase, action
 
@@ -69,7 +69,7 @@ def pick_and_shake(
     up = grasp + np.array([0, 0, lift])
     yield from line("lift", up, rot, 0.0, speed=0.1)
     lateral = rot[:, 0]
-    for c in range(shake_cycles):
+    for _cycle in range(shake_cycles):
         for sgn in (1, -1):
             yield from line("shake", up + sgn * shake_amp * lateral, rot, 0.0, speed=0.4)
     yield from line("shake", up, rot, 0.0, speed=0.4)

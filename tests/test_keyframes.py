@@ -34,9 +34,9 @@ def test_subtask_keyframes_at_start_and_changes():
 
 def test_memory_view_is_recent_h_strictly_before_t():
     k = chunk_keyframes(100)  # 0, 16, 32, 48, 64, 80, 96
-    assert memory_view(64, k, H=3) == [16, 32, 48]  # 64 itself is excluded
-    assert memory_view(65, k, H=3) == [32, 48, 64]
-    assert memory_view(0, k, H=12) == [] and memory_view(50, k, H=0) == []
+    assert memory_view(64, k, history=3) == [16, 32, 48]  # 64 itself is excluded
+    assert memory_view(65, k, history=3) == [32, 48, 64]
+    assert memory_view(0, k, history=12) == [] and memory_view(50, k, history=0) == []
 
 
 def test_planner_stride_sequence_and_retrieval_match_the_papers_example():
@@ -98,8 +98,8 @@ def test_dedup_keeps_frames_at_least_delta_apart():
 
 
 def test_motion_keyframes_union_of_state_events_deduplicated():
-    T = 60
-    x = np.zeros((T, len(ACTION_NAMES)))
+    length = 60
+    x = np.zeros((length, len(ACTION_NAMES)))
     col = {n: i for i, n in enumerate(ACTION_NAMES)}
     x[:, col["left_gripper"]] = 1.0
     x[30:, col["left_gripper"]] = 0.1  # closes at 30 -> leave-open confirmed at 31
@@ -108,10 +108,10 @@ def test_motion_keyframes_union_of_state_events_deduplicated():
     x[40:48, col["head_pitch"]] = 0.01 * np.arange(1, 9)
     x[48:, col["head_pitch"]] = 0.08  # onset 43 (2 frames after nothing else), end 53
     k = motion_keyframes(x)
-    assert k.dtype == np.int8 and len(k) == T
+    assert k.dtype == np.int8 and len(k) == length
     assert list(np.flatnonzero(k)) == [0, 13, 23, 31, 43, 53]
     # adding an end-effector stop 2 frames after the gripper event: de-duplicated away
-    p = np.zeros((T, 3))
+    p = np.zeros((length, 3))
     p[:34, 0] = 0.01 * np.arange(34)
     p[34:, 0] = p[33, 0]
     assert list(np.flatnonzero(motion_keyframes(x, {"left": p}))) == [0, 13, 23, 31, 43, 53]
@@ -132,13 +132,14 @@ def test_motion_keyframes_are_causal():
 
 def test_memory_frames_per_write_policy():
     sub = subtask_keyframes([0] * 10 + [1] * 30 + [2] * 20)  # keyframes 0, 10, 40
-    assert memory_frames("chunk", 64, H=12) == [0, 16, 32, 48]
+    assert memory_frames("chunk", 64, history=12) == [0, 16, 32, 48]
     assert (
-        memory_frames("chunk", 250, H=12)[0] == 250 - 16 * 12 and len(memory_frames("chunk", 250, H=12)) == 12
+        memory_frames("chunk", 250, history=12)[0] == 250 - 16 * 12
+        and len(memory_frames("chunk", 250, history=12)) == 12
     )
-    assert memory_frames("subtask", 40, H=12, keyframes=sub) == [0, 10]  # 40 itself is not memory yet
-    assert memory_frames("subtask", 59, H=1, keyframes=sub) == [40]
-    assert memory_frames("none", 64, H=12) == [] and memory_frames("chunk", 64, H=0) == []
+    assert memory_frames("subtask", 40, history=12, keyframes=sub) == [0, 10]  # 40 itself is not memory yet
+    assert memory_frames("subtask", 59, history=1, keyframes=sub) == [40]
+    assert memory_frames("none", 64, history=12) == [] and memory_frames("chunk", 64, history=0) == []
     with pytest.raises(ValueError, match="write policy"):
         memory_frames("planned", 5)
     with pytest.raises(ValueError, match="motion_keyframe"):

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
-from lerobot_activearena.sim import action as A
+from lerobot_activearena.sim.action import LEFT_ARM, RIGHT_ARM
 from lerobot_activearena.sim.assets.task_objects import DATE_RANGE
 from lerobot_activearena.sim.simulator import ActiveArenaSim
-from lerobot_activearena.tasks import get_task, predicates as Pr, task_names
+from lerobot_activearena.tasks import get_task, predicates, task_names
 from lerobot_activearena.tasks.inventory.check_cola_date import expired
 from lerobot_activearena.tasks.inventory.count_random_object_press_button import CATEGORIES as PLURALS
 from lerobot_activearena.tasks.inventory.rank_backside_rgb_blocks import RANK
@@ -77,7 +77,7 @@ def test_blocks_on_their_pads_without_every_patch_seen_is_not_success(name):
     sim = ActiveArenaSim(scene.model, scene.info)
     mon = SuccessMonitor(task, sim, scene)
     assert len(task.information_faces(scene)) >= 2 and not mon.info_seen
-    for block, color in zip(task.information_faces(scene), scene.params["patch_colors"]):
+    for block, color in zip(task.information_faces(scene), scene.params["patch_colors"], strict=True):
         pad = scene.obj(f"{RANK[color]}_pad" if name.startswith("rank") else f"{color}_pad")
         j = sim.model.body(block).jntadr[0]
         adr = sim.model.jnt_qposadr[j]
@@ -111,7 +111,7 @@ def test_ia_expert_links_each_inspection_view_to_its_decision_without_branch_jum
     for e in inspections:
         assert 0 < e["frame"] < r.length and e["reading"] and e["decision"].startswith("place")
         assert r.frames[e["frame"]]["info_complete"] == 1
-    arms = np.r_[A.LEFT_ARM, A.RIGHT_ARM]
+    arms = np.r_[LEFT_ARM, RIGHT_ARM]
     jumps = np.abs(np.diff(r.actions[:, arms], axis=0)).max()
     assert jumps < 0.6, f"{name}: a {jumps:.2f} rad joint jump in one frame"
 
@@ -147,7 +147,7 @@ def test_a_held_bottle_that_is_not_shaken_does_not_succeed():
     held_frames = 0
     frozen = None
     for _ in range(env._max_episode_steps):
-        if Pr.held_by_gripper(env.sim, "bottle") and Pr.lifted(env.sim, "bottle", 0.05):
+        if predicates.held_by_gripper(env.sim, "bottle") and predicates.lifted(env.sim, "bottle", 0.05):
             held_frames += 1
             frozen = obs["environment_state"] if frozen is None else frozen  # stop following the expert
         action = obs["environment_state"] if frozen is None else frozen

@@ -117,7 +117,7 @@ def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, r
     assert len(grids) == n_img == 3  # frames 60-32, 60-16 and 60
     starts = torch.nonzero(image[1:] & ~image[:-1]).flatten() + 1
     prev_end = -1
-    for (t, h, w), s in zip(grids.tolist(), starts.tolist()):
+    for (t, h, w), s in zip(grids.tolist(), starts.tolist(), strict=True):
         n = t * h * w // merge**2
         block = pos[:, s : s + n]
         assert image[s : s + n].all() and (block[0] == block[0, 0]).all()  # one temporal index per image
@@ -192,11 +192,11 @@ def test_keyframe_memory_never_reads_the_future(vlm, root):
     assert torch.allclose(raw, expect)
 
 
-def _scripted_observations(T, seed=0):
+def _scripted_observations(n_steps, seed=0):
     """An expert trajectory's states with small random images, as lerobot-eval would pass them."""
     ref = run_expert_episode(COUNT, 0, "id")
     gen = torch.Generator().manual_seed(seed)
-    for t in range(T):
+    for t in range(n_steps):
         yield (
             t,
             {
@@ -211,8 +211,10 @@ def _scripted_observations(T, seed=0):
 @pytest.mark.parametrize("memory", ["chunk", "motion", "none"])
 def test_memory_bank_contents_per_write_policy(vlm, root, memory):
     _, policy, pre, _, _ = _setup(vlm, root, memory=memory, history=4, think="none")
-    T = 70
-    for t, obs, states in _scripted_observations(T):
+    n_steps = 70
+    observations = list(_scripted_observations(n_steps))
+    states = observations[0][2]  # the reference trajectory's states (the same in every item)
+    for t, obs, _ in observations:
         batch = pre(obs)
         assert all(e["t"] < t for e in (policy._bank[0] if policy._bank else []))  # only the past is memory
         policy.select_action(batch)
@@ -221,7 +223,7 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
     if memory == "chunk":
         expected = [0, 16, 32, 48, 64]
     elif memory == "motion":
-        expected = [int(i) for i in np.flatnonzero(motion_keyframes(states[:T]))]
+        expected = [int(i) for i in np.flatnonzero(motion_keyframes(states[:n_steps]))]
     else:
         expected = []
     assert [e["t"] for e in policy._bank[0]] == expected[-4:]
@@ -237,7 +239,7 @@ def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, mo
         "predict_subtask_and_actions",
         lambda args, vision_cache=None: ([script[policy._t]], policy._encode(*args)[0]),
     )
-    for t, obs, _ in _scripted_observations(70):
+    for _t, obs, _ in _scripted_observations(70):
         policy.select_action(pre(obs))
     assert [e["t"] for e in policy._bank[0]] == [0, 32, 48]
     _, refused, pre2, _, _ = _setup(vlm, root, memory="subtask", history=4, think="none")
@@ -353,7 +355,7 @@ def test_cached_think_decoding_matches_re_encoding_the_whole_sequence(vlm, root)
         alone, _ = policy._encode(*_encode_args(batch))
     assert cached == full and len(cached_logits) == len(full_logits) == 6
     assert torch.allclose(actions, alone, atol=1e-5)  # one pass serves the chunk and the subtask
-    for a, b in zip(cached_logits, full_logits):
+    for a, b in zip(cached_logits, full_logits, strict=True):
         assert torch.allclose(a, b, atol=1e-4), (a - b).abs().max()
 
 
@@ -552,7 +554,7 @@ def _changed_fraction(vlm, root, **precision):
         opt.zero_grad()
         loss.backward()
         opt.step()
-    changed = sum(int((p.detach() != b).sum()) for p, b in zip(policy.vlm.parameters(), before))
+    changed = sum(int((p.detach() != b).sum()) for p, b in zip(policy.vlm.parameters(), before, strict=True))
     return changed / sum(b.numel() for b in before), policy
 
 

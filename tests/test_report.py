@@ -80,11 +80,11 @@ def test_report_tables_match_hand_computed_values(tmp_path):
     main([f"oracle={a}", f"oracle={b}", "--out", str(tmp_path / "rep")])
     rows = (tmp_path / "rep" / "leaderboard.csv").read_text().splitlines()
     header, row = rows[0].split(","), rows[1].split(",")
-    got = dict(zip(header, row))
+    got = dict(zip(header, row, strict=True))
     assert float(got["SS ID"]) == 75.0 and float(got["MD ID"]) == 25.0 and float(got["Avg ID"]) == 50.0
     assert float(got["SS OOD"]) == 25.0 and float(got["Avg OOD"]) == 12.5 and got["ML ID"] == ""
     fails = (tmp_path / "rep" / "failures.csv").read_text().splitlines()
-    id_row = dict(zip(fails[0].split(","), fails[1].split(",")))
+    id_row = dict(zip(fails[0].split(","), fails[1].split(","), strict=True))
     assert id_row["failures"] == "4" and float(id_row["DM %"]) == 50.0 and float(id_row["CR %"]) == 25.0
     assert float(id_row["torso chunk jump (deg)"]) == pytest.approx(2.0)
     assert float(id_row["head chunk jump (deg)"]) == pytest.approx(0.0)

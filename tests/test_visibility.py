@@ -26,8 +26,10 @@ def _vis(sim, name):
 def _ray_point(sim, u, v, depth):
     """World point at pixel (u, v) and camera depth ``depth`` (OpenCV convention)."""
     cam = sim.head_camera()
-    K, cv2world = cam["intrinsic_cv"], np.linalg.inv(cam["extrinsic_cv"])
-    pc = np.array([(u - K[0, 2]) / K[0, 0] * depth, (v - K[1, 2]) / K[1, 1] * depth, depth, 1.0])
+    intrinsic_matrix, cv2world = cam["intrinsic_cv"], np.linalg.inv(cam["extrinsic_cv"])
+    fx, fy = intrinsic_matrix[0, 0], intrinsic_matrix[1, 1]
+    cx, cy = intrinsic_matrix[0, 2], intrinsic_matrix[1, 2]
+    pc = np.array([(u - cx) / fx * depth, (v - cy) / fy * depth, depth, 1.0])
     return (cv2world @ pc)[:3]
 
 

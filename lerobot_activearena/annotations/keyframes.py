@@ -27,11 +27,11 @@ MOTION_DEDUP = 5  # a candidate closer than this to the previous kept keyframe i
 FPS = 15
 
 
-def chunk_keyframes(T: int, chunk: int = CHUNK) -> np.ndarray:
-    """k_t = 1[t mod C == 0] for t < T."""
-    if T < 0 or chunk < 1:
-        raise ValueError(f"need T >= 0 and chunk >= 1, got T={T}, chunk={chunk}")
-    return (np.arange(T) % chunk == 0).astype(np.int8)
+def chunk_keyframes(length: int, chunk: int = CHUNK) -> np.ndarray:
+    """k_t = 1[t mod C == 0] for t < T (T = ``length``)."""
+    if length < 0 or chunk < 1:
+        raise ValueError(f"need length >= 0 and chunk >= 1, got length={length}, chunk={chunk}")
+    return (np.arange(length) % chunk == 0).astype(np.int8)
 
 
 def subtask_keyframes(subtask) -> np.ndarray:
@@ -103,7 +103,7 @@ def dedup(candidates, delta: int = MOTION_DEDUP) -> list[int]:
     """Chronological greedy de-duplication: keep a frame only if it is >= delta frames after the
     previously kept one."""
     kept: list[int] = []
-    for t in sorted(set(int(c) for c in candidates)):
+    for t in sorted({int(c) for c in candidates}):
         if not kept or t - kept[-1] >= delta:
             kept.append(t)
     return kept
@@ -114,9 +114,9 @@ def motion_keyframes(states, eef_positions=None, delta: int = MOTION_DEDUP) -> n
     head-pitch / torso-yaw rotations). ``eef_positions`` = {arm: (T, 3)} adds the optional
     end-effector turn / stop events."""
     x = np.asarray(states, float)
-    T = len(x)
-    k = np.zeros(T, np.int8)
-    if T == 0:
+    length = len(x)
+    k = np.zeros(length, np.int8)
+    if length == 0:
         return k
     col = {n: i for i, n in enumerate(ACTION_NAMES)}
     events = [0]
@@ -130,12 +130,12 @@ def motion_keyframes(states, eef_positions=None, delta: int = MOTION_DEDUP) -> n
     return k
 
 
-def memory_view(t: int, keyframes, H: int = 12) -> list[int]:
-    """M_t: the H most recent retained frames strictly before t (chronological)."""
-    if H < 0:
-        raise ValueError(f"H must be >= 0, got {H}")
+def memory_view(t: int, keyframes, history: int = 12) -> list[int]:
+    """M_t: the H = ``history`` most recent retained frames strictly before t (chronological)."""
+    if history < 0:
+        raise ValueError(f"history must be >= 0, got {history}")
     kept = np.flatnonzero(np.asarray(keyframes)[:t])
-    return [int(i) for i in kept[len(kept) - H :]] if H else []
+    return [int(i) for i in kept[len(kept) - history :]] if history else []
 
 
 def stride_sequence(x: int, stride: int = STRIDE, history: int | None = None) -> list[int]:
@@ -156,17 +156,17 @@ def retrieval_positions(frames, subtask_keyframes_seen, stride: int = STRIDE) ->
 WRITE_POLICIES = ("chunk", "subtask", "motion", "none")
 
 
-def memory_frames(policy: str, t: int, H: int = 12, keyframes=None) -> list[int]:
-    """History frame indices (chronological, all < t) for a memory write policy:
+def memory_frames(policy: str, t: int, history: int = 12, keyframes=None) -> list[int]:
+    """History frame indices (chronological, all < t) for a memory write policy, H = ``history``:
     ``chunk``: the stride-16 frames t-16H .. t-16 (at chunk boundaries these are the chunk keyframes);
     ``subtask`` / ``motion``: M_t over that keyframe indicator (``keyframes``, covering frames < t);
     ``none``: no history."""
     if policy not in WRITE_POLICIES:
         raise ValueError(f"memory write policy must be one of {WRITE_POLICIES}, got {policy!r}")
-    if policy == "none" or H == 0:
+    if policy == "none" or history == 0:
         return []
     if policy == "chunk":
-        return stride_sequence(t, history=H)[:-1]
+        return stride_sequence(t, history=history)[:-1]
     if keyframes is None:
         raise ValueError(f"the {policy!r} write policy needs the episode's {policy}_keyframe indicator")
-    return memory_view(t, keyframes, H)
+    return memory_view(t, keyframes, history)

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..sim import action as A
+from ..sim.action import TORSO_YAW
 from ..sim.perception import PerceptionMemory
 from ..sim.simulator import ActiveArenaSim
 from .schema import CAMERA_HOLD, FRAME_FIELDS, STAGE_NAMES, STAGE_SEARCH
@@ -60,7 +60,7 @@ class AnnotationWriter:
             "info_complete": int(intent.info_complete),
             "camera_mode": intent.camera_mode,
             "camera_target_theta": intent.camera_target_theta,
-            "waist_heading_deg": 90.0 + math.degrees(state[A.TORSO_YAW]),
+            "waist_heading_deg": 90.0 + math.degrees(state[TORSO_YAW]),
             "visible_object_mask": seen.visible.astype(np.int8),
             "discovered_object_mask": seen.discovered.astype(np.int8),
             "search_target_mask": self._mask(intent.search_targets),

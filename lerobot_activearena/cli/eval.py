@@ -233,9 +233,11 @@ def main(argv: list[str] | None = None) -> None:
         p.error('--executor slurm needs --slurm \'{"partition": ..., "time": ...}\'')
     try:
         defaults = config_file_defaults(args.config_path)
-        pick = lambda name, fallback: (
-            v if (v := getattr(args, name, None)) is not None else defaults.get(name, fallback)
-        )  # noqa: E731
+
+        def pick(name, fallback):
+            v = getattr(args, name, None)
+            return v if v is not None else defaults.get(name, fallback)
+
         cfg, policy_path = parse_policy([a for a in extra if a.startswith("--policy.")])
         env_options = parse_env([a for a in extra if a.startswith("--env.")])
         fixed_view = bool(pick("fixed_view", False))
@@ -245,7 +247,7 @@ def main(argv: list[str] | None = None) -> None:
         else:
             episodes = list(range(pick("episodes", PROTOCOL_EPISODES)))
         with tempfile.TemporaryDirectory() as tmp:
-            cfg._save_pretrained(Path(tmp))
+            cfg.save_pretrained(tmp)
             policy_config = json.loads((Path(tmp) / "config.json").read_text())
         label = args.label or (cfg.type + ("-fixed" if fixed_view else ""))
         plan = EvalPlan(

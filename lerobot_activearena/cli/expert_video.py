@@ -41,7 +41,8 @@ def render_episode(task: str, seed: int, split: str, out: Path) -> dict:
                 f"camera={CAMERA_MODE_NAMES[int(frame['camera_mode'])]}  heading={float(frame['waist_heading_deg']):.0f}deg"
                 + ("" if math.isnan(theta) else f" -> {theta:.0f}deg")
                 + f"  info_complete={int(frame['info_complete'])}",
-                "visible: " + ", ".join(n for n, v in zip(labels, frame["visible_object_mask"]) if v),
+                "visible: "
+                + ", ".join(n for n, v in zip(labels, frame["visible_object_mask"], strict=True) if v),
             ]
             pts = []
             uv = frame["target_uv_norm"]

@@ -1,6 +1,8 @@
 """`activearena-validity`: run the validity suite (adversarial policies that must not score, and the
-expert reference row) on seeds outside the evaluation manifests; write ``episodes.jsonl``
-(resumable), ``validity.md`` and ``validity.csv`` under ``--out`` and print the table.
+expert reference row) on seeds outside the evaluation manifests, as datatrove shards (one per task,
+split and adversary; local processes or ``--executor slurm``) like ``activearena-eval``; write one
+record file per shard under ``--out/records/`` (re-run to resume), ``validity.md`` and
+``validity.csv``, and print the table.
 
     activearena-validity --tasks all --adversaries random,held_random,still,blind_replay,fixed_view_expert,expert \
         --seeds 50 --splits id --workers 2 --out outputs/validity
@@ -11,10 +13,12 @@ It is a measurement: the exit code is 0 whether or not the targets are met (bad 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 from pathlib import Path
 
-from ..eval.validity import ADVERSARIES, VALIDITY_SEED_BASE, missed, run_suite, summarise, write_report
+from ..eval.adversaries import ADVERSARIES, VALIDITY_SEED_BASE
+from ..eval.validity import RECORDS, missed, run_suite, summarise, write_report
 
 
 def _list(text: str) -> list[str]:
@@ -32,7 +36,16 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--splits", default="id", help="comma list of id, ood")
     p.add_argument("--workers", type=int, default=os.cpu_count())
     p.add_argument("--out", type=Path, default=Path("outputs/validity"))
+    p.add_argument("--executor", default="local", choices=["local", "slurm"])
+    p.add_argument(
+        "--slurm",
+        type=json.loads,
+        default=None,
+        help='datatrove SlurmPipelineExecutor options as JSON, e.g. \'{"partition": "cpu", "time": "04:00:00"}\'',
+    )
     args = p.parse_args(argv)
+    if args.executor == "slurm" and not args.slurm:
+        p.error('--executor slurm needs --slurm \'{"partition": ..., "time": ...}\'')
     os.environ.setdefault("MUJOCO_GL", "egl")
     from ..tasks import task_names
     from ..tasks.base import SPLITS
@@ -52,13 +65,25 @@ def main(argv: list[str] | None = None) -> None:
         p.error(str(exc))
     seeds = range(args.seed_base, args.seed_base + args.seeds)
     try:
-        records = run_suite(tasks, adversaries, seeds, splits, args.out, args.workers)
+        records = run_suite(
+            tasks,
+            adversaries,
+            seeds,
+            splits,
+            args.out,
+            args.workers,
+            executor=args.executor,
+            slurm=args.slurm,
+        )
     except ValueError as exc:  # seeds that collide with a manifest
         p.error(str(exc))
+    if records is None:
+        print(f"submitted to Slurm; the report job writes {args.out}/validity.md")
+        return
     rows = summarise(records)
     print("\n" + write_report(rows, args.out))
     print(
-        f"\nwrote {args.out}/validity.md, validity.csv ({len(records)} episodes in {args.out}/episodes.jsonl)"
+        f"\nwrote {args.out}/validity.md, validity.csv ({len(records)} episodes under {args.out}/{RECORDS}/)"
     )
     miss = missed(rows)
     print(f"targets missed: {'; '.join(miss)}" if miss else "all targets met")

@@ -27,7 +27,7 @@ def merge_shards(plan: BuildPlan, work_dir: Path, root: Path) -> dict:
             f"build command again to resume them; worker logs are in {work_dir / 'logs'}"
         )
     summaries = [json.loads((shard_dir(work_dir, s) / SHARD_DONE).read_text()) for s in plan.shards]
-    used = [(s, summ) for s, summ in zip(plan.shards, summaries) if summ["kept"]]
+    used = [(s, summ) for s, summ in zip(plan.shards, summaries, strict=True) if summ["kept"]]
     if not used:
         raise RuntimeError(
             "the expert solved none of the requested episodes; nothing to write "

@@ -3,6 +3,7 @@ ranks it already completed, so re-running resumes), then merge, then optionally 
 
 from __future__ import annotations
 
+import contextlib
 import json
 import logging
 import os
@@ -79,10 +80,8 @@ class _Progress(ProgressBars):
         kept = 0
         for s in self.plan.shards:
             p = self.work_dir / "progress" / f"{s.name}.json"
-            try:
+            with contextlib.suppress(OSError, ValueError):  # being rewritten
                 kept += json.loads(p.read_text())["kept"] if p.is_file() else 0
-            except (OSError, ValueError):  # being rewritten
-                pass
         self.shards.update(done - self.shards.n)
         self.eps.update(kept - self.eps.n)
 

@@ -12,7 +12,8 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 
-from ..sim import action as A, embodiment as E
+from ..sim import embodiment
+from ..sim.action import ACTION_DIM, HEAD_PITCH, TORSO_YAW, validate_action
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..tasks import get_task
@@ -70,10 +71,10 @@ class ActiveArenaEnv(gym.Env):
             "pixels": gym.spaces.Dict(
                 {"head": gym.spaces.Box(0, 255, (HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)}
             ),
-            "agent_pos": gym.spaces.Box(-np.inf, np.inf, (A.ACTION_DIM,), np.float32),
+            "agent_pos": gym.spaces.Box(-np.inf, np.inf, (ACTION_DIM,), np.float32),
         }
         if expert_channel:
-            spaces["environment_state"] = gym.spaces.Box(-np.inf, np.inf, (A.ACTION_DIM,), np.float32)
+            spaces["environment_state"] = gym.spaces.Box(-np.inf, np.inf, (ACTION_DIM,), np.float32)
         self.observation_space = gym.spaces.Dict(spaces)
         low, high = joint_limits()
         self.action_space = gym.spaces.Box(low.astype(np.float32), high.astype(np.float32), dtype=np.float32)
@@ -116,13 +117,13 @@ class ActiveArenaEnv(gym.Env):
     def step(self, action):
         if self.episode is None:
             raise RuntimeError("call reset() before step()")
-        action = A.validate_action(action)
+        action = validate_action(action)
         if self.fixed_view:  # ActiveArena-Fixed: head and torso stay at home whatever the policy says
             action = action.copy()
-            action[A.TORSO_YAW], action[A.HEAD_PITCH] = E.HOME_TORSO_YAW, E.HOME_HEAD_PITCH
+            action[TORSO_YAW], action[HEAD_PITCH] = embodiment.HOME_TORSO_YAW, embodiment.HOME_HEAD_PITCH
         ep = self.episode
         clip = ep.step(action)
-        self._view_targets.append([float(action[A.TORSO_YAW]), float(action[A.HEAD_PITCH])])
+        self._view_targets.append([float(action[TORSO_YAW]), float(action[HEAD_PITCH])])
         if self.expert_channel:
             self._advance_expert()
         success, terminated = ep.success, ep.done
@@ -175,6 +176,13 @@ class ActiveArenaEnv(gym.Env):
         return obs
 
     # ---- privileged expert channel -------------------------------------------------------------
+    @property
+    def expert_gave_up(self) -> str | None:
+        """Why the privileged expert gave up (object never found, grasp lost), else None. It then
+        holds its last command until the episode ends."""
+        driver = getattr(self, "_driver", None) if self.expert_channel else None
+        return driver.failure if driver is not None and driver.finished else None
+
     def _start_expert(self) -> None:
         self._driver = ExpertDriver(
             self.spec_task, self.scene, self.sim, self.episode.perception, contain_errors=True

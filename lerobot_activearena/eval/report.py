@@ -182,7 +182,7 @@ def _fmt(x, digits: int = 1) -> str:
 def markdown(header, rows) -> str:
     digits = [2 if "(deg)" in h else 1 for h in header]  # chunk jumps: the paper reports hundredths
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(_fmt(x, d) for x, d in zip(row, digits)) + " |" for row in rows]
+    lines += ["| " + " | ".join(_fmt(x, d) for x, d in zip(row, digits, strict=True)) + " |" for row in rows]
     return "\n".join(lines)
 
 

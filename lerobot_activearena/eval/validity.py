@@ -1,9 +1,14 @@
-"""The benchmark's validity suite: adversarial policies that must not score. Each adversary acts
-through the public gym env on scene seeds outside the evaluation manifests: random actions,
-random targets held for a chunk, the home pose held, a blind open-loop replay of the expert's
-actions from another scene, and the privileged expert with the view fixed at home (the paper's
-ActiveArena-Fixed row); the unrestricted expert is the reference row that must succeed. A task
-an adversary solves can be gamed without active perception.
+"""The benchmark's validity suite: every (task, split, adversary) is a shard of episodes on seeds
+outside the evaluation manifests, run on the same engine as ``activearena-eval`` (datatrove: local
+processes or Slurm array jobs with a dependent report job). Each finished episode is appended to its
+shard's record file at once; re-running the same command resumes (finished episodes are kept, a line
+cut by a kill is dropped, errors are retried). The summary checks each row against its target.
+
+Run folder::
+
+    records/<task>__<split>__<adversary>.jsonl   one line per finished episode
+    logs/                                        datatrove logs and completions
+    validity.md, validity.csv                   the table
 """
 
 from __future__ import annotations
@@ -11,216 +16,55 @@ from __future__ import annotations
 import collections
 import csv
 import json
-import multiprocessing as mp
 import re
 import time
-import zlib
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
+from datatrove.pipeline.base import PipelineStep
+from tqdm import tqdm
 
-VALIDITY_SEED_BASE = 900_000  # far above the manifests' EVAL_SEED_START and the datasets' seeds
-HOLD_STEPS = 16  # held_random: one target per action chunk
-REPLAY_SEED_OFFSET = 1_000_003  # blind_replay: the expert episode comes from seed + k * offset
-REPLAY_TRIES = 5  # offsets k = 1..REPLAY_TRIES until the expert succeeds there
-EPISODES_FILE = "episodes.jsonl"
+from ..sharding import ProgressBars, one_core, run_local, submit_slurm
+from .adversaries import ADVERSARIES, check_outside_manifests, get_adversary, run_episode, validity_seeds
+
 REASON_CHARS = 80
+RECORDS = "records"
 
-# act(obs, t) -> 18-D action; built once per episode by the adversary from the reset env
-Act = Callable[[dict, int], np.ndarray]
-
-
-@dataclass(frozen=True)
-class Adversary:
-    name: str
-    description: str
-    make: Callable[..., Act]  # make(env, obs, task, split, seed) -> act
-    fixed_view: bool = False
-    expert_channel: bool = False
+Shard = tuple[str, str, str]  # (task, split, adversary)
 
 
-def _rng(name: str, task: str, split: str, seed: int) -> np.random.Generator:
-    """Deterministic per episode (crc32, not hash(): the same in every process)."""
-    return np.random.default_rng([int(seed), zlib.crc32(f"{name}/{task}/{split}".encode())])
-
-
-def _random(env, obs, task, split, seed) -> Act:
-    rng, low, high = _rng("random", task, split, seed), env.action_space.low, env.action_space.high
-    return lambda obs, t: rng.uniform(low, high)
-
-
-def _held_random(env, obs, task, split, seed) -> Act:
-    rng, low, high = _rng("held_random", task, split, seed), env.action_space.low, env.action_space.high
-    target = rng.uniform(low, high)
-
-    def act(obs, t):
-        nonlocal target
-        if t and t % HOLD_STEPS == 0:
-            target = rng.uniform(low, high)
-        return target
-
-    return act
-
-
-def _still(env, obs, task, split, seed) -> Act:
-    home = env.sim.home_action().copy()
-    return lambda obs, t: home
-
-
-def replay_actions(task: str, split: str, seed: int) -> tuple[int, np.ndarray]:
-    """The (seed, actions) of a successful expert episode of ``task``/``split`` on another seed:
-    seed + k * REPLAY_SEED_OFFSET for the first k in 1..REPLAY_TRIES where the expert succeeds."""
-    from ..tasks.rollout import run_expert_episode
-
-    tried = []
-    for k in range(1, REPLAY_TRIES + 1):
-        other = int(seed) + k * REPLAY_SEED_OFFSET
-        try:
-            r = run_expert_episode(task, other, split)
-        except Exception as exc:  # an unsamplable seed: try the next one
-            tried.append(f"{other}: {type(exc).__name__}")
-            continue
-        if r.success and len(r.actions):
-            return other, r.actions
-        tried.append(f"{other}: {r.failure}")
-    raise RuntimeError(f"blind_replay: the expert failed on every replay seed of {task}/{split}: {tried}")
-
-
-def _blind_replay(env, obs, task, split, seed) -> Act:
-    other, actions = replay_actions(task, split, seed)
-    env.replay_seed = other  # reported in the episode record
-    return lambda obs, t: actions[min(t, len(actions) - 1)]
-
-
-def _expert(env, obs, task, split, seed) -> Act:
-    return lambda obs, t: obs["environment_state"]
-
-
-ADVERSARIES: dict[str, Adversary] = {
-    a.name: a
-    for a in (
-        Adversary("random", "a uniformly random action every step", _random),
-        Adversary("held_random", f"a uniformly random target held for {HOLD_STEPS} steps", _held_random),
-        Adversary("still", "the home action held", _still),
-        Adversary("blind_replay", "the expert's actions from another seed, open loop", _blind_replay),
-        Adversary(
-            "fixed_view_expert",
-            "the privileged expert with head and torso fixed at home",
-            _expert,
-            fixed_view=True,
-            expert_channel=True,
-        ),
-        Adversary("expert", "the privileged expert (reference: must succeed)", _expert, expert_channel=True),
-    )
-}
-LOOK_AT_NOTHING = ("random", "held_random", "still", "blind_replay")
-
-
-def get_adversary(name: str) -> Adversary:
-    if name not in ADVERSARIES:
-        raise ValueError(f"unknown adversary {name!r}; valid adversaries: {', '.join(ADVERSARIES)}")
-    return ADVERSARIES[name]
-
-
-def run_episode(task: str, split: str, adversary: str, seed: int) -> dict:
-    """One episode of ``adversary`` on scene seed ``seed`` (played directly, no manifest)."""
-    from ..envs.gym_env import ActiveArenaEnv
-
-    adv = get_adversary(adversary)
-    t0 = time.perf_counter()
-    env = ActiveArenaEnv(
-        task=task,
-        split=split,
-        use_manifest=False,
-        render_pixels=False,
-        fixed_view=adv.fixed_view,
-        expert_channel=adv.expert_channel,
-    )
-    env.replay_seed = None
-    try:
-        obs, _ = env.reset(seed=int(seed))
-        act = adv.make(env, obs, task, split, int(seed))
-        t, info = 0, {}
-        while t < env._max_episode_steps:  # the env truncates at its step limit; this is a guard
-            obs, _, terminated, truncated, info = env.step(act(obs, t))
-            t += 1
-            if terminated or truncated:
-                break
-    finally:
-        env.close()
-    rec = dict(
-        task=task,
-        split=split,
-        adversary=adversary,
-        seed=int(seed),
-        success=bool(info.get("is_success")),
-        steps=t,
-        failure_state=info.get("failure_state", ""),
-        failure_reason=info.get("failure_reason", ""),
-        seconds=round(time.perf_counter() - t0, 3),
-    )
-    if env.replay_seed is not None:
-        rec["replay_seed"] = env.replay_seed
-    return rec
-
-
-# ---- seeds ---------------------------------------------------------------------------------------
-def validity_seeds(n: int, base: int = VALIDITY_SEED_BASE) -> list[int]:
-    return list(range(base, base + n))
-
-
-def check_outside_manifests(tasks: Iterable[str], seeds: Iterable[int]) -> None:
-    """Raise if any seed is an evaluation seed of a task (any split of its manifest)."""
-    from ..envs.manifests import load_manifest, manifest_path
-    from ..tasks.base import SPLITS
-
-    seeds = set(seeds)
-    for task in tasks:
-        if not manifest_path(task).exists():  # no manifest yet: nothing to collide with
-            continue
-        for split in SPLITS:
-            try:
-                clash = seeds.intersection(load_manifest(task, split))
-            except KeyError:
-                continue
-            if clash:
-                raise ValueError(
-                    f"validity seeds {sorted(clash)[:5]} are evaluation seeds of {task}/{split}; "
-                    f"use seeds outside the manifests (the default base is {VALIDITY_SEED_BASE})"
-                )
-
-
-# ---- suite ---------------------------------------------------------------------------------------
 def _key(rec: dict) -> tuple:
     return rec["task"], rec["split"], rec["adversary"], int(rec["seed"])
 
 
-def _run_job(job: tuple) -> dict:
-    """Pool worker: an exception is recorded (``error``), not raised; a resumed run retries it."""
-    task, split, adversary, seed = job
+def records_path(out_dir: Path, shard: Shard) -> Path:
+    return Path(out_dir) / RECORDS / ("__".join(shard) + ".jsonl")
+
+
+def play(task: str, split: str, adversary: str, seed: int) -> dict:
+    """One episode; an exception is recorded (``error``), not raised; a resumed run retries it."""
     t0 = time.perf_counter()
     try:
         return run_episode(task, split, adversary, seed)
     except Exception as exc:
-        return dict(
-            task=task,
-            split=split,
-            adversary=adversary,
-            seed=int(seed),
-            success=False,
-            steps=0,
-            failure_state="ERR",
-            failure_reason=f"{type(exc).__name__}: {exc}"[:300],
-            seconds=round(time.perf_counter() - t0, 3),
-            error=True,
-        )
+        return {
+            "task": task,
+            "split": split,
+            "adversary": adversary,
+            "seed": int(seed),
+            "success": False,
+            "steps": 0,
+            "failure_state": "ERR",
+            "failure_reason": f"{type(exc).__name__}: {exc}"[:300],
+            "seconds": round(time.perf_counter() - t0, 3),
+            "error": True,
+        }
 
 
 def load_records(path: Path) -> dict[tuple, dict]:
-    """Finished episodes of ``episodes.jsonl`` by key; a line cut by a kill is dropped (and the
-    file rewritten without it, so appends start on a fresh line). Errors are not kept."""
+    """Finished episodes of one record file by key; a line cut by a kill is dropped (and the file
+    rewritten without it, so appends start on a fresh line). Errors are not kept."""
     if not path.exists():
         return {}
     text = path.read_text()
@@ -239,6 +83,77 @@ def load_records(path: Path) -> dict[tuple, dict]:
     return out
 
 
+def load_all_records(out_dir: Path) -> dict[tuple, dict]:
+    out: dict[tuple, dict] = {}
+    for path in sorted((Path(out_dir) / RECORDS).glob("*.jsonl")):
+        out.update(load_records(path))
+    return out
+
+
+class ValidityShardStep(PipelineStep):
+    """datatrove step: rank r plays the unfinished episodes of shard r."""
+
+    name = "ActiveArena validity shard"
+    type = "VALIDITY"
+
+    def __init__(self, shards: list[Shard], seeds: list[int], out_dir: str, one_thread: bool):
+        super().__init__()
+        self.shards, self.seeds, self.out_dir, self.one_thread = shards, seeds, out_dir, one_thread
+
+    def run(self, data=None, rank: int = 0, world_size: int = 1):
+        if self.one_thread:
+            one_core()
+        shard = self.shards[rank]
+        path = records_path(Path(self.out_dir), shard)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        done = load_records(path)
+        with open(path, "a") as f:
+            for seed in self.seeds:
+                if (*shard, seed) in done:
+                    continue
+                rec = play(*shard, seed)
+                f.write(json.dumps(rec) + "\n")
+                f.flush()
+                self.stat_update("errors" if rec.get("error") else "episodes")
+        return iter(())
+
+
+class ReportStep(PipelineStep):
+    """datatrove step (one task): the table, as the Slurm job that depends on the shard jobs."""
+
+    name = "ActiveArena validity report"
+    type = "REPORT"
+
+    def __init__(self, shards: list[Shard], seeds: list[int], out_dir: str):
+        super().__init__()
+        self.shards, self.seeds, self.out_dir = shards, seeds, out_dir
+
+    def run(self, data=None, rank: int = 0, world_size: int = 1):
+        write_report(summarise(collect(self.shards, self.seeds, Path(self.out_dir))), self.out_dir)
+        return iter(())
+
+
+class _Progress(ProgressBars):
+    def __init__(self, out_dir: Path, total: int, before: int):
+        super().__init__()
+        self.folder = Path(out_dir) / RECORDS
+        self.before = before
+        self.bar = tqdm(total=total, initial=before, desc="validity episodes", unit="ep")
+
+    def refresh(self) -> None:
+        lines = sum(f.read_bytes().count(b"\n") for f in self.folder.glob("*.jsonl"))
+        self.bar.update(max(0, min(self.bar.total, lines) - self.bar.n))
+
+    def close(self) -> None:
+        self.bar.close()
+
+
+def collect(shards: Sequence[Shard], seeds: Sequence[int], out_dir: Path) -> list[dict]:
+    """The records of every requested episode, in order; a missing or failed one as an ``ERR`` stub."""
+    done = load_all_records(out_dir)
+    return [done.get((*s, seed)) or _error_stub(*s, seed) for s in shards for seed in seeds]
+
+
 def run_suite(
     tasks: Sequence[str],
     adversaries: Sequence[str],
@@ -246,63 +161,58 @@ def run_suite(
     splits: Sequence[str] = ("id",),
     out_dir: str | Path = "outputs/validity",
     workers: int = 2,
-) -> list[dict]:
-    """Run every (task, split, adversary, seed) episode not yet in ``out_dir/episodes.jsonl``,
-    appending one line per finished episode; return the records of all requested episodes.
-    ``seeds``: a count (seeds VALIDITY_SEED_BASE..) or explicit seeds. ``workers <= 1`` runs in
-    this process."""
-    from tqdm import tqdm
-
+    executor: str = "local",
+    slurm: dict | None = None,
+) -> list[dict] | None:
+    """Play every (task, split, adversary, seed) episode not yet recorded under ``out_dir`` and
+    return the records of all requested episodes (None when submitted to Slurm: the report job
+    writes the table). ``seeds``: a count (seeds VALIDITY_SEED_BASE..) or explicit seeds."""
     for a in adversaries:
         get_adversary(a)
     seeds = validity_seeds(seeds) if isinstance(seeds, int) else [int(s) for s in seeds]
     check_outside_manifests(tasks, seeds)
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    path = out_dir / EPISODES_FILE
-    done = load_records(path)
-    jobs = [(t, sp, a, s) for t in tasks for sp in splits for a in adversaries for s in seeds]
-    todo = [j for j in jobs if j not in done]
-    if len(todo) < len(jobs):
-        print(f"resuming {path}: {len(jobs) - len(todo)} of {len(jobs)} episodes already recorded")
-    with open(path, "a") as f, tqdm(total=len(todo), desc="validity episodes", unit="ep") as bar:
-
-        def record(rec):
-            f.write(json.dumps(rec) + "\n")
-            f.flush()
-            if not rec.get("error"):
-                done[_key(rec)] = rec
-            bar.update()
-            bar.set_postfix_str(f"{rec['task'][:20]}/{rec['adversary']}", refresh=False)
-
-        if workers <= 1 or len(todo) <= 1:
-            for job in todo:
-                record(_run_job(job))
-        else:
-            # spawn: fresh interpreters, no forked MuJoCo/EGL state
-            with mp.get_context("spawn").Pool(min(workers, len(todo))) as pool:
-                for rec in pool.imap_unordered(_run_job, todo, chunksize=1):
-                    record(rec)
-    errors = [j for j in jobs if j not in done]
+    out_dir = Path(out_dir).resolve()
+    shards = [(t, sp, a) for t in tasks for sp in splits for a in adversaries]
+    before = load_all_records(out_dir)
+    n_done = sum((*s, seed) in before for s in shards for seed in seeds)
+    if n_done:
+        print(f"resuming {out_dir}: {n_done} of {len(shards) * len(seeds)} episodes already recorded")
+    logs = out_dir / "logs"
+    for rank, shard in enumerate(shards):  # datatrove skips completed ranks: only where nothing is missing
+        if any((*shard, seed) not in before for seed in seeds):
+            (logs / "completions" / f"{rank:05d}").unlink(missing_ok=True)
+    workers = max(1, min(workers, len(shards)))
+    step = ValidityShardStep(shards, seeds, str(out_dir), one_thread=workers > 1)
+    if executor == "slurm":
+        submit_slurm(
+            step, len(shards), ReportStep(shards, seeds, str(out_dir)), logs, "activearena-validity", slurm
+        )
+        return None
+    if executor != "local":
+        raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
+    run_local(step, len(shards), workers, logs, _Progress(out_dir, len(shards) * len(seeds), n_done))
+    records = collect(shards, seeds, out_dir)
+    errors = sum(bool(r.get("error")) for r in records)
     if errors:
-        print(f"{len(errors)} episode(s) raised an error (see 'ERR' lines in {path}; a re-run retries them)")
-    return [done.get(j) or _error_stub(j) for j in jobs]
+        print(
+            f"{errors} episode(s) raised an error (see 'ERR' lines under {out_dir / RECORDS}; a re-run retries them)"
+        )
+    return records
 
 
-def _error_stub(job: tuple) -> dict:
-    task, split, adversary, seed = job
-    return dict(
-        task=task,
-        split=split,
-        adversary=adversary,
-        seed=seed,
-        success=False,
-        steps=0,
-        failure_state="ERR",
-        failure_reason="error (see episodes.jsonl)",
-        seconds=0.0,
-        error=True,
-    )
+def _error_stub(task: str, split: str, adversary: str, seed: int) -> dict:
+    return {
+        "task": task,
+        "split": split,
+        "adversary": adversary,
+        "seed": seed,
+        "success": False,
+        "steps": 0,
+        "failure_state": "ERR",
+        "failure_reason": "error or not run (see the record files)",
+        "seconds": 0.0,
+        "error": True,
+    }
 
 
 # ---- summary -------------------------------------------------------------------------------------
@@ -312,28 +222,51 @@ def _short_reason(reason: str) -> str:
     return r if len(r) <= REASON_CHARS else r[: REASON_CHARS - 3] + "..."
 
 
-def target_text(adversary: str) -> str:
-    if adversary in ("random", "held_random", "still"):
-        return "<= 1 in 50 (2%)"
-    return {"blind_replay": "<= 10%", "fixed_view_expert": "<= 5%", "expert": ">= 95%"}[adversary]
+@dataclass(frozen=True)
+class Target:
+    """A bound on an adversary's success rate: a ceiling (``at_least=False``; ``free`` successes are
+    allowed whatever the rate, for small samples) or, for the expert, a floor."""
+
+    rate: float
+    at_least: bool = False
+    free: int = 0
+
+    @property
+    def text(self) -> str:
+        if self.at_least:
+            return f">= {self.rate:.0%}"
+        if self.free:
+            return f"<= {self.free} in {round(self.free / self.rate)} ({self.rate:.0%})"
+        return f"<= {self.rate:.0%}"
+
+    def met(self, successes: int, episodes: int) -> bool:
+        """A row with no finished episode misses its target."""
+        if episodes == 0:
+            return False
+        if self.at_least:
+            return successes >= self.rate * episodes
+        return successes <= max(self.free, self.rate * episodes)
+
+
+LOOK_AT_NOTHING_TARGET = Target(0.02, free=1)  # at most 1 success in 50 episodes
+TARGETS = {
+    "random": LOOK_AT_NOTHING_TARGET,
+    "held_random": LOOK_AT_NOTHING_TARGET,
+    "still": LOOK_AT_NOTHING_TARGET,
+    "blind_replay": Target(0.10),
+    "fixed_view_expert": Target(0.05),
+    "expert": Target(0.95, at_least=True),
+}
+
+
+def target(adversary: str) -> Target:
+    if adversary not in TARGETS:
+        raise ValueError(f"no validity target for adversary {adversary!r}")
+    return TARGETS[adversary]
 
 
 def targets_met(row: dict) -> bool:
-    """The validity targets: look-at-nothing adversaries at most 1 success in up to 50 episodes
-    (2 % beyond), blind replay at most 10 %, the fixed-view expert at most 5 %, the expert at
-    least 95 %. A row with no finished episode misses its target."""
-    n, k, a = row["episodes"], row["successes"], row["adversary"]
-    if n == 0:
-        return False
-    if a in ("random", "held_random", "still"):
-        return k <= 1 if n <= 50 else k <= 0.02 * n
-    if a == "blind_replay":
-        return k <= 0.10 * n
-    if a == "fixed_view_expert":
-        return k <= 0.05 * n
-    if a == "expert":
-        return k >= 0.95 * n
-    raise ValueError(f"no validity target for adversary {a!r}")
+    return target(row["adversary"]).met(row["successes"], row["episodes"])
 
 
 def summarise(records: Iterable[dict]) -> list[dict]:
@@ -350,19 +283,19 @@ def summarise(records: Iterable[dict]) -> list[dict]:
         k = sum(bool(r["success"]) for r in ok)
         states = collections.Counter(r["failure_state"] for r in ok if not r["success"])
         reasons = collections.Counter(_short_reason(r["failure_reason"]) for r in ok if not r["success"])
-        row = dict(
-            task=task,
-            split=split,
-            adversary=adv,
-            episodes=len(ok),
-            successes=k,
-            success_rate=k / len(ok) if ok else float("nan"),
-            errors=len(rs) - len(ok),
-            failure_states=dict(sorted(states.items())),
-            failure_reasons=reasons.most_common(3),
-            seconds_per_episode=sum(r["seconds"] for r in ok) / max(1, len(ok)),
-            target=target_text(adv),
-        )
+        row = {
+            "task": task,
+            "split": split,
+            "adversary": adv,
+            "episodes": len(ok),
+            "successes": k,
+            "success_rate": k / len(ok) if ok else float("nan"),
+            "errors": len(rs) - len(ok),
+            "failure_states": dict(sorted(states.items())),
+            "failure_reasons": reasons.most_common(3),
+            "seconds_per_episode": sum(r["seconds"] for r in ok) / max(1, len(ok)),
+            "target": target(adv).text,
+        }
         row["met"] = targets_met(row)
         rows.append(row)
     return rows

@@ -7,7 +7,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from ..annotations.writer import Intent
-from ..sim import action as A
+from ..sim.action import HEAD_PITCH, TORSO_YAW
 from ..sim.perception import PerceptionMemory
 from ..sim.simulator import ActiveArenaSim
 from .gaze import Gaze
@@ -65,16 +65,16 @@ class ExpertContext:
         return body.xpos.copy(), body.xmat.reshape(3, 3).copy()
 
     def center(self, i: int) -> np.ndarray:
-        p, R = self.pose(i)
-        return p + R @ np.asarray(self.obj(i).center_offset)
+        p, rot = self.pose(i)
+        return p + rot @ np.asarray(self.obj(i).center_offset)
 
     def top_z(self, i: int) -> float:
         return float(self.center(i)[2] + self.obj(i).half_extents[2])
 
     def bottom_z(self, i: int) -> float:
         """Lowest point of the object's bounding box (a carried object may hang tilted)."""
-        p, R = self.pose(i)
-        return float(self.center(i)[2] - np.abs(R[2]) @ np.asarray(self.obj(i).half_extents))
+        p, rot = self.pose(i)
+        return float(self.center(i)[2] - np.abs(rot[2]) @ np.asarray(self.obj(i).half_extents))
 
     def update_memory(self) -> None:
         for i in np.flatnonzero(self.perception.visible):
@@ -83,11 +83,11 @@ class ExpertContext:
     # ---- command -----------------------------------------------------------------------------
     @property
     def yaw(self) -> float:
-        return float(self.action[A.TORSO_YAW])
+        return float(self.action[TORSO_YAW])
 
     @property
     def pitch(self) -> float:
-        return float(self.action[A.HEAD_PITCH])
+        return float(self.action[HEAD_PITCH])
 
     def emit(self) -> np.ndarray:
         self.frame += 1

@@ -8,7 +8,7 @@ import math
 import mujoco
 import numpy as np
 
-from ..sim import embodiment as E
+from ..sim import embodiment
 
 
 def heading_deg(point) -> float:
@@ -20,17 +20,17 @@ class Gaze:
     def __init__(self, model: mujoco.MjModel):
         self.model = model
         self.data = mujoco.MjData(model)
-        self.cam = model.camera(E.HEAD_CAMERA).id
-        self.q_yaw = model.joint(E.TORSO_YAW_JOINT).qposadr[0]
-        self.q_pitch = model.joint(E.HEAD_PITCH_JOINT).qposadr[0]
+        self.cam = model.camera(embodiment.HEAD_CAMERA).id
+        self.q_yaw = model.joint(embodiment.TORSO_YAW_JOINT).qposadr[0]
+        self.q_pitch = model.joint(embodiment.HEAD_PITCH_JOINT).qposadr[0]
 
     def _angles(self, point, yaw: float, pitch: float) -> np.ndarray:
         """(horizontal, vertical) angle of ``point`` off the optical axis, radians."""
         self.data.qpos[self.q_yaw], self.data.qpos[self.q_pitch] = yaw, pitch
         mujoco.mj_kinematics(self.model, self.data)
         mujoco.mj_camlight(self.model, self.data)
-        R = self.data.cam_xmat[self.cam].reshape(3, 3)
-        v = R.T @ (np.asarray(point, float) - self.data.cam_xpos[self.cam])  # camera looks along -z
+        rot = self.data.cam_xmat[self.cam].reshape(3, 3)
+        v = rot.T @ (np.asarray(point, float) - self.data.cam_xpos[self.cam])  # camera looks along -z
         return np.array([math.atan2(v[0], -v[2]), math.atan2(v[1], -v[2])])
 
     def aim(
@@ -42,20 +42,17 @@ class Gaze:
         eps = 1e-4
         for _ in range(iters):
             e = self._angles(point, *x)
-            J = np.stack(
+            jac = np.stack(
                 [
                     (self._angles(point, x[0] + eps, x[1]) - e) / eps,
                     (self._angles(point, x[0], x[1] + eps) - e) / eps,
                 ],
                 axis=1,
             )
-            if fix_yaw:
-                dx = np.array([0.0, -e[1] / J[1, 1]])
-            else:
-                dx = -np.linalg.solve(J, e)
+            dx = np.array([0.0, -e[1] / jac[1, 1]]) if fix_yaw else -np.linalg.solve(jac, e)
             x = x + np.clip(dx, -0.5, 0.5)
-            x[0] = np.clip(x[0], *E.TORSO_YAW_RANGE)
-            x[1] = np.clip(x[1], *E.HEAD_PITCH_RANGE)
+            x[0] = np.clip(x[0], *embodiment.TORSO_YAW_RANGE)
+            x[1] = np.clip(x[1], *embodiment.HEAD_PITCH_RANGE)
             if np.max(np.abs(dx)) < 1e-4:
                 break
         return float(x[0]), float(x[1])

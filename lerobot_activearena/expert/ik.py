@@ -8,10 +8,10 @@ import mink
 import mujoco
 import numpy as np
 
-from ..sim import embodiment as E
+from ..sim import embodiment
 
 
-class IKFailed(RuntimeError):
+class IKError(RuntimeError):
     pass
 
 
@@ -30,18 +30,20 @@ class ArmIK:
 
     def __init__(self):
         spec = mujoco.MjSpec()
-        E.add_robot(spec)
+        embodiment.add_robot(spec)
         self.model = spec.compile()
         self.configuration = mink.Configuration(self.model)
         self._qadr = {
-            s: np.array([self.model.joint(j).qposadr[0] for j in E.ARM_JOINTS[s]]) for s in ("left", "right")
+            s: np.array([self.model.joint(j).qposadr[0] for j in embodiment.ARM_JOINTS[s]])
+            for s in ("left", "right")
         }
         self._dof = {
-            s: [int(self.model.joint(j).dofadr[0]) for j in E.ARM_JOINTS[s]] for s in ("left", "right")
+            s: [int(self.model.joint(j).dofadr[0]) for j in embodiment.ARM_JOINTS[s]]
+            for s in ("left", "right")
         }
         self._other_qadr = {
-            "torso": self.model.joint(E.TORSO_YAW_JOINT).qposadr[0],
-            "head": self.model.joint(E.HEAD_PITCH_JOINT).qposadr[0],
+            "torso": self.model.joint(embodiment.TORSO_YAW_JOINT).qposadr[0],
+            "head": self.model.joint(embodiment.HEAD_PITCH_JOINT).qposadr[0],
         }
         self.limits = [mink.ConfigurationLimit(self.model)]
         self._freeze = {
@@ -50,7 +52,7 @@ class ArmIK:
         }
         self._task = {
             s: mink.FrameTask(
-                E.TCP_SITES[s], "site", position_cost=1.0, orientation_cost=0.5, lm_damping=1e-3
+                embodiment.TCP_SITES[s], "site", position_cost=1.0, orientation_cost=0.5, lm_damping=1e-3
             )
             for s in ("left", "right")
         }
@@ -73,10 +75,10 @@ class ArmIK:
         q[self._other_qadr["torso"]] = torso_yaw
         self.configuration.update(q)
         task = self._task[side]
-        T = mink.SE3.from_rotation_and_translation(
+        target = mink.SE3.from_rotation_and_translation(
             mink.SO3.from_matrix(np.asarray(target_rot)), np.asarray(target_pos)
         )
-        task.set_target(T)
+        task.set_target(target)
         self._posture.set_target(q)
         dt = 0.05
         for _ in range(max_iters):
@@ -93,7 +95,7 @@ class ArmIK:
             err = task.compute_error(self.configuration)
             if np.linalg.norm(err[:3]) < pos_tol and np.linalg.norm(err[3:]) < rot_tol:
                 return self.configuration.q[self._qadr[side]].copy()
-        raise IKFailed(
+        raise IKError(
             f"{side} arm IK did not converge to {np.round(target_pos, 3)} (position error "
             f"{np.linalg.norm(err[:3]) * 1000:.1f} mm, rotation error {np.linalg.norm(err[3:]):.3f} rad)"
         )
@@ -103,7 +105,7 @@ class ArmIK:
         q[self._qadr[side]] = arm_q
         q[self._other_qadr["torso"]] = torso_yaw
         self.configuration.update(q)
-        site = self.configuration.data.site(E.TCP_SITES[side])
+        site = self.configuration.data.site(embodiment.TCP_SITES[side])
         return site.xpos.copy(), site.xmat.reshape(3, 3).copy()
 
 
@@ -113,9 +115,9 @@ def rot_z(angle: float) -> np.ndarray:
     return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], float)
 
 
-def interpolate_pose(p0, R0, p1, R1, s: float) -> tuple[np.ndarray, np.ndarray]:
+def interpolate_pose(p0, rot0, p1, rot1, s: float) -> tuple[np.ndarray, np.ndarray]:
     """Straight-line position and geodesic rotation between two poses, at fraction ``s``."""
-    r0, r1 = mink.SO3.from_matrix(np.asarray(R0)), mink.SO3.from_matrix(np.asarray(R1))
+    r0, r1 = mink.SO3.from_matrix(np.asarray(rot0)), mink.SO3.from_matrix(np.asarray(rot1))
     delta = (r0.inverse() @ r1).log()
-    R = (r0 @ mink.SO3.exp(s * delta)).as_matrix()
-    return (1 - s) * np.asarray(p0) + s * np.asarray(p1), R
+    rot = (r0 @ mink.SO3.exp(s * delta)).as_matrix()
+    return (1 - s) * np.asarray(p0) + s * np.asarray(p1), rot

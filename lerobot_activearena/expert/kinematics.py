@@ -7,9 +7,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..sim import embodiment as E
+from ..sim import embodiment
 from .gaze import Gaze, heading_deg
-from .ik import ArmIK, IKFailed, grasp_rotation
+from .ik import ArmIK, IKError, grasp_rotation
 
 ARM_TORSO_OFFSET_DEG = 15.0  # torso turns this far past the object so it sits in front of the arm
 
@@ -22,7 +22,7 @@ def shared_kinematics() -> tuple[ArmIK, Gaze]:
 
 def torso_yaw_for_arm(point, side: str) -> float:
     offset = -ARM_TORSO_OFFSET_DEG if side == "left" else ARM_TORSO_OFFSET_DEG
-    return float(np.clip(math.radians(heading_deg(point) - 90.0 + offset), *E.TORSO_YAW_RANGE))
+    return float(np.clip(math.radians(heading_deg(point) - 90.0 + offset), *embodiment.TORSO_YAW_RANGE))
 
 
 def top_down_reachable(point, side: str, heights=(0.0, 0.10)) -> bool:
@@ -34,11 +34,18 @@ def top_down_reachable(point, side: str, heights=(0.0, 0.10)) -> bool:
     radial = np.array([point[0], point[1], 0.0]) / np.linalg.norm(point[:2])
     closing = np.array([-radial[1], radial[0], 0.0])
     for sign in (1.0, -1.0):
-        R = grasp_rotation([0, 0, -1], sign * closing)
+        rot = grasp_rotation([0, 0, -1], sign * closing)
         try:
             for h in heights:
-                ik.solve(side, E.HOME_ARM[side], yaw, np.asarray(point, float) + [0, 0, h], R, max_iters=400)
+                ik.solve(
+                    side,
+                    embodiment.HOME_ARM[side],
+                    yaw,
+                    np.asarray(point, float) + [0, 0, h],
+                    rot,
+                    max_iters=400,
+                )
             return True
-        except IKFailed:
+        except IKError:
             continue
     return False

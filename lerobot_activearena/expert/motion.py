@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ..sim import action as A
+from ..sim.action import LEFT_ARM, LEFT_GRIPPER, RIGHT_ARM, RIGHT_GRIPPER
 
 CONTROL_DT = 1.0 / 15
 
@@ -56,7 +56,7 @@ def with_arm(
     base: np.ndarray, side: str, arm_q: np.ndarray | None = None, gripper: float | None = None
 ) -> np.ndarray:
     a = np.asarray(base, float).copy()
-    sl, g = (A.LEFT_ARM, A.LEFT_GRIPPER) if side == "left" else (A.RIGHT_ARM, A.RIGHT_GRIPPER)
+    sl, g = (LEFT_ARM, LEFT_GRIPPER) if side == "left" else (RIGHT_ARM, RIGHT_GRIPPER)
     if arm_q is not None:
         a[sl] = arm_q
     if gripper is not None:
@@ -65,8 +65,8 @@ def with_arm(
 
 
 def arm_of(action: np.ndarray, side: str) -> np.ndarray:
-    return np.asarray(action)[A.LEFT_ARM if side == "left" else A.RIGHT_ARM].copy()
+    return np.asarray(action)[LEFT_ARM if side == "left" else RIGHT_ARM].copy()
 
 
 def gripper_index(side: str) -> int:
-    return A.LEFT_GRIPPER if side == "left" else A.RIGHT_GRIPPER
+    return LEFT_GRIPPER if side == "left" else RIGHT_GRIPPER

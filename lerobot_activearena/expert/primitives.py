@@ -24,19 +24,20 @@ from ..annotations.schema import (
     STAGE_ANCHOR,
     STAGE_SEARCH,
 )
-from ..sim import action as A, embodiment as E
+from ..sim import embodiment
+from ..sim.action import HEAD_PITCH, TORSO_YAW
 from ..sim.head_camera import SEARCH_PITCH, SEARCH_VIEWS
 from .context import ExpertContext, ExpertError
 from .gaze import heading_deg
-from .ik import IKFailed, grasp_rotation, interpolate_pose, rot_z
+from .ik import IKError, grasp_rotation, interpolate_pose, rot_z
 from .kinematics import torso_yaw_for_arm
 from .motion import CONTROL_DT, arm_of, gripper_index, interpolate_joints, trapezoid, with_arm
 
 Actions = Iterator[np.ndarray]
 
 SECTOR_YAWS = tuple(yaw for yaw, _ in SEARCH_VIEWS)  # torso yaw of each search sector
-TORSO_VMAX, TORSO_AMAX = E.TORSO_LIMITS  # the paper's 2.5 rad/s, 10 rad/s^2
-HEAD_VMAX, HEAD_AMAX = E.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^2
+TORSO_VMAX, TORSO_AMAX = embodiment.TORSO_LIMITS  # the paper's 2.5 rad/s, 10 rad/s^2
+HEAD_VMAX, HEAD_AMAX = embodiment.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^2
 FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
 GRASP_Z_MIN_ABOVE_BOTTOM = 0.033  # open pads reach 0.028 m past the TCP: keep them off the table
 
@@ -47,8 +48,8 @@ def move_head_torso_to(
 ) -> Iterator[np.ndarray]:
     """Turn torso and head together to (yaw, pitch); returns True if ``stop_when`` fired."""
     y0, p0 = ctx.yaw, ctx.pitch
-    yaw = float(np.clip(yaw, *E.TORSO_YAW_RANGE))
-    pitch = float(np.clip(pitch, *E.HEAD_PITCH_RANGE))
+    yaw = float(np.clip(yaw, *embodiment.TORSO_YAW_RANGE))
+    pitch = float(np.clip(pitch, *embodiment.HEAD_PITCH_RANGE))
     sy = trapezoid(yaw - y0, TORSO_VMAX, TORSO_AMAX)
     sp = trapezoid(pitch - p0, HEAD_VMAX, HEAD_AMAX)
     s = sy if len(sy) >= len(sp) else sp
@@ -56,8 +57,8 @@ def move_head_torso_to(
     ctx.intent.camera_target_theta = 90.0 + math.degrees(yaw)
     fired = False
     for sk in s:
-        ctx.action[A.TORSO_YAW] = y0 + sk * (yaw - y0)
-        ctx.action[A.HEAD_PITCH] = p0 + sk * (pitch - p0)
+        ctx.action[TORSO_YAW] = y0 + sk * (yaw - y0)
+        ctx.action[HEAD_PITCH] = p0 + sk * (pitch - p0)
         yield ctx.emit()
         if stop_when is not None and stop_when():
             fired = True
@@ -72,7 +73,7 @@ def move_head_torso_to(
 def settle(ctx: ExpertContext, tol: float = 0.015, max_steps: int = 12) -> Actions:
     """Hold the command until torso and head have caught up with it (the drives lag the profile)."""
     for _ in range(max_steps):
-        err = np.abs(ctx.sim.state()[[A.TORSO_YAW, A.HEAD_PITCH]] - ctx.action[[A.TORSO_YAW, A.HEAD_PITCH]])
+        err = np.abs(ctx.sim.state()[[TORSO_YAW, HEAD_PITCH]] - ctx.action[[TORSO_YAW, HEAD_PITCH]])
         if err.max() < tol:
             return
         yield ctx.emit()
@@ -175,17 +176,17 @@ def solve_ik(ctx: ExpertContext, side: str, q_seed, pos, rot, max_step: float | 
     another branch would whip the arm and what it holds)."""
     try:
         return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot)
-    except IKFailed:
+    except IKError:
         pass
     try:
-        q = ctx.ik.solve(side, E.HOME_ARM[side], ctx.yaw, pos, rot, max_iters=800)
+        q = ctx.ik.solve(side, embodiment.HOME_ARM[side], ctx.yaw, pos, rot, max_iters=800)
         if max_step is None or np.abs(q - np.asarray(q_seed)).max() <= max_step:
             return q
-    except IKFailed:
+    except IKError:
         pass
     try:  # near-converged (a few mm) is fine along a path; endpoints are re-checked by physics
         return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot, max_iters=400, pos_tol=8e-3, rot_tol=5e-2)
-    except IKFailed as exc:
+    except IKError as exc:
         raise ExpertError(str(exc)) from exc
 
 
@@ -216,14 +217,14 @@ def arm_line(
 ) -> Actions:
     """Straight TCP segment with a smooth (cosine) speed profile peaking at ``speed`` m/s."""
     ctx.intent.camera_mode = CAMERA_HOLD
-    p0, R0 = tcp_pose(ctx, side)
+    p0, rot0 = tcp_pose(ctx, side)
     dist = float(np.linalg.norm(np.asarray(pos) - p0))
     n = max(3, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))))
     q = arm_of(ctx.action, side)
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
-        pk, Rk = interpolate_pose(p0, R0, pos, rot, s)
-        q = solve_ik(ctx, side, q, pk, Rk, max_step=MAX_PATH_STEP)
+        pk, rot_k = interpolate_pose(p0, rot0, pos, rot, s)
+        q = solve_ik(ctx, side, q, pk, rot_k, max_step=MAX_PATH_STEP)
         ctx.action = with_arm(ctx.action, side, q, gripper)
         yield ctx.emit()
 
@@ -239,17 +240,18 @@ def set_gripper(ctx: ExpertContext, side: str, value: float, steps: int) -> Acti
 def top_down_rotation(ctx: ExpertContext, side: str, closing, *positions) -> np.ndarray:
     """Gripper pointing down with fingers closing along +/-``closing``: the sign nearest the current
     wrist with which IK reaches every one of ``positions``."""
-    _, R_now = tcp_pose(ctx, side)
+    _, rot_now = tcp_pose(ctx, side)
     c = np.array([closing[0], closing[1], 0.0])
     c /= np.linalg.norm(c)
     cands = sorted(
-        [grasp_rotation([0, 0, -1], c), grasp_rotation([0, 0, -1], -c)], key=lambda R: -np.trace(R_now.T @ R)
+        [grasp_rotation([0, 0, -1], c), grasp_rotation([0, 0, -1], -c)],
+        key=lambda r: -np.trace(rot_now.T @ r),
     )
-    for R in cands:
+    for rot in cands:
         try:
             for pos in positions:
-                solve_ik(ctx, side, arm_of(ctx.action, side), pos, R)
-            return R
+                solve_ik(ctx, side, arm_of(ctx.action, side), pos, rot)
+            return rot
         except ExpertError:
             continue
     raise ExpertError(f"{side} arm cannot reach top-down poses at {np.round(positions, 3).tolist()}")
@@ -264,12 +266,12 @@ def radial_tangent(point) -> np.ndarray:
 def box_closing_axis(ctx: ExpertContext, i: int, prefer_y: bool = False) -> np.ndarray:
     """Finger-closing axis for a box-like object: the body axis nearest the tangential direction
     (or its body y axis with ``prefer_y``, which keeps the +x face free)."""
-    p, R = ctx.pose(i)
+    p, rot = ctx.pose(i)
     if prefer_y:
-        return R[:, 1]
+        return rot[:, 1]
     radial = np.array([p[0], p[1], 0.0]) / np.linalg.norm(p[:2])
     tangential = np.array([-radial[1], radial[0], 0.0])
-    return max((R[:, 0], R[:, 1]), key=lambda ax: abs(ax @ tangential))
+    return max((rot[:, 0], rot[:, 1]), key=lambda ax: abs(ax @ tangential))
 
 
 def start_action(ctx: ExpertContext, targets: set[int]) -> None:
@@ -284,8 +286,8 @@ def grasp_point(ctx: ExpertContext, i: int) -> np.ndarray:
     open pads stay off the table."""
     local = ctx.obj(i).extra.get("grasp_point")
     if local is not None:
-        p, R = ctx.pose(i)
-        return p + R @ np.asarray(local, float)
+        p, rot = ctx.pose(i)
+        return p + rot @ np.asarray(local, float)
     c = ctx.center(i)
     return np.array([c[0], c[1], max(c[2], ctx.bottom_z(i) + GRASP_Z_MIN_ABOVE_BOTTOM)])
 
@@ -299,29 +301,31 @@ def pick(
     closing = box_closing_axis(ctx, i) if closing is None else closing
     grasp = grasp_point(ctx, i)
     if flip_ok:
-        R = top_down_rotation(ctx, side, closing, grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift])
+        rot = top_down_rotation(ctx, side, closing, grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift])
     else:
-        R = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
+        rot = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
     z0 = ctx.bottom_z(i)
-    yield from arm_goto(ctx, side, grasp + [0, 0, 0.12], R, gripper=1.0)
-    yield from arm_line(ctx, side, grasp, R, 1.0, speed=0.18)
+    yield from arm_goto(ctx, side, grasp + [0, 0, 0.12], rot, gripper=1.0)
+    yield from arm_line(ctx, side, grasp, rot, 1.0, speed=0.18)
     yield from set_gripper(ctx, side, 0.0, 10)
     ctx.intent.carried = {i}
-    yield from arm_line(ctx, side, grasp + [0, 0, lift], R, 0.0, speed=0.2)
+    yield from arm_line(ctx, side, grasp + [0, 0, lift], rot, 0.0, speed=0.2)
     if ctx.bottom_z(i) - z0 < 0.5 * lift:
         raise ExpertError(f"grasp of {ctx.objects[i]} failed: it rose {100 * (ctx.bottom_z(i) - z0):.1f} cm")
 
 
-def _feasible_rotation(ctx: ExpertContext, side: str, R: np.ndarray, positions, yaw_free: bool) -> np.ndarray:
-    """``R``, or (when the carried object is symmetric enough, ``yaw_free``) R turned about the
+def _feasible_rotation(
+    ctx: ExpertContext, side: str, rot: np.ndarray, positions, yaw_free: bool
+) -> np.ndarray:
+    """``rot``, or (when the carried object is symmetric enough, ``yaw_free``) rot turned about the
     vertical by 90/-90/180 deg: the first with which IK reaches all ``positions``."""
     turns = (0.0, math.pi / 2, -math.pi / 2, math.pi) if yaw_free else (0.0,)
     for th in turns:
-        Rz = rot_z(th)
+        turn_rot = rot_z(th)
         try:
             for pos in positions:
-                solve_ik(ctx, side, arm_of(ctx.action, side), pos, Rz @ R)
-            return Rz @ R
+                solve_ik(ctx, side, arm_of(ctx.action, side), pos, turn_rot @ rot)
+            return turn_rot @ rot
         except ExpertError:
             continue
     raise ExpertError(f"{side} arm cannot reach the placement poses {np.round(positions, 3).tolist()}")
@@ -337,23 +341,23 @@ def place(
     yaw_free: bool = True,
 ) -> Actions:
     """Carry object ``i`` over ``target_xy``, lower its bottom to ``surface_z + clearance``, release, rise."""
-    p, R = tcp_pose(ctx, side)
+    p, rot = tcp_pose(ctx, side)
     c = ctx.center(i)
-    offset = R.T @ np.array([*(p[:2] - c[:2]), 0.0])  # TCP offset from the object centre, gripper frame
+    offset = rot.T @ np.array([*(p[:2] - c[:2]), 0.0])  # TCP offset from the object centre, gripper frame
     tcp_above_bottom = p[2] - ctx.bottom_z(i)
 
-    def tcp_for(Rg, z):
-        off = Rg @ offset
+    def tcp_for(grip_rot, z):
+        off = grip_rot @ offset
         return np.array([target_xy[0] + off[0], target_xy[1] + off[1], z])
 
     z_down = surface_z + clearance + tcp_above_bottom
     z_above = max(z_down + 0.10, p[2])
-    Rg = _feasible_rotation(ctx, side, R, [tcp_for(R, z_above), tcp_for(R, z_down)], yaw_free)
-    yield from arm_line(ctx, side, tcp_for(Rg, z_above), Rg, 0.0, speed=0.25)
-    yield from arm_line(ctx, side, tcp_for(Rg, z_down), Rg, 0.0, speed=0.12)
+    grip_rot = _feasible_rotation(ctx, side, rot, [tcp_for(rot, z_above), tcp_for(rot, z_down)], yaw_free)
+    yield from arm_line(ctx, side, tcp_for(grip_rot, z_above), grip_rot, 0.0, speed=0.25)
+    yield from arm_line(ctx, side, tcp_for(grip_rot, z_down), grip_rot, 0.0, speed=0.12)
     yield from set_gripper(ctx, side, 1.0, 6)
     ctx.intent.carried = set()
-    yield from arm_line(ctx, side, tcp_for(Rg, z_down + 0.10), Rg, 1.0, speed=0.2)
+    yield from arm_line(ctx, side, tcp_for(grip_rot, z_down + 0.10), grip_rot, 1.0, speed=0.2)
 
 
 def press(
@@ -365,22 +369,22 @@ def press(
     radial = np.array([point[0], point[1], 0.0]) / np.linalg.norm(point[:2])
     touch = np.asarray(point, float) + [0, 0, FINGERTIP_CLOSED]
     stroke = (touch + [0, 0, approach], touch - [0, 0, depth])
-    R = None
+    rot = None
     for turn in np.radians([0.0, 30.0, -30.0, 60.0, -60.0, 90.0]):
         c, s = math.cos(turn), math.sin(turn)
         closing = [-radial[1] * c - radial[0] * s, radial[0] * c - radial[1] * s, 0.0]
         try:
-            R = top_down_rotation(ctx, side, closing, *stroke)
+            rot = top_down_rotation(ctx, side, closing, *stroke)
             break
         except ExpertError:
             continue
-    if R is None:
+    if rot is None:
         raise ExpertError(f"{side} arm cannot press at {np.round(point, 3).tolist()}")
     yield from set_gripper(ctx, side, 0.0, 6)
-    yield from arm_goto(ctx, side, stroke[0], R, gripper=0.0)
-    yield from arm_line(ctx, side, stroke[1], R, 0.0, speed=0.06)
+    yield from arm_goto(ctx, side, stroke[0], rot, gripper=0.0)
+    yield from arm_line(ctx, side, stroke[1], rot, 0.0, speed=0.06)
     yield from hold(ctx, 4)
-    yield from arm_line(ctx, side, stroke[0], R, 0.0, speed=0.1)
+    yield from arm_line(ctx, side, stroke[0], rot, 0.0, speed=0.1)
 
 
 def carry_and_turn(
@@ -389,14 +393,14 @@ def carry_and_turn(
     """Move the TCP in a straight line to ``pos`` while turning it about the vertical by ``angle``
     rad (one smooth motion, as long as the slower of the two)."""
     ctx.intent.camera_mode = CAMERA_HOLD
-    p0, R0 = tcp_pose(ctx, side)
+    p0, rot0 = tcp_pose(ctx, side)
     dist = float(np.linalg.norm(np.asarray(pos) - p0))
     n = max(4, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))), int(abs(angle) * steps_per_rad))
     q = arm_of(ctx.action, side)
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
         q = solve_ik(
-            ctx, side, q, p0 + s * (np.asarray(pos) - p0), rot_z(s * angle) @ R0, max_step=MAX_PATH_STEP
+            ctx, side, q, p0 + s * (np.asarray(pos) - p0), rot_z(s * angle) @ rot0, max_step=MAX_PATH_STEP
         )
         ctx.action = with_arm(ctx.action, side, q)
         yield ctx.emit()
@@ -405,7 +409,7 @@ def carry_and_turn(
 def retreat(ctx: ExpertContext, side: str) -> Actions:
     """Lift clear and return the arm to its home configuration, gripper open."""
     ctx.intent.camera_mode = CAMERA_HOLD
-    yield from move_arm_joint(ctx, side, E.HOME_ARM[side], gripper=1.0, max_vel=1.6)
+    yield from move_arm_joint(ctx, side, embodiment.HOME_ARM[side], gripper=1.0, max_vel=1.6)
 
 
 def arm_for(point, then=None) -> str:

@@ -7,7 +7,7 @@ from collections.abc import Generator
 
 import numpy as np
 
-from . import primitives as P
+from . import primitives
 from .context import ExpertContext
 
 
@@ -17,9 +17,9 @@ def find_and_face(
     """Search for object ``i`` (from memory or by sector sweep), choose the arm (``side``, or the one
     on the object's half of the fan; with a known destination ``then``, the half of the midpoint)
     and turn the torso so the object sits in front of it. Returns the arm: ``side = yield from ...``."""
-    yield from P.search(ctx, i, center=False)
-    side = side or P.arm_for(ctx.memory[i], then)
-    yield from P.face_for_arm(ctx, ctx.memory[i], side)
+    yield from primitives.search(ctx, i, center=False)
+    side = side or primitives.arm_for(ctx.memory[i], then)
+    yield from primitives.face_for_arm(ctx, ctx.memory[i], side)
     return side
 
 
@@ -39,18 +39,18 @@ def press_point(ctx: ExpertContext, i: int) -> np.ndarray:
     extra = ctx.obj(i).extra
     if "press_body" in extra:
         body = ctx.sim.data.body(extra["press_body"])
-        pos, R = body.xpos.copy(), body.xmat.reshape(3, 3).copy()
+        pos, rot = body.xpos.copy(), body.xmat.reshape(3, 3).copy()
     else:
-        pos, R = ctx.pose(i)
-    return pos + R @ np.asarray(extra["press_point"])
+        pos, rot = ctx.pose(i)
+    return pos + rot @ np.asarray(extra["press_point"])
 
 
 def press_object(ctx: ExpertContext, side: str, i: int, depth: float):
     """Closed fingertips pressed ``depth`` m into object ``i``'s press point, then lifted off."""
-    yield from P.press(ctx, side, press_point(ctx, i), depth=depth, targets={i})
+    yield from primitives.press(ctx, side, press_point(ctx, i), depth=depth, targets={i})
 
 
 def finish(ctx: ExpertContext, side: str, hold: int = 3):
     """Return the arm home with the gripper open, then hold still."""
-    yield from P.retreat(ctx, side)
-    yield from P.hold(ctx, hold)
+    yield from primitives.retreat(ctx, side)
+    yield from primitives.hold(ctx, hold)

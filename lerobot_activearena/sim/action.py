@@ -42,7 +42,7 @@ class ClipReport:
     def as_dict(self) -> dict[str, tuple[float, float]]:
         return {
             ACTION_NAMES[i]: (float(r), float(a))
-            for i, r, a in zip(self.indices, self.requested, self.applied)
+            for i, r, a in zip(self.indices, self.requested, self.applied, strict=True)
         }
 
 

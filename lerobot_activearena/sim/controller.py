@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import action as A
+from .action import ACTION_DIM, HEAD_PITCH, LEFT_ARM, RIGHT_ARM, TORSO_YAW
 from .embodiment import HEAD_LIMITS, TORSO_LIMITS
 
 
@@ -41,14 +41,14 @@ class JointTargetController:
 
     def __init__(self, substeps: int, dt: float):
         self.substeps, self.dt = substeps, dt
-        self.prev = np.zeros(A.ACTION_DIM)
+        self.prev = np.zeros(ACTION_DIM)
         self.torso = RateLimitedAxis(*TORSO_LIMITS, 0.0)
         self.head = RateLimitedAxis(*HEAD_LIMITS, 0.0)
 
     def reset(self, state18: np.ndarray) -> None:
         self.prev = np.asarray(state18, float).copy()
-        self.torso.reset(state18[A.TORSO_YAW])
-        self.head.reset(state18[A.HEAD_PITCH])
+        self.torso.reset(state18[TORSO_YAW])
+        self.head.reset(state18[HEAD_PITCH])
 
     def reference_velocity(self) -> tuple[float, float]:
         """Velocity of the torso-yaw and head-pitch references (rad/s), the drives' velocity targets."""
@@ -60,9 +60,9 @@ class JointTargetController:
         for k in range(1, self.substeps + 1):
             ref = target.copy()
             alpha = k / self.substeps
-            for sl in (A.LEFT_ARM, A.RIGHT_ARM):
+            for sl in (LEFT_ARM, RIGHT_ARM):
                 ref[sl] = start[sl] + alpha * (target[sl] - start[sl])
-            ref[A.TORSO_YAW] = self.torso.step(target[A.TORSO_YAW], self.dt)
-            ref[A.HEAD_PITCH] = self.head.step(target[A.HEAD_PITCH], self.dt)
+            ref[TORSO_YAW] = self.torso.step(target[TORSO_YAW], self.dt)
+            ref[HEAD_PITCH] = self.head.step(target[HEAD_PITCH], self.dt)
             yield ref
         self.prev = target.copy()

@@ -190,10 +190,10 @@ def _forward_left_up_camera_quat(rpy) -> np.ndarray:
     y left, z up, the paper's convention) has roll-pitch-yaw ``rpy`` in its parent."""
     q = np.zeros(4)
     mujoco.mju_euler2Quat(q, np.asarray(rpy, float), "XYZ")
-    R = np.zeros(9)
-    mujoco.mju_quat2Mat(R, q)
-    R = R.reshape(3, 3)
-    mj = np.stack([-R[:, 1], R[:, 2], -R[:, 0]], axis=1)  # right = -left, up = up, back = -forward
+    rot = np.zeros(9)
+    mujoco.mju_quat2Mat(rot, q)
+    rot = rot.reshape(3, 3)
+    mj = np.stack([-rot[:, 1], rot[:, 2], -rot[:, 0]], axis=1)  # right = -left, up = up, back = -forward
     out = np.zeros(4)
     mujoco.mju_mat2Quat(out, mj.reshape(-1))
     return out
@@ -326,7 +326,7 @@ def _add_actuators(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
     # Torso and head drives track the reference's position AND velocity (a PD drive with a velocity
     # target, as SAPIEN's joint drives): a position actuator (stiffness) plus a velocity actuator
     # (damping) whose control is the rate-limited reference's velocity.
-    for joint, (kp, kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
+    for joint, (kp, _kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
         _position_actuator(spec, joint, joint, kp, 0.0)
     for side in ("left", "right"):
         _position_actuator(
@@ -336,7 +336,7 @@ def _add_actuators(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
             *GRIPPER_GAINS,
             force=GRIPPER_FORCE * GRIPPER_FINGER_LEVER,
         )
-    for joint, (kp, kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
+    for joint, (_kp, kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
         a = spec.add_actuator()
         a.name, a.target, a.trntype = f"{joint}_velocity", joint, mujoco.mjtTrn.mjTRN_JOINT
         a.set_to_velocity(kv=kv)

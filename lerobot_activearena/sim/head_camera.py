@@ -7,19 +7,21 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from . import embodiment as E
+from . import embodiment
 from .assets.base import ObjectInfo
 from .scene import HEAD_HEIGHT, HEAD_WIDTH
 from .visibility import VisibilityChecker, surface_point_visible
 
-HEAD_BODY = f"{E.PREFIX}head_link_2"  # the camera's own body: never an occluder
+HEAD_BODY = f"{embodiment.PREFIX}head_link_2"  # the camera's own body: never an occluder
 SEARCH_PITCH = 1.0  # rad: the home pitch
 # (torso yaw, head pitch) of the three search sectors: headings 90, 36 and 144 deg
 SEARCH_VIEWS = ((0.0, SEARCH_PITCH), (-0.95, SEARCH_PITCH), (0.95, SEARCH_PITCH))
 
 
 def head_visibility_checker(model: mujoco.MjModel, objects: list[ObjectInfo]) -> VisibilityChecker:
-    return VisibilityChecker(model, objects, E.HEAD_CAMERA, HEAD_WIDTH, HEAD_HEIGHT, exclude_body=HEAD_BODY)
+    return VisibilityChecker(
+        model, objects, embodiment.HEAD_CAMERA, HEAD_WIDTH, HEAD_HEIGHT, exclude_body=HEAD_BODY
+    )
 
 
 def hidden_face_visible(model: mujoco.MjModel, data: mujoco.MjData, info: ObjectInfo) -> bool:
@@ -32,7 +34,7 @@ def hidden_face_visible(model: mujoco.MjModel, data: mujoco.MjData, info: Object
     return surface_point_visible(
         model,
         data,
-        model.camera(E.HEAD_CAMERA).id,
+        model.camera(embodiment.HEAD_CAMERA).id,
         point,
         normal,
         model.geom(info.extra["face_geom"]).id,

@@ -8,7 +8,20 @@ import logging
 import mujoco
 import numpy as np
 
-from . import action as A, embodiment as E
+from . import embodiment
+from .action import (
+    ACTION_DIM,
+    GRIPPER_INDICES,
+    HEAD_PITCH,
+    LEFT_ARM,
+    LEFT_GRIPPER,
+    RIGHT_ARM,
+    RIGHT_GRIPPER,
+    TORSO_YAW,
+    ClipReport,
+    clip_action,
+    validate_action,
+)
 from .camera import cam2world_gl, extrinsic_cv, intrinsics
 from .controller import JointTargetController
 from .gl_backend import rendering_error
@@ -29,8 +42,8 @@ class ActiveArenaSim:
             raise ValueError("model timestep must be 1/(15*SUBSTEPS) s")
         robot = info.robot
         # Action entries that are joint angles (all but the grippers) and their qpos addresses.
-        self._grip_idx = np.array(A.GRIPPER_INDICES)
-        self._joint_idx = np.array([i for i in range(A.ACTION_DIM) if i not in A.GRIPPER_INDICES])
+        self._grip_idx = np.array(GRIPPER_INDICES)
+        self._joint_idx = np.array([i for i in range(ACTION_DIM) if i not in GRIPPER_INDICES])
         self._joint_qadr = np.array([model.joint(j).qposadr[0] for j in robot.actuated_joints])
         # Gripper joint addresses per side: the active joint first, then its followers with coefficients.
         self._grip_qadr = np.array(
@@ -38,44 +51,50 @@ class ActiveArenaSim:
         )
         self._finger_qadr = np.array(
             [
-                [model.joint(f"{E.PREFIX}gripper_{s}_joint_{n}").qposadr[0] for n, _ in E.GRIPPER_COUPLING]
+                [
+                    model.joint(f"{embodiment.PREFIX}gripper_{s}_joint_{n}").qposadr[0]
+                    for n, _ in embodiment.GRIPPER_COUPLING
+                ]
                 for s in ("left", "right")
             ]
         )
-        self._finger_coef = np.array([c for _, c in E.GRIPPER_COUPLING])
+        self._finger_coef = np.array([c for _, c in embodiment.GRIPPER_COUPLING])
         act = [model.actuator(j).id for j in robot.actuated_joints]
-        grip = [model.actuator(f"{E.PREFIX}gripper_{s}").id for s in ("left", "right")]
+        grip = [model.actuator(f"{embodiment.PREFIX}gripper_{s}").id for s in ("left", "right")]
         # action index -> actuator index
         self._act_of_action = np.array(act[:7] + [grip[0]] + act[7:14] + [grip[1]] + act[14:16])
         # velocity actuators of torso yaw and head pitch (control: the reference's velocity)
         self._vel_act = np.array(
-            [model.actuator(f"{j}_velocity").id for j in (E.TORSO_YAW_JOINT, E.HEAD_PITCH_JOINT)]
+            [
+                model.actuator(f"{j}_velocity").id
+                for j in (embodiment.TORSO_YAW_JOINT, embodiment.HEAD_PITCH_JOINT)
+            ]
         )
-        self.action_low = np.zeros(A.ACTION_DIM)
-        self.action_high = np.ones(A.ACTION_DIM)
+        self.action_low = np.zeros(ACTION_DIM)
+        self.action_high = np.ones(ACTION_DIM)
         ranges = np.array([model.joint(j).range for j in robot.actuated_joints])
         self.action_low[self._joint_idx], self.action_high[self._joint_idx] = ranges[:, 0], ranges[:, 1]
         self.controller = JointTargetController(SUBSTEPS, model.opt.timestep)
-        self.head_cam_id = model.camera(E.HEAD_CAMERA).id
+        self.head_cam_id = model.camera(embodiment.HEAD_CAMERA).id
         self.head_K = intrinsics(float(model.cam_fovy[self.head_cam_id]), HEAD_WIDTH, HEAD_HEIGHT)
         self._renderers: dict[tuple[int, int], mujoco.Renderer] = {}
         self.visibility_checker = head_visibility_checker(model, info.objects)
-        self.last_clip: A.ClipReport | None = None
+        self.last_clip: ClipReport | None = None
         self.clip_count = 0
         self.reset()
 
     # ---- state -------------------------------------------------------------------------------
     def home_action(self) -> np.ndarray:
-        a = np.zeros(A.ACTION_DIM)
-        a[A.LEFT_ARM], a[A.RIGHT_ARM] = E.HOME_ARM["left"], E.HOME_ARM["right"]
-        a[A.LEFT_GRIPPER] = a[A.RIGHT_GRIPPER] = 1.0
-        a[A.TORSO_YAW], a[A.HEAD_PITCH] = E.HOME_TORSO_YAW, E.HOME_HEAD_PITCH
+        a = np.zeros(ACTION_DIM)
+        a[LEFT_ARM], a[RIGHT_ARM] = embodiment.HOME_ARM["left"], embodiment.HOME_ARM["right"]
+        a[LEFT_GRIPPER] = a[RIGHT_GRIPPER] = 1.0
+        a[TORSO_YAW], a[HEAD_PITCH] = embodiment.HOME_TORSO_YAW, embodiment.HOME_HEAD_PITCH
         return a
 
     def reset(self, start: np.ndarray | None = None) -> None:
         """Objects at their spawn poses, robot at ``start`` (default: home) with matching targets."""
         mujoco.mj_resetData(self.model, self.data)
-        start = self.home_action() if start is None else A.validate_action(start)
+        start = self.home_action() if start is None else validate_action(start)
         self._set_joint_state(start)
         self.data.ctrl[:] = self._ctrl_from_reference(start)
         self.controller.reset(start)
@@ -89,12 +108,14 @@ class ActiveArenaSim:
 
     @staticmethod
     def _gripper_to_joint(g):
-        return E.GRIPPER_CLOSED_RAD * (1.0 - np.asarray(g))
+        return embodiment.GRIPPER_CLOSED_RAD * (1.0 - np.asarray(g))
 
     def state(self) -> np.ndarray:
-        s = np.zeros(A.ACTION_DIM)
+        s = np.zeros(ACTION_DIM)
         s[self._joint_idx] = self.data.qpos[self._joint_qadr]
-        s[self._grip_idx] = np.clip(1.0 - self.data.qpos[self._grip_qadr] / E.GRIPPER_CLOSED_RAD, 0.0, 1.0)
+        s[self._grip_idx] = np.clip(
+            1.0 - self.data.qpos[self._grip_qadr] / embodiment.GRIPPER_CLOSED_RAD, 0.0, 1.0
+        )
         return s
 
     # ---- control -----------------------------------------------------------------------------
@@ -105,11 +126,11 @@ class ActiveArenaSim:
         ctrl[self._act_of_action[self._grip_idx]] = self._gripper_to_joint(ref[self._grip_idx])
         return ctrl
 
-    def step(self, action) -> A.ClipReport:
+    def step(self, action) -> ClipReport:
         """Apply one 15 Hz action (absolute joint targets). Out-of-range entries are clipped to the
         joint limits and reported in the returned ``ClipReport`` (and logged)."""
-        a = A.validate_action(action)
-        a, report = A.clip_action(a, self.action_low, self.action_high)
+        a = validate_action(action)
+        a, report = clip_action(a, self.action_low, self.action_high)
         if report.any:
             self.clip_count += 1
             (log.warning if self.clip_count == 1 else log.debug)(
@@ -144,7 +165,7 @@ class ActiveArenaSim:
         if not self.info.wrist_cameras:
             raise ValueError("wrist cameras are off; build the scene with SceneBuilder(wrist_cameras=True)")
         r = self._renderer(WRIST_WIDTH, WRIST_HEIGHT)
-        r.update_scene(self.data, camera=E.WRIST_CAMERAS[side])
+        r.update_scene(self.data, camera=embodiment.WRIST_CAMERAS[side])
         return r.render()
 
     def head_camera(self) -> dict[str, np.ndarray]:
@@ -157,7 +178,7 @@ class ActiveArenaSim:
     def end_effector_poses(self) -> dict[str, np.ndarray]:
         """TCP position and orientation quaternion (w, x, y, z) per arm."""
         out = {}
-        for side, site in E.TCP_SITES.items():
+        for side, site in embodiment.TCP_SITES.items():
             q = np.zeros(4)
             mujoco.mju_mat2Quat(q, self.data.site(site).xmat)
             out[side] = np.concatenate([self.data.site(site).xpos, q])

@@ -44,22 +44,21 @@ def _fibonacci_sphere(n: int) -> np.ndarray:
 def geom_surface_samples(model: mujoco.MjModel, gid: int, n: int = SAMPLES_PER_GEOM) -> np.ndarray:
     """Points on a geom's surface, in the geom frame."""
     t, size = int(model.geom_type[gid]), model.geom_size[gid]
-    G = mujoco.mjtGeom
-    if t == int(G.mjGEOM_BOX):
+    if t == int(mujoco.mjtGeom.mjGEOM_BOX):
         d = _fibonacci_sphere(n)
         return d / np.max(np.abs(d) / size, axis=1, keepdims=True)
-    if t == int(G.mjGEOM_SPHERE):
+    if t == int(mujoco.mjtGeom.mjGEOM_SPHERE):
         return _fibonacci_sphere(n) * size[0]
-    if t == int(G.mjGEOM_ELLIPSOID):
+    if t == int(mujoco.mjtGeom.mjGEOM_ELLIPSOID):
         return _fibonacci_sphere(n) * size
-    if t in (int(G.mjGEOM_CYLINDER), int(G.mjGEOM_CAPSULE)):
+    if t in (int(mujoco.mjtGeom.mjGEOM_CYLINDER), int(mujoco.mjtGeom.mjGEOM_CAPSULE)):
         r, h = size[0], size[1]
         ring = np.linspace(0, 2 * np.pi, 8, endpoint=False)
         pts = [[0, 0, h], [0, 0, -h]]
         for z in (-h, 0.0, h):
             pts += [[r * np.cos(a), r * np.sin(a), z] for a in ring]
         return np.asarray(pts, float)
-    if t == int(G.mjGEOM_MESH):
+    if t == int(mujoco.mjtGeom.mjGEOM_MESH):
         mid = model.geom_dataid[gid]
         start, count = model.mesh_vertadr[mid], model.mesh_vertnum[mid]
         verts = model.mesh_vert[start : start + count]
@@ -110,21 +109,23 @@ class VisibilityChecker:
 
     def __call__(self, data: mujoco.MjData) -> Visibility:
         n = len(self.objects)
-        E = extrinsic_cv(data, self.cam_id)
-        W, H = self.width, self.height
+        world_to_cam = extrinsic_cv(data, self.cam_id)
+        width, height = self.width, self.height
         # Projected bounding boxes.
         bid = np.asarray(self.body_ids, int)
-        R = data.xmat[bid].reshape(n, 3, 3)
-        centers = data.xpos[bid] + np.einsum("nij,nj->ni", R, self._offset)
-        corners = centers[:, None, :] + np.einsum("nij,nkj->nki", R, _CUBE[None] * self._half[:, None, :])
-        uv, z = project(corners.reshape(-1, 3), self.K, E)
+        body_rot = data.xmat[bid].reshape(n, 3, 3)
+        centers = data.xpos[bid] + np.einsum("nij,nj->ni", body_rot, self._offset)
+        corners = centers[:, None, :] + np.einsum(
+            "nij,nkj->nki", body_rot, _CUBE[None] * self._half[:, None, :]
+        )
+        uv, z = project(corners.reshape(-1, 3), self.K, world_to_cam)
         uv, z = uv.reshape(n, 8, 2), z.reshape(n, 8)
         near = 0.1
         in_image = np.zeros(n)
         front = np.all(z > near, axis=1)
         lo, hi = uv.min(axis=1), uv.max(axis=1)
         area = np.prod(hi - lo, axis=1)
-        clo, chi = np.maximum(lo, 0), np.minimum(hi, [W, H])
+        clo, chi = np.maximum(lo, 0), np.minimum(hi, [width, height])
         inter = np.prod(np.clip(chi - clo, 0, None), axis=1)
         ok = front & (area > 0)
         in_image[ok] = inter[ok] / area[ok]
@@ -134,8 +135,10 @@ class VisibilityChecker:
             gx = data.geom_xpos[self._geom]
             gm = data.geom_xmat[self._geom].reshape(-1, 3, 3)
             pts = gx + np.einsum("nij,nj->ni", gm, self._local)
-            puv, pz = project(pts, self.K, E)
-            inside = (pz > near) & (puv[:, 0] >= 0) & (puv[:, 0] < W) & (puv[:, 1] >= 0) & (puv[:, 1] < H)
+            puv, pz = project(pts, self.K, world_to_cam)
+            inside = (
+                (pz > near) & (puv[:, 0] >= 0) & (puv[:, 0] < width) & (puv[:, 1] >= 0) & (puv[:, 1] < height)
+            )
             idx = np.flatnonzero(inside & front[self._owner])
             if idx.size:
                 cam = data.cam_xpos[self.cam_id].copy()
@@ -171,7 +174,7 @@ class VisibilityChecker:
         frac = in_image * unocc
         visible = frac >= VISIBLE_THRESHOLD
         # Target point: centre of the in-image part of the projected box (always inside the image).
-        uv_norm = np.where(visible[:, None], 0.5 * (clo + chi) / np.array([W, H]), -1.0)
+        uv_norm = np.where(visible[:, None], 0.5 * (clo + chi) / np.array([width, height]), -1.0)
         return Visibility(visible, frac, in_image, unocc, uv_norm)
 
 
@@ -195,8 +198,8 @@ def surface_point_visible(
     dist = float(np.linalg.norm(to_cam))
     if normal @ to_cam < min_cos * dist:
         return False
-    K = intrinsics(float(model.cam_fovy[cam_id]), width, height)
-    uv, z = project(point[None], K, extrinsic_cv(data, cam_id))
+    intrinsic_matrix = intrinsics(float(model.cam_fovy[cam_id]), width, height)
+    uv, z = project(point[None], intrinsic_matrix, extrinsic_cv(data, cam_id))
     if z[0] <= 0.1 or not (0 <= uv[0, 0] < width and 0 <= uv[0, 1] < height):
         return False
     geomid = np.array([-1], np.int32)

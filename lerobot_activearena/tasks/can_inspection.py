@@ -8,8 +8,8 @@ asset parameters), and maps what the expert read to the area (``area_for``).
 
 from __future__ import annotations
 
-from ..expert import inspection as I, primitives as P, routines as R
-from . import predicates as Pr
+from ..expert import inspection, primitives, routines
+from . import predicates
 from .base import Task
 from .draft import Region
 
@@ -37,7 +37,7 @@ class InspectCanTask(Task):
             "labeled_can",
             CAN,
             "cola can",
-            Region(r=I.INSPECT_R, angle=(40.0, 140.0)),
+            Region(r=inspection.INSPECT_R, angle=(40.0, 140.0)),
             margin=0.04,
             arms=ARMS,
             **label,
@@ -53,30 +53,32 @@ class InspectCanTask(Task):
     def evaluate(self, sim, scene, monitor):
         area = scene.obj(self.area_for(scene, scene.obj(CAN).extra))
         return {
-            "can_in_matching_area": Pr.resting_on(
+            "can_in_matching_area": predicates.resting_on(
                 sim, CAN, area.name, area.half_extents[:2], area.extra["top"]
             ),
-            "can_upright": Pr.upright(sim, CAN),
-            "can_released": Pr.released(sim, CAN),
+            "can_upright": predicates.upright(sim, CAN),
+            "can_released": predicates.released(sim, CAN),
         }
 
     def expert(self, ctx, scene):
         can = ctx.idx(CAN)
         with ctx.subtask(1):
-            turn = yield from I.pick_for_inspection(ctx, can, fine_print=self.fine_print)
+            turn = yield from inspection.pick_for_inspection(ctx, can, fine_print=self.fine_print)
         with ctx.subtask(2):
-            yield from I.show_hidden_face(ctx, turn, can)
+            yield from inspection.show_hidden_face(ctx, turn, can)
             label = ctx.obj(can).extra  # read off the visible label
             area = self.area_for(scene, label)
             reading = {k: v for k, v in label.items() if k in ("label_color", "production_date")}
             ctx.notes["observed_label"] = reading
-            I.record_reading(ctx, can, reading, f"place in the {area.replace('_', ' ')}")
+            inspection.record_reading(ctx, can, reading, f"place in the {area.replace('_', ' ')}")
         with ctx.subtask(3):
-            yield from I.restore_pose(ctx, turn, can)
+            yield from inspection.restore_pose(ctx, turn, can)
         with ctx.subtask(4):
             target = ctx.idx(area)
-            yield from R.find_and_face(ctx, target, turn.side)
-            P.start_action(ctx, {can, target})
+            yield from routines.find_and_face(ctx, target, turn.side)
+            primitives.start_action(ctx, {can, target})
             ctx.intent.carried = {can}
-            yield from P.place(ctx, turn.side, can, ctx.center(target)[:2], ctx.top_z(target), yaw_free=True)
-            yield from R.finish(ctx, turn.side)
+            yield from primitives.place(
+                ctx, turn.side, can, ctx.center(target)[:2], ctx.top_z(target), yaw_free=True
+            )
+            yield from routines.finish(ctx, turn.side)

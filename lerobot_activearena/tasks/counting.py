@@ -7,10 +7,10 @@ expert counts what it has seen (``count_seen``); buttons, checks and the press c
 
 from __future__ import annotations
 
-from ..expert import primitives as P, routines as R
+from ..expert import primitives, routines
 from ..expert.context import ExpertError
 from ..sim.assets.task_props import BUTTON_PRESSED
-from . import predicates as Pr
+from . import predicates
 from .base import Subtask, Task
 from .draft import REACH
 
@@ -51,17 +51,19 @@ class CountAndPressTask(Task):
 
     def evaluate(self, sim, scene, monitor):
         button = f"button_{scene.params['count']}"
-        point = Pr.body_point(sim, button, scene.obj(button).extra["press_point"])
+        point = predicates.body_point(sim, button, scene.obj(button).extra["press_point"])
         pressed = monitor.event(
             "pressed",
-            Pr.joint_below(sim, f"{button}_joint", BUTTON_PRESSED)
-            and Pr.pressed_by_either(sim, button, point),
+            predicates.joint_below(sim, f"{button}_joint", BUTTON_PRESSED)
+            and predicates.pressed_by_either(sim, button, point),
         )
         return {"pressed_matching_button": pressed}
 
     def failure(self, sim, scene, monitor):
         for n in BUTTONS:
-            if n != scene.params["count"] and Pr.joint_below(sim, f"button_{n}_joint", BUTTON_PRESSED):
+            if n != scene.params["count"] and predicates.joint_below(
+                sim, f"button_{n}_joint", BUTTON_PRESSED
+            ):
                 return f"pressed button {n}; the count was {scene.params['count']}"
         return None
 
@@ -69,7 +71,7 @@ class CountAndPressTask(Task):
     def expert(self, ctx, scene):
         candidates = [i for i, n in enumerate(ctx.objects) if not n.startswith("button_")]
         with ctx.subtask(1):
-            yield from P.sweep_all(ctx, candidates)
+            yield from primitives.sweep_all(ctx, candidates)
             seen = [i for i in candidates if ctx.perception.discovered[i]]
             count = self.count_seen(ctx, scene, seen)
             ctx.notes["count"] = count
@@ -78,6 +80,6 @@ class CountAndPressTask(Task):
         with ctx.subtask(2):
             button = ctx.idx(f"button_{count}")
             ctx.intent.search_targets = {button}
-            side = yield from R.find_and_face(ctx, button)
-            yield from R.press_object(ctx, side, button, depth=0.012)
-            yield from R.finish(ctx, side)
+            side = yield from routines.find_and_face(ctx, button)
+            yield from routines.press_object(ctx, side, button, depth=0.012)
+            yield from routines.finish(ctx, side)

@@ -29,7 +29,7 @@ SIDE_ANGLES = {"right": (20.0, 90.0), "left": (90.0, 160.0)}
 HIDDEN_ANGLES = {"right": (20.0, 51.5), "left": (128.5, 160.0)}
 
 
-class SamplingFailed(RuntimeError):
+class SamplingError(RuntimeError):
     """No valid placement in this draft; the sampler retries with a derived seed."""
 
 
@@ -70,16 +70,16 @@ def _home_camera() -> tuple[np.ndarray, np.ndarray]:
     """Intrinsics and world-to-camera of the head camera at home (robot only)."""
     import mujoco
 
-    from ..sim import embodiment as E
+    from ..sim import embodiment
     from ..sim.camera import extrinsic_cv, intrinsics
     from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
     model, _ = SceneBuilder().compile()
     data = mujoco.MjData(model)
-    data.qpos[model.joint(E.TORSO_YAW_JOINT).qposadr[0]] = E.HOME_TORSO_YAW
-    data.qpos[model.joint(E.HEAD_PITCH_JOINT).qposadr[0]] = E.HOME_HEAD_PITCH
+    data.qpos[model.joint(embodiment.TORSO_YAW_JOINT).qposadr[0]] = embodiment.HOME_TORSO_YAW
+    data.qpos[model.joint(embodiment.HEAD_PITCH_JOINT).qposadr[0]] = embodiment.HOME_HEAD_PITCH
     mujoco.mj_forward(model, data)
-    cam = model.camera(E.HEAD_CAMERA).id
+    cam = model.camera(embodiment.HEAD_CAMERA).id
     return intrinsics(float(model.cam_fovy[cam]), HEAD_WIDTH, HEAD_HEIGHT), extrinsic_cv(data, cam)
 
 
@@ -89,7 +89,7 @@ def in_home_view(xy, radius: float, heights=(0.005, 0.08)) -> bool:
     from ..sim.camera import project
     from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
-    K, T = _home_camera()
+    intrinsic_matrix, world_to_cam = _home_camera()
     ring = np.linspace(0, 2 * np.pi, 12, endpoint=False)
     pts = [
         [xy[0] + radius * math.cos(a), xy[1] + radius * math.sin(a), TABLE_TOP + h]
@@ -97,7 +97,7 @@ def in_home_view(xy, radius: float, heights=(0.005, 0.08)) -> bool:
         for h in heights
     ]
     pts += [[xy[0], xy[1], TABLE_TOP + h] for h in heights]
-    uv, z = project(np.asarray(pts), K, T)
+    uv, z = project(np.asarray(pts), intrinsic_matrix, world_to_cam)
     inside = (
         (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] <= HEAD_WIDTH) & (uv[:, 1] >= 0) & (uv[:, 1] <= HEAD_HEIGHT)
     )
@@ -127,7 +127,7 @@ class SceneDraft:
         try:
             xy = self.workspace.place(distance, angle_deg)[:2]
         except ValueError as exc:  # off the fan: this draft cannot hold the layout
-            raise SamplingFailed(str(exc)) from exc
+            raise SamplingError(str(exc)) from exc
         self.discs.append((xy, radius))
 
     def side(self) -> str:
@@ -168,14 +168,14 @@ class SceneDraft:
             try:
                 xy = self.workspace.place(rr, aa, region.level)[:2]
             except ValueError as exc:  # an explicit spot off the fan
-                raise SamplingFailed(f"{name}: {exc}") from exc
+                raise SamplingError(f"{name}: {exc}") from exc
             if not self.is_free(xy, foot, margin):
                 continue
             if region.hidden is not None and in_home_view(xy, foot) == region.hidden:
                 continue
             break
         else:
-            raise SamplingFailed(
+            raise SamplingError(
                 f"no free spot for {name} ({category}) in r={r}, angle={angle}, hidden={region.hidden}"
             )
         if yaw == "random":
@@ -227,7 +227,7 @@ class SceneDraft:
                     static=True,
                     tries=40,
                 )
-            except SamplingFailed:
+            except SamplingError:
                 continue
             placed += 1
             if ood:  # no near-duplicates in one scene

@@ -11,7 +11,8 @@ import math
 import mujoco
 import numpy as np
 
-from ..sim import action as A, embodiment as E
+from ..sim import embodiment
+from ..sim.action import LEFT_GRIPPER, RIGHT_GRIPPER
 from ..sim.simulator import ActiveArenaSim
 from ..sim.workspace import TABLE_TOP
 
@@ -69,11 +70,11 @@ def lifted(sim: ActiveArenaSim, body: str, height: float) -> bool:
 
 
 def _robot_body(sim: ActiveArenaSim, bid: int) -> bool:
-    return sim.model.body(bid).name.startswith(E.PREFIX)
+    return sim.model.body(bid).name.startswith(embodiment.PREFIX)
 
 
 def _gripper_body(sim: ActiveArenaSim, bid: int, arm: str) -> bool:
-    return sim.model.body(bid).name.startswith(f"{E.PREFIX}gripper_{arm}")
+    return sim.model.body(bid).name.startswith(f"{embodiment.PREFIX}gripper_{arm}")
 
 
 def contacts_with(sim: ActiveArenaSim, body: str):
@@ -112,7 +113,7 @@ def held_by_gripper(sim: ActiveArenaSim, body: str) -> str | None:
 
 
 def gripper_closed(sim: ActiveArenaSim, arm: str) -> bool:
-    g = A.LEFT_GRIPPER if arm == "left" else A.RIGHT_GRIPPER
+    g = LEFT_GRIPPER if arm == "left" else RIGHT_GRIPPER
     return bool(sim.state()[g] < GRIPPER_CLOSED_BELOW)
 
 
@@ -161,13 +162,13 @@ def tcp_on_axis(sim: ActiveArenaSim, arm: str, body: str, radius: float) -> bool
     """``arm``'s tool centre is within ``radius`` of ``body``'s vertical axis (in the body's frame, so
     a tilted object is measured along its own axis): a grasp centred on it."""
     b = sim.data.body(body)
-    local = b.xmat.reshape(3, 3).T @ (sim.data.site(E.TCP_SITES[arm]).xpos - b.xpos)
+    local = b.xmat.reshape(3, 3).T @ (sim.data.site(embodiment.TCP_SITES[arm]).xpos - b.xpos)
     return bool(np.hypot(local[0], local[1]) <= radius)
 
 
 def tcp_over(sim: ActiveArenaSim, arm: str, point, radius_xy: float) -> bool:
     """``arm``'s tool centre (between the fingertips) is within ``radius_xy`` of ``point``, horizontally."""
-    tcp = sim.data.site(E.TCP_SITES[arm]).xpos
+    tcp = sim.data.site(embodiment.TCP_SITES[arm]).xpos
     return bool(np.hypot(*(tcp[:2] - np.asarray(point, float)[:2])) <= radius_xy)
 
 

@@ -65,7 +65,7 @@ def make_sidecar(
         "scene_attempt": scene.attempt,
         "objects": [
             {"index": i, "key": n, "name": lbl, "category": scene.info.objects[i].category}
-            for i, (n, lbl) in enumerate(zip(scene.objects, scene.labels))
+            for i, (n, lbl) in enumerate(zip(scene.objects, scene.labels, strict=True))
         ],
         "subtasks": [
             {"id": s.id, "name": s.name, "text": s.text, "instruction_idx": s.instruction_idx}

@@ -13,11 +13,11 @@ import mujoco
 import numpy as np
 
 from ..expert.kinematics import top_down_reachable
-from ..sim import embodiment as E
+from ..sim import embodiment
 from ..sim.head_camera import SEARCH_VIEWS, head_visibility_checker
 from ..sim.simulator import ActiveArenaSim
 from .base import SPLITS, Task, TaskScene
-from .draft import SamplingFailed, SceneDraft
+from .draft import SamplingError, SceneDraft
 from .success import SuccessMonitor
 
 MAX_ATTEMPTS = 25
@@ -33,8 +33,8 @@ def sector_visibility(model: mujoco.MjModel, info, views=SEARCH_VIEWS) -> np.nda
     with the robot at home (no physics step: spawn poses)."""
     data = mujoco.MjData(model)
     checker = head_visibility_checker(model, info.objects)
-    qy = model.joint(E.TORSO_YAW_JOINT).qposadr[0]
-    qp = model.joint(E.HEAD_PITCH_JOINT).qposadr[0]
+    qy = model.joint(embodiment.TORSO_YAW_JOINT).qposadr[0]
+    qp = model.joint(embodiment.HEAD_PITCH_JOINT).qposadr[0]
     out = []
     for yaw, pitch in views:
         data.qpos[:] = model.qpos0
@@ -61,7 +61,7 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
         problems.append("an information face is visible at home")
     if vis[0].all() and not hidden_info:
         problems.append("initial view already shows every task-relevant object")
-    missing = [scene.objects[t] for t, seen in zip(targets, vis.any(axis=0)) if not seen]
+    missing = [scene.objects[t] for t, seen in zip(targets, vis.any(axis=0), strict=True) if not seen]
     if missing:
         problems.append(f"never visible from any search view: {missing}")
     if len(targets) > 1 and vis.all(axis=1).any() and not hidden_info:
@@ -102,7 +102,7 @@ def sample_scene(task: Task, seed: int, split: str = "id") -> TaskScene:
         draft = SceneDraft(split, derived_rng(task.name, seed, split, attempt))
         try:
             task.layout(draft)
-        except SamplingFailed as exc:
+        except SamplingError as exc:
             reasons.append(str(exc))
             continue
         draft.params["n_clutter"] = draft.add_clutter()
@@ -128,6 +128,6 @@ def sample_scene(task: Task, seed: int, split: str = "id") -> TaskScene:
             scene.params["rejected_attempts"] = reasons
             return scene
         reasons.append("; ".join(problems))
-    raise SamplingFailed(
+    raise SamplingError(
         f"{task.name} seed {seed} ({split}): no valid scene in {MAX_ATTEMPTS} attempts: {reasons[-3:]}"
     )

@@ -15,9 +15,9 @@ from collections import deque
 
 import numpy as np
 
-from ..expert import primitives as P, routines as R
+from ..expert import primitives, routines
 from ..expert.motion import CONTROL_DT
-from . import predicates as Pr
+from . import predicates
 from .base import Task
 from .draft import Region
 
@@ -113,28 +113,28 @@ class ShakeBottleTask(Task):
 
     def evaluate(self, sim, scene, monitor):
         detector = monitor.state.setdefault("shake", ShakeDetector(self.horizontal))
-        arm = Pr.held_by_gripper(sim, BOTTLE)
+        arm = predicates.held_by_gripper(sim, BOTTLE)
         held_up = (
             arm is not None
-            and Pr.lifted(sim, BOTTLE, LIFT)
-            and Pr.tcp_on_axis(sim, arm, BOTTLE, GRASP_CENTRED)
+            and predicates.lifted(sim, BOTTLE, LIFT)
+            and predicates.tcp_on_axis(sim, arm, BOTTLE, GRASP_CENTRED)
         )
-        shaken = monitor.event("shaken", detector.update(Pr.position(sim, BOTTLE), held_up))
+        shaken = monitor.event("shaken", detector.update(predicates.position(sim, BOTTLE), held_up))
         name = "shaken_horizontally_while_held" if self.horizontal else "shaken_while_held"
         return {name: shaken}  # a bottle off the table ends the episode (every task's monitor)
 
     def expert(self, ctx, scene):
         bottle = ctx.idx(BOTTLE)
         with ctx.subtask(1):
-            side = yield from R.find_and_face(ctx, bottle)
+            side = yield from routines.find_and_face(ctx, bottle)
             home = ctx.center(bottle)
-            yield from P.pick(ctx, side, bottle, closing=P.radial_tangent(home), lift=0.12)
-            p, rot = P.tcp_pose(ctx, side)
-            axis = np.array([0.0, 0.0, 1.0]) if not self.horizontal else P.radial_tangent(p)
+            yield from primitives.pick(ctx, side, bottle, closing=primitives.radial_tangent(home), lift=0.12)
+            p, rot = primitives.tcp_pose(ctx, side)
+            axis = np.array([0.0, 0.0, 1.0]) if not self.horizontal else primitives.radial_tangent(p)
             for k in range(REVERSALS + 2):  # swings of 8 cm, a little over 3 per second
-                yield from P.arm_line(
+                yield from primitives.arm_line(
                     ctx, side, p + (0.04 if k % 2 == 0 else -0.04) * axis, rot, 0.0, speed=0.45
                 )
-            yield from P.arm_line(ctx, side, p, rot, 0.0, speed=0.3)
-            yield from P.place(ctx, side, bottle, home[:2], 0.74, yaw_free=False)
-            yield from R.finish(ctx, side)
+            yield from primitives.arm_line(ctx, side, p, rot, 0.0, speed=0.3)
+            yield from primitives.place(ctx, side, bottle, home[:2], 0.74, yaw_free=False)
+            yield from routines.finish(ctx, side)

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..sim.head_camera import hidden_face_visible
-from . import predicates as P
+from . import predicates
 
 if TYPE_CHECKING:
     from ..sim.simulator import ActiveArenaSim
@@ -41,7 +41,7 @@ class SuccessMonitor:
         self.faces_seen: set[str] = set()  # information faces the head camera has seen
         self.info_seen = not self._faces  # every hidden information face was seen
         self.informed = False  # every task-relevant object and the information were seen
-        self._free_objects = [n for n in scene.objects if P.is_free(sim, n)]
+        self._free_objects = [n for n in scene.objects if predicates.is_free(sim, n)]
 
     def observe(self, discovered: np.ndarray) -> None:
         """After each observation: ``discovered`` = registered objects the head camera has seen so far."""
@@ -78,7 +78,7 @@ class SuccessMonitor:
     def _object_off_table(self) -> str | None:
         """Every task: a free task object that left the table ends the episode."""
         for name in self._free_objects:
-            if P.off_table(self.sim, name):
+            if predicates.off_table(self.sim, name):
                 return f"{name} fell off the table"
         return None
 

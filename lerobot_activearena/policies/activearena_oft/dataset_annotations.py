@@ -69,14 +69,14 @@ class DatasetAnnotations:
     ) -> tuple[torch.Tensor, torch.Tensor | None, torch.Tensor]:
         """(B, history+1, C, H, W) images, (B, history+1, D) states and (B, history+1) is_pad: the memory
         frames left-padded, then the current frame."""
-        B = current.shape[0]
-        images = current.new_zeros((B, history + 1, *current.shape[1:]))
-        states = None if state is None else state.new_zeros((B, history + 1, state.shape[-1]))
-        pad = torch.ones(B, history + 1, dtype=torch.bool)
-        for b in range(B):
+        batch_size = current.shape[0]
+        images = current.new_zeros((batch_size, history + 1, *current.shape[1:]))
+        states = None if state is None else state.new_zeros((batch_size, history + 1, state.shape[-1]))
+        pad = torch.ones(batch_size, history + 1, dtype=torch.bool)
+        for b in range(batch_size):
             mem = self.memory_indices(int(index[b]), policy, history)
             slots = range(history - len(mem), history)
-            for slot, g in zip(slots, mem):
+            for slot, g in zip(slots, mem, strict=True):
                 item = self.ds[g]
                 images[b, slot] = item[IMAGE_KEY].to(current)
                 if states is not None:

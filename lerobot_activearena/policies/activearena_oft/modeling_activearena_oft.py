@@ -15,7 +15,6 @@ from collections import deque
 
 import numpy as np
 import torch
-import torch.nn.functional as F
 from lerobot.policies.pretrained import PreTrainedPolicy
 from lerobot.utils.constants import ACTION, OBS_STATE
 from torch import Tensor, nn
@@ -130,14 +129,14 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         """One right-padded token sequence per sample: the frames (each followed by its state token), the
         prompt, the action queries, then the optional think span. Returns the backbone's inputs and the
         per-position ``kind`` (-1 = padding)."""
-        B, T = valid.shape
+        batch_size, n_frames = valid.shape
         dev = self.action_queries.device
         if state is not None and state.dim() == 2:  # no history: one state per sample
             state = state[:, None]
         seqs, kinds, images, states = [], [], [], []
-        for b in range(B):
+        for b in range(batch_size):
             ids, kind = prefix[b].tolist(), [TEXT] * prefix.shape[1]
-            for j in range(T):
+            for j in range(n_frames):
                 if not valid[b, j]:
                     continue
                 n = int(grid[b, j].prod()) // self.vlm.config.vision_config.spatial_merge_size**2
@@ -147,7 +146,9 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 if self.state_encoder is not None:
                     ids.append(self.pad_id)
                     kind.append(STATE)
-                    states.append((b, j, j + self.max_frames - T))  # current frame: always the last slot
+                    states.append(
+                        (b, j, j + self.max_frames - n_frames)
+                    )  # current frame: always the last slot
             p = prompt[b][prompt_mask[b]].tolist()
             ids += p + [self.pad_id] * self.config.chunk_size
             kind += [TEXT] * len(p) + [QUERY] * self.config.chunk_size
@@ -157,17 +158,17 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 kind += [THINK] * len(t)
             seqs.append(ids)
             kinds.append(kind)
-        L = max(len(s) for s in seqs)
-        input_ids = torch.full((B, L), self.pad_id, dtype=torch.long)
-        kind = torch.full((B, L), -1, dtype=torch.long)
-        for b, (s, k) in enumerate(zip(seqs, kinds)):
+        seq_len = max(len(s) for s in seqs)
+        input_ids = torch.full((batch_size, seq_len), self.pad_id, dtype=torch.long)
+        kind = torch.full((batch_size, seq_len), -1, dtype=torch.long)
+        for b, (s, k) in enumerate(zip(seqs, kinds, strict=True)):
             input_ids[b, : len(s)], kind[b, : len(k)] = torch.tensor(s), torch.tensor(k)
         input_ids, kind = input_ids.to(dev), kind.to(dev)
         attn = (kind >= 0).long()
         mm = (kind == IMAGE).long()
         embeds = self.vlm.get_input_embeddings()(input_ids)
         embeds = embeds.masked_scatter(
-            (kind == QUERY)[..., None], self.action_queries.to(embeds.dtype).repeat(B, 1)
+            (kind == QUERY)[..., None], self.action_queries.to(embeds.dtype).repeat(batch_size, 1)
         )
         if states:
             rows = torch.stack([state[b, j] for b, j, _ in states]).to(dev, torch.float32)
@@ -210,7 +211,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         feats: list = [vision_cache[k].get("vision") if k in vision_cache else None for k in images]
         todo = [i for i, f in enumerate(feats) if f is None]
         if todo:
-            for i, f in zip(todo, self._vision(torch.cat([rows[i] for i in todo]), grid[todo])):
+            for i, f in zip(todo, self._vision(torch.cat([rows[i] for i in todo]), grid[todo]), strict=True):
                 feats[i] = f
                 if images[i] in vision_cache:
                     vision_cache[images[i]]["vision"] = f
@@ -249,7 +250,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         tgt = torch.zeros_like(span)
         tgt[:, 1:] = src[:, :-1]
         logits = self.vlm.lm_head(h[src]).float()
-        return actions, F.cross_entropy(logits, input_ids[tgt])
+        return actions, nn.functional.cross_entropy(logits, input_ids[tgt])
 
     # ----- training -----
     @_in_precision
@@ -308,27 +309,29 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         """Stack each env's last K memory entries (left-padded) and the current frame. Also returns the
         vision cache: (env, slot) -> the memory entry (its features are reused or stored there), and an
         empty entry for the current frame that receives its features."""
-        B = batch[PIXELS].shape[0]
-        K = self.config.history if self.config.uses_history else 0
+        batch_size = batch[PIXELS].shape[0]
+        history = self.config.history if self.config.uses_history else 0
         cur_pix, cur_grid = batch[PIXELS][:, -1], batch[GRID][:, -1]
         cur_state = batch.get(OBS_STATE)
         cur_state = cur_state[:, -1] if cur_state is not None and cur_state.dim() == 3 else cur_state
-        pixels = cur_pix.new_zeros((B, K + 1, *cur_pix.shape[1:]))
-        grid = cur_grid.new_ones((B, K + 1, 3))
-        valid = torch.zeros(B, K + 1, dtype=torch.bool)
-        state = None if cur_state is None else cur_state.new_zeros((B, K + 1, cur_state.shape[-1]))
+        pixels = cur_pix.new_zeros((batch_size, history + 1, *cur_pix.shape[1:]))
+        grid = cur_grid.new_ones((batch_size, history + 1, 3))
+        valid = torch.zeros(batch_size, history + 1, dtype=torch.bool)
+        state = (
+            None if cur_state is None else cur_state.new_zeros((batch_size, history + 1, cur_state.shape[-1]))
+        )
         cache: dict[tuple[int, int], dict] = {}
-        for b in range(B):
-            mem = self._bank[b][-K:] if K else []
-            cache[(b, K)] = {}
-            for slot, entry in zip(range(K - len(mem), K), mem):
+        for b in range(batch_size):
+            mem = self._bank[b][-history:] if history else []
+            cache[(b, history)] = {}
+            for slot, entry in zip(range(history - len(mem), history), mem, strict=True):
                 cache[(b, slot)] = entry
                 pixels[b, slot], grid[b, slot], valid[b, slot] = entry["pixels"], entry["grid"], True
                 if state is not None:
                     state[b, slot] = entry["state"]
-            pixels[b, K], grid[b, K], valid[b, K] = cur_pix[b], cur_grid[b], True
+            pixels[b, history], grid[b, history], valid[b, history] = cur_pix[b], cur_grid[b], True
             if state is not None:
-                state[b, K] = cur_state[b]
+                state[b, history] = cur_state[b]
         return pixels, grid, valid, state, cache
 
     @torch.no_grad()
@@ -373,11 +376,11 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 "memory=subtask at evaluation writes a frame when the policy's own predicted subtask "
                 "changes, so it needs a policy trained with think=subtask"
             )
-        B = batch[PIXELS].shape[0]
-        self._bank = [[] for _ in range(B)]
-        self._raw_states = [[] for _ in range(B)]
-        self._subtask: list[tuple[int, ...] | None] = [None] * B
-        self._subtask_new = [False] * B
+        batch_size = batch[PIXELS].shape[0]
+        self._bank = [[] for _ in range(batch_size)]
+        self._raw_states = [[] for _ in range(batch_size)]
+        self._subtask: list[tuple[int, ...] | None] = [None] * batch_size
+        self._subtask_new = [False] * batch_size
 
     def _think_token_ids(self) -> tuple[int, int]:
         if not hasattr(self, "_think_ids"):
@@ -411,9 +414,9 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         ``use_cache`` the images and prompt go through the backbone once and every new token reuses
         their keys and values; without it each step re-encodes the whole sequence (the reference)."""
         start, end = self._think_token_ids()
-        B, dev = encode_args[2].shape[0], self.action_queries.device
-        fed = torch.full((B, 1), start, dtype=torch.long)  # <think> and every token fed back since
-        rows, step_logits = torch.arange(B, device=dev), []
+        batch_size, dev = encode_args[2].shape[0], self.action_queries.device
+        fed = torch.full((batch_size, 1), start, dtype=torch.long)  # <think> and every token fed back since
+        rows, step_logits = torch.arange(batch_size, device=dev), []
         seq = cache = actions = None
         for _ in range(self.config.subtask_max_tokens):
             if seq is None or not use_cache:
@@ -431,7 +434,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 attn = seq["attention_mask"]
             else:
                 position = position + 1  # the next text token, on all M-RoPE axes
-                attn = torch.cat([attn, attn.new_ones(B, 1)], dim=1)
+                attn = torch.cat([attn, attn.new_ones(batch_size, 1)], dim=1)
                 out = self.vlm.model.language_model(
                     inputs_embeds=self.vlm.get_input_embeddings()(fed[:, -1:].to(dev)),
                     attention_mask=attn,
@@ -455,23 +458,23 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         self.eval()
         if self._bank is None:
             self._start(batch)
-        B = batch[PIXELS].shape[0]
+        batch_size = batch[PIXELS].shape[0]
         if RAW_STATE in batch:
             dim = self.config.input_features[OBS_STATE].shape[0]
-            if tuple(batch[RAW_STATE].shape) != (B, dim):
+            if tuple(batch[RAW_STATE].shape) != (batch_size, dim):
                 raise ValueError(
                     f"observation.state must be (batch, {dim}) at evaluation, got "
                     f"{tuple(batch[RAW_STATE].shape)}: pass the current state only (history comes "
                     "from the policy's memory bank)"
                 )
-            for b in range(B):
+            for b in range(batch_size):
                 self._raw_states[b].append(batch[RAW_STATE][b].float().cpu().numpy())
         self._current_vision = {}
         if not self._queue:
             chunk = self.predict_action_chunk(batch)[:, : self.config.n_action_steps]
             self._queue.extend(chunk.transpose(0, 1))
         if self.config.uses_history:
-            for b in range(B):
+            for b in range(batch_size):
                 if self._retained(b):  # vision features: this step's, else computed at first use
                     self._bank[b].append(
                         {

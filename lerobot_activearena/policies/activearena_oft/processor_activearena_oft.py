@@ -31,10 +31,10 @@ PROMPT = (
 THINK = "<think>{target}</think><|im_end|>"
 
 
-def _pad_flag(comp: dict, B: int, T: int) -> torch.Tensor:
+def _pad_flag(comp: dict, batch_size: int, n_frames: int) -> torch.Tensor:
     pad = comp.get(f"{IMAGE_KEY}_is_pad")
-    if pad is None or tuple(pad.shape) != (B, T):
-        return torch.zeros(B, T, dtype=torch.bool)
+    if pad is None or tuple(pad.shape) != (batch_size, n_frames):
+        return torch.zeros(batch_size, n_frames, dtype=torch.bool)
     return pad.bool().cpu()
 
 
@@ -132,8 +132,8 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             raise KeyError(f"activearena_oft needs {IMAGE_KEY!r} in the observation (got {sorted(obs)})")
         img = obs.pop(IMAGE_KEY)
         img = img[:, None] if img.dim() == 4 else img
-        B, T = img.shape[:2]
-        valid = ~_pad_flag(comp, B, T)
+        batch_size, n_frames = img.shape[:2]
+        valid = ~_pad_flag(comp, batch_size, n_frames)
         # Padded history frames (before the episode start) are never read: only present frames go
         # through the image processor, the others stay zeros (all frames share one size and grid).
         keep = valid.flatten()
@@ -151,21 +151,21 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]),
             out["image_grid_thw"],
         )
-        pixels = pv.new_zeros((B * T, *pv.shape[1:]))
+        pixels = pv.new_zeros((batch_size * n_frames, *pv.shape[1:]))
         pixels[keep.to(pv.device)] = pv
         grid = grid.cpu()
-        grids = grid[:1].repeat(B * T, 1)
+        grids = grid[:1].repeat(batch_size * n_frames, 1)
         grids[keep] = grid
-        obs[PIXELS] = pixels.reshape(B, T, *pv.shape[1:])
-        obs[GRID] = grids.reshape(B, T, 3)
+        obs[PIXELS] = pixels.reshape(batch_size, n_frames, *pv.shape[1:])
+        obs[GRID] = grids.reshape(batch_size, n_frames, 3)
         obs[FRAME_VALID] = valid
         if OBS_STATE in obs:
             obs[RAW_STATE] = obs[OBS_STATE].clone()
         tasks = comp.get("task")
         if tasks is None:
             raise ValueError("activearena_oft needs the task instruction ('task') in the batch")
-        tasks = [tasks] * B if isinstance(tasks, str) else list(tasks)
-        obs[PREFIX_IDS] = self._tokenize([PREFIX] * B)[0]
+        tasks = [tasks] * batch_size if isinstance(tasks, str) else list(tasks)
+        obs[PREFIX_IDS] = self._tokenize([PREFIX] * batch_size)[0]
         obs[PROMPT_IDS], obs[PROMPT_MASK] = self._tokenize([PROMPT.format(instruction=t) for t in tasks])
         if transition.get(TransitionKey.ACTION) is not None and self.think != "none":
             if self.think == "subtask":

@@ -43,31 +43,31 @@ def _corpus(texts: Sequence[str]) -> list[str]:
 # Qwen/Qwen3-VL-2B-Instruct's dimensions (text: the Qwen3-1.7B decoder; vision: 24-layer ViT with
 # DeepStack taps 5/11/17), for measuring memory and latency at the real size without its weights.
 QWEN3_VL_2B = {
-    "text": dict(
-        vocab_size=151936,
-        hidden_size=2048,
-        intermediate_size=6144,
-        num_hidden_layers=28,
-        num_attention_heads=16,
-        num_key_value_heads=8,
-        head_dim=128,
-        max_position_embeddings=262144,
-        rope_parameters={
+    "text": {
+        "vocab_size": 151936,
+        "hidden_size": 2048,
+        "intermediate_size": 6144,
+        "num_hidden_layers": 28,
+        "num_attention_heads": 16,
+        "num_key_value_heads": 8,
+        "head_dim": 128,
+        "max_position_embeddings": 262144,
+        "rope_parameters": {
             "rope_type": "default",
             "rope_theta": 5000000.0,
             "mrope_section": [24, 20, 20],
             "mrope_interleaved": True,
         },
-    ),
-    "vision": dict(
-        depth=24,
-        hidden_size=1024,
-        intermediate_size=4096,
-        num_heads=16,
-        out_hidden_size=2048,
-        num_position_embeddings=2304,
-        deepstack_visual_indexes=[5, 11, 17],
-    ),
+    },
+    "vision": {
+        "depth": 24,
+        "hidden_size": 1024,
+        "intermediate_size": 4096,
+        "num_heads": 16,
+        "out_hidden_size": 2048,
+        "num_position_embeddings": 2304,
+        "deepstack_visual_indexes": [5, 11, 17],
+    },
 }
 
 
@@ -78,12 +78,12 @@ def qwen3_vl_config(text: dict, vision: dict, ids: dict[str, int] | None = None)
 
     tokens = {}
     if ids is not None:
-        tokens = dict(
-            image_token_id=ids["<|image_pad|>"],
-            video_token_id=ids["<|video_pad|>"],
-            vision_start_token_id=ids["<|vision_start|>"],
-            vision_end_token_id=ids["<|vision_end|>"],
-        )
+        tokens = {
+            "image_token_id": ids["<|image_pad|>"],
+            "video_token_id": ids["<|video_pad|>"],
+            "vision_start_token_id": ids["<|vision_start|>"],
+            "vision_end_token_id": ids["<|vision_end|>"],
+        }
         text = dict(text, pad_token_id=ids["<|endoftext|>"])
     return Qwen3VLConfig(
         text_config=dict(text, tie_word_embeddings=True),
@@ -152,31 +152,31 @@ def make_tiny_vlm(
         image_processor=image_proc, tokenizer=tok, video_processor=video_proc, chat_template=CHAT_TEMPLATE
     )
     heads = 4
-    text = dict(
-        vocab_size=len(tok),
-        hidden_size=hidden,
-        intermediate_size=2 * hidden,
-        num_hidden_layers=layers,
-        num_attention_heads=heads,
-        num_key_value_heads=2,
-        head_dim=hidden // heads,
-        max_position_embeddings=8192,
-        rope_parameters={
+    text = {
+        "vocab_size": len(tok),
+        "hidden_size": hidden,
+        "intermediate_size": 2 * hidden,
+        "num_hidden_layers": layers,
+        "num_attention_heads": heads,
+        "num_key_value_heads": 2,
+        "head_dim": hidden // heads,
+        "max_position_embeddings": 8192,
+        "rope_parameters": {
             "rope_type": "default",
             "rope_theta": 10000.0,
             "mrope_section": [2, 3, 3],
             "mrope_interleaved": True,
         },
-    )
-    vision = dict(
-        depth=2,
-        hidden_size=hidden,
-        intermediate_size=2 * hidden,
-        num_heads=heads,
-        out_hidden_size=hidden,
-        num_position_embeddings=1024,
-        deepstack_visual_indexes=[1],
-    )
+    }
+    vision = {
+        "depth": 2,
+        "hidden_size": hidden,
+        "intermediate_size": 2 * hidden,
+        "num_heads": heads,
+        "out_hidden_size": hidden,
+        "num_position_embeddings": 1024,
+        "deepstack_visual_indexes": [1],
+    }
     if architecture == "qwen3-vl-2b":
         text, vision = dict(QWEN3_VL_2B["text"]), dict(QWEN3_VL_2B["vision"])
     config = qwen3_vl_config(text, vision, ids)

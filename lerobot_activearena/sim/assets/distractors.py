@@ -623,7 +623,7 @@ _simple(
                 0.007,
                 DARK,
             )
-            for a0, a1 in zip(np.linspace(0, np.pi, 5)[:-1], np.linspace(0, np.pi, 5)[1:])
+            for a0, a1 in zip(np.linspace(0, np.pi, 5)[:-1], np.linspace(0, np.pi, 5)[1:], strict=True)
         ],
     ],
     0.2,

@@ -11,14 +11,13 @@ from PIL import Image, ImageDraw, ImageFont
 
 from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
 
-G = mujoco.mjtGeom
 KIND = {
-    "box": G.mjGEOM_BOX,
-    "cyl": G.mjGEOM_CYLINDER,
-    "sph": G.mjGEOM_SPHERE,
-    "cap": G.mjGEOM_CAPSULE,
-    "ell": G.mjGEOM_ELLIPSOID,
-    "mesh": G.mjGEOM_MESH,
+    "box": mujoco.mjtGeom.mjGEOM_BOX,
+    "cyl": mujoco.mjtGeom.mjGEOM_CYLINDER,
+    "sph": mujoco.mjtGeom.mjGEOM_SPHERE,
+    "cap": mujoco.mjtGeom.mjGEOM_CAPSULE,
+    "ell": mujoco.mjtGeom.mjGEOM_ELLIPSOID,
+    "mesh": mujoco.mjtGeom.mjGEOM_MESH,
 }
 
 
@@ -63,7 +62,7 @@ def compound(
         geoms.append((g, opt.get("visual", False)))
     solid = [g for g, visual in geoms if not visual]
     vols = np.array([_volume(g) for g in solid])
-    for g, v in zip(solid, vols):
+    for g, v in zip(solid, vols, strict=True):
         g.mass = 0.0 if static else float(mass * v / vols.sum())
     lo, hi = _bbox(parts)
     half = tuple(float(x) for x in (hi - lo) / 2)
@@ -74,15 +73,15 @@ def compound(
 def _volume(g) -> float:
     s = np.asarray(g.size)
     t = g.type
-    if t == G.mjGEOM_BOX:
+    if t == mujoco.mjtGeom.mjGEOM_BOX:
         return 8 * s[0] * s[1] * s[2]
-    if t == G.mjGEOM_CYLINDER:
+    if t == mujoco.mjtGeom.mjGEOM_CYLINDER:
         return 2 * math.pi * s[0] ** 2 * s[1]
-    if t == G.mjGEOM_SPHERE:
+    if t == mujoco.mjtGeom.mjGEOM_SPHERE:
         return 4 / 3 * math.pi * s[0] ** 3
-    if t == G.mjGEOM_CAPSULE:
+    if t == mujoco.mjtGeom.mjGEOM_CAPSULE:
         return math.pi * s[0] ** 2 * (2 * s[1] + 4 / 3 * s[0])
-    if t == G.mjGEOM_ELLIPSOID:
+    if t == mujoco.mjtGeom.mjGEOM_ELLIPSOID:
         return 4 / 3 * math.pi * s[0] * s[1] * s[2]
     return 1e-4  # meshes: nominal
 
@@ -107,9 +106,9 @@ def _bbox(parts) -> tuple[np.ndarray, np.ndarray]:
         opt = part[4] if len(part) > 4 else {}
         e = _extent(kind, opt.get("extent", size))
         if opt.get("quat") is not None:
-            R = np.zeros(9)
-            mujoco.mju_quat2Mat(R, np.asarray(opt["quat"], float))
-            e = np.abs(R.reshape(3, 3)) @ e
+            rot = np.zeros(9)
+            mujoco.mju_quat2Mat(rot, np.asarray(opt["quat"], float))
+            e = np.abs(rot.reshape(3, 3)) @ e
         lo, hi = np.minimum(lo, ppos - e), np.maximum(hi, ppos + e)
     return lo, hi
 
@@ -171,7 +170,7 @@ def arc_label(
     body = spec.body(body_name)
     g = add_geom(
         body,
-        G.mjGEOM_MESH,
+        mujoco.mjtGeom.mjGEOM_MESH,
         (0, 0, 0),
         (0, 0, 0),
         (1, 1, 1, 1),

@@ -10,7 +10,6 @@ from PIL import Image, ImageDraw, ImageFont
 from .base import ObjectInfo, add_geom, add_texture_material, free_body, hidden_face, static_body
 from .registry import register_asset
 
-G = mujoco.mjtGeom
 BLOCK_COLORS = {  # named colours shared by blocks, patches and pads
     "red": (0.85, 0.12, 0.1, 1),
     "green": (0.12, 0.7, 0.2, 1),
@@ -46,10 +45,12 @@ def add_bell(
 ):
     """Desk bell: heavy base, dome, spring-loaded plunger on top (``extra['joint']``)."""
     b = free_body(spec, name, pos, yaw)
-    add_geom(b, G.mjGEOM_CYLINDER, (radius, 0.008, 0), (0, 0, 0.008), base_rgba, 0.45, f"{name}_body")
+    add_geom(
+        b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius, 0.008, 0), (0, 0, 0.008), base_rgba, 0.45, f"{name}_body"
+    )
     add_geom(
         b,
-        G.mjGEOM_ELLIPSOID,
+        mujoco.mjtGeom.mjGEOM_ELLIPSOID,
         (radius * 0.85, radius * 0.85, 0.035),
         (0, 0, 0.016),
         rgba,
@@ -57,17 +58,35 @@ def add_bell(
         collide=False,
     )
     add_geom(
-        b, G.mjGEOM_CYLINDER, (radius * 0.7, 0.014, 0), (0, 0, 0.03), rgba, 0.05, f"{name}_dome_collision"
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius * 0.7, 0.014, 0),
+        (0, 0, 0.03),
+        rgba,
+        0.05,
+        f"{name}_dome_collision",
     ).group = 3
     stem = b.add_body()
     stem.name = f"{name}_plunger"
     stem.pos = (0, 0, 0.051)
     _spring_slide(stem, f"{name}_plunger_joint", 0.008, 300.0, 2.0)
     add_geom(
-        stem, G.mjGEOM_CYLINDER, (0.004, 0.006, 0), (0, 0, 0.006), (0.3, 0.3, 0.3, 1), 0.005, f"{name}_stem"
+        stem,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (0.004, 0.006, 0),
+        (0, 0, 0.006),
+        (0.3, 0.3, 0.3, 1),
+        0.005,
+        f"{name}_stem",
     )
     add_geom(
-        stem, G.mjGEOM_CYLINDER, (0.012, 0.003, 0), (0, 0, 0.013), (0.2, 0.2, 0.2, 1), 0.005, f"{name}_cap"
+        stem,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (0.012, 0.003, 0),
+        (0, 0, 0.013),
+        (0.2, 0.2, 0.2, 1),
+        0.005,
+        f"{name}_cap",
     )
     top = 0.067
     return ObjectInfo(
@@ -90,11 +109,31 @@ def add_bell(
 def add_cup(spec, name, pos, yaw=0.0, radius=0.034, height=0.09, rgba=(0.9, 0.9, 0.92, 1)):
     """Cup: cylinder body, dark inside disc at the rim (reads as empty), side handle."""
     b = free_body(spec, name, pos, yaw)
-    add_geom(b, G.mjGEOM_CYLINDER, (radius, height / 2, 0), (0, 0, height / 2), rgba, 0.12, f"{name}_body")
     add_geom(
-        b, G.mjGEOM_CYLINDER, (radius * 0.85, 0.0008, 0), (0, 0, height), (0.25, 0.22, 0.2, 1), collide=False
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius, height / 2, 0),
+        (0, 0, height / 2),
+        rgba,
+        0.12,
+        f"{name}_body",
     )
-    add_geom(b, G.mjGEOM_CAPSULE, (0.006, 0.022, 0), (-radius - 0.012, 0, height * 0.55), rgba, collide=False)
+    add_geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius * 0.85, 0.0008, 0),
+        (0, 0, height),
+        (0.25, 0.22, 0.2, 1),
+        collide=False,
+    )
+    add_geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_CAPSULE,
+        (0.006, 0.022, 0),
+        (-radius - 0.012, 0, height * 0.55),
+        rgba,
+        collide=False,
+    )
     return ObjectInfo(name, "cup", name, (radius + 0.018, radius, height / 2), (-0.009, 0, height / 2), 0.12)
 
 
@@ -108,7 +147,7 @@ def add_coaster(spec, name, pos, yaw=0.0, radius=0.052, rgba=(0.55, 0.2, 0.7, 1)
     b = free_body(spec, name, pos, yaw)
     add_geom(
         b,
-        G.mjGEOM_CYLINDER,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius, 0.003, 0),
         (0, 0, 0.003),
         rgba,
@@ -117,7 +156,12 @@ def add_coaster(spec, name, pos, yaw=0.0, radius=0.052, rgba=(0.55, 0.2, 0.7, 1)
         friction=(1.2, 0.01, 0.001),
     )
     add_geom(
-        b, G.mjGEOM_CYLINDER, (radius * 0.8, 0.0004, 0), (0, 0, 0.0062), (0.9, 0.88, 0.8, 1), collide=False
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius * 0.8, 0.0004, 0),
+        (0, 0, 0.0062),
+        (0.9, 0.88, 0.8, 1),
+        collide=False,
     )
     return ObjectInfo(name, "coaster", name, (radius, radius, 0.003), (0, 0, 0.003), 0.06, {"top": 0.006})
 
@@ -136,19 +180,35 @@ def add_button(spec, name, pos, yaw=0.0, number: int = 1, cap_rgba=(0.85, 0.15, 
     """Static push button with a spring-loaded cap (``extra['joint']``) and its number on a label
     plate in front of the cap (readable from the robot's side)."""
     b = static_body(spec, name, pos, yaw)
-    add_geom(b, G.mjGEOM_BOX, (0.06, 0.04, 0.012), (0, 0, 0.012), (0.2, 0.2, 0.22, 1), None, f"{name}_body")
+    add_geom(
+        b,
+        mujoco.mjtGeom.mjGEOM_BOX,
+        (0.06, 0.04, 0.012),
+        (0, 0, 0.012),
+        (0.2, 0.2, 0.22, 1),
+        None,
+        f"{name}_body",
+    )
     cap = b.add_body()
     cap.name = f"{name}_cap"
     cap.pos = (0.022, 0, 0.024)
     _spring_slide(cap, f"{name}_joint", BUTTON_TRAVEL, 80.0, 2.0)
-    g = add_geom(cap, G.mjGEOM_CYLINDER, (0.021, 0.007, 0), (0, 0, 0.007), cap_rgba, 0.01, f"{name}_cap_geom")
+    g = add_geom(
+        cap,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (0.021, 0.007, 0),
+        (0, 0, 0.007),
+        cap_rgba,
+        0.01,
+        f"{name}_cap_geom",
+    )
     # The base is welded to the world, so parent filtering does not apply: the cap touches only the robot.
     g.contype, g.conaffinity = 0, 2
     mat = add_texture_material(spec, f"{name}_digit", digit_image(str(number)))
     # Number label on the base's top, on the robot's side of the cap (-x: the sampler yaws +x outward).
     add_geom(
         b,
-        G.mjGEOM_BOX,
+        mujoco.mjtGeom.mjGEOM_BOX,
         (0.018, 0.018, 0.0005),
         (-0.031, 0.0, 0.0245),
         (1, 1, 1, 1),
@@ -189,10 +249,10 @@ def add_patch_block(spec, name, pos, yaw=0.0, patch_color: str = "red"):
         raise ValueError(f"unknown patch colour {patch_color!r}; choose from {sorted(BLOCK_COLORS)}")
     h = 0.024
     b = free_body(spec, name, pos, yaw)
-    add_geom(b, G.mjGEOM_BOX, (h, h, h), (0, 0, h), GRAY, 0.08, f"{name}_body")
+    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (h, h, h), (0, 0, h), GRAY, 0.08, f"{name}_body")
     add_geom(
         b,
-        G.mjGEOM_BOX,
+        mujoco.mjtGeom.mjGEOM_BOX,
         (0.0015, 0.012, 0.012),
         (h + 0.00005 - 0.0015, 0, h),
         BLOCK_COLORS[patch_color],
@@ -217,7 +277,9 @@ def add_color_pad(spec, name, pos, yaw=0.0, color: str = "red", half: float = 0.
     if color not in colors:
         raise ValueError(f"unknown pad colour {color!r}; choose from {sorted(colors)}")
     b = static_body(spec, name, pos, yaw)
-    add_geom(b, G.mjGEOM_BOX, (half, half, 0.002), (0, 0, 0.002), colors[color], None, f"{name}_body")
+    add_geom(
+        b, mujoco.mjtGeom.mjGEOM_BOX, (half, half, 0.002), (0, 0, 0.002), colors[color], None, f"{name}_body"
+    )
     return ObjectInfo(
         name, "color_pad", name, (half, half, 0.002), (0, 0, 0.002), 0.0, {"color": color, "top": 0.004}
     )

@@ -18,9 +18,9 @@ import math
 
 import numpy as np
 
-from ...expert import primitives as P, routines as R
+from ...expert import primitives, routines
 from ...sim.assets.task_props import BLOCK_COLORS
-from .. import predicates as Pr
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH, Region
 
@@ -32,18 +32,21 @@ BLOCKS = ("red_block", "green_block", "blue_block")
 
 def right_of(point, spacing: float = SPACING) -> np.ndarray:
     """The spot ``spacing`` m to the robot's right of ``point`` on the same radius."""
-    r, a = Pr.polar(point)
+    r, a = predicates.polar(point)
     b = math.radians(a) - spacing / r
     return np.array([r * math.cos(b), r * math.sin(b)])
 
 
 def neighbours(sim, a: str, b: str) -> bool:
     """``b`` is ``a``'s right-hand neighbour in a row."""
-    pa, pb = Pr.position(sim, a), Pr.position(sim, b)
-    ra, rb = Pr.polar(pa)[0], Pr.polar(pb)[0]
+    pa, pb = predicates.position(sim, a), predicates.position(sim, b)
+    ra, rb = predicates.polar(pa)[0], predicates.polar(pb)[0]
     gap = float(np.linalg.norm(pa[:2] - pb[:2]))
     return (
-        Pr.right_of(sim, b, a) and 0.05 <= gap <= 0.15 and abs(ra - rb) <= 0.06 and abs(pa[2] - pb[2]) < 0.01
+        predicates.right_of(sim, b, a)
+        and 0.05 <= gap <= 0.15
+        and abs(ra - rb) <= 0.06
+        and abs(pa[2] - pb[2]) < 0.01
     )
 
 
@@ -98,8 +101,8 @@ class BlocksRankingRgbRotateView(Task):
         return {
             "green_right_of_red": neighbours(sim, "red_block", "green_block"),
             "blue_right_of_green": neighbours(sim, "green_block", "blue_block"),
-            "all_upright": all(Pr.upright(sim, b, 20.0) for b in BLOCKS),
-            "all_released": all(Pr.released(sim, b) for b in BLOCKS),
+            "all_upright": all(predicates.upright(sim, b, 20.0) for b in BLOCKS),
+            "all_released": all(predicates.released(sim, b) for b in BLOCKS),
         }
 
     def expert(self, ctx, scene):
@@ -107,14 +110,16 @@ class BlocksRankingRgbRotateView(Task):
         for k, (block, ref) in enumerate(((green, red), (blue, green))):
             with ctx.subtask(2 * k + 1):
                 dest = ctx.memory.get(ref)  # where it will go, if the reference was already seen
-                side = yield from R.find_and_face(ctx, block, then=None if dest is None else right_of(dest))
-                yield from P.pick(ctx, side, block, lift=0.10)
+                side = yield from routines.find_and_face(
+                    ctx, block, then=None if dest is None else right_of(dest)
+                )
+                yield from primitives.pick(ctx, side, block, lift=0.10)
             with ctx.subtask(2 * k + 2):
-                yield from P.search(ctx, ref, center=False)
+                yield from primitives.search(ctx, ref, center=False)
                 target = right_of(ctx.memory[ref])
-                yield from P.face_for_arm(ctx, np.array([*target, ctx.memory[ref][2]]), side)
-                P.start_action(ctx, {block, ref})
-                yield from P.place(ctx, side, block, target, ctx.bottom_z(ref))
+                yield from primitives.face_for_arm(ctx, np.array([*target, ctx.memory[ref][2]]), side)
+                primitives.start_action(ctx, {block, ref})
+                yield from primitives.place(ctx, side, block, target, ctx.bottom_z(ref))
                 ctx.memory[block] = ctx.center(block)  # the expert knows where it put it
-                yield from P.retreat(ctx, side)
-        yield from P.hold(ctx, 3)
+                yield from primitives.retreat(ctx, side)
+        yield from primitives.hold(ctx, 3)

@@ -16,8 +16,8 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import inspection as I, primitives as P, routines as R
-from .. import predicates as Pr
+from ...expert import inspection, primitives, routines
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, Region
 
@@ -66,7 +66,7 @@ class CheckBlockColor(Task):
             "patch_block",
             "gray_block",
             "gray block",
-            Region(r=I.INSPECT_R, angle=(40.0, 140.0)),
+            Region(r=inspection.INSPECT_R, angle=(40.0, 140.0)),
             patch_color=patch,
             margin=0.04,
             arms=arms,
@@ -83,25 +83,29 @@ class CheckBlockColor(Task):
         pad = f"{scene.params['patch_color']}_pad"
         info = scene.obj(pad)
         return {
-            "on_matching_pad": Pr.resting_on(sim, "gray_block", pad, info.half_extents[0], info.extra["top"]),
-            "block_released": Pr.released(sim, "gray_block"),
+            "on_matching_pad": predicates.resting_on(
+                sim, "gray_block", pad, info.half_extents[0], info.extra["top"]
+            ),
+            "block_released": predicates.released(sim, "gray_block"),
         }
 
     def expert(self, ctx, scene):
         block = ctx.idx("gray_block")
         with ctx.subtask(1):
-            turn = yield from I.pick_for_inspection(ctx, block)
+            turn = yield from inspection.pick_for_inspection(ctx, block)
         with ctx.subtask(2):
-            yield from I.show_hidden_face(ctx, turn, block)
+            yield from inspection.show_hidden_face(ctx, turn, block)
             color = ctx.obj(block).extra["patch_color"]  # read off the visible patch
             ctx.notes["observed_color"] = color
-            I.record_reading(ctx, block, color, f"place on the {color} pad")
+            inspection.record_reading(ctx, block, color, f"place on the {color} pad")
         with ctx.subtask(3):
-            yield from I.restore_pose(ctx, turn, block)
+            yield from inspection.restore_pose(ctx, turn, block)
         with ctx.subtask(4):
             pad = ctx.idx(f"{color}_pad")
-            yield from R.find_and_face(ctx, pad, turn.side)
-            P.start_action(ctx, {block, pad})
+            yield from routines.find_and_face(ctx, pad, turn.side)
+            primitives.start_action(ctx, {block, pad})
             ctx.intent.carried = {block}
-            yield from P.place(ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True)
-            yield from R.finish(ctx, turn.side)
+            yield from primitives.place(
+                ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True
+            )
+            yield from routines.finish(ctx, turn.side)

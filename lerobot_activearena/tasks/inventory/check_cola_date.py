@@ -76,7 +76,7 @@ class CheckColaDate(InspectCanTask):
         side = draft.side()
         other = "left" if side == "right" else "right"
         order = list(AREAS) if rng.integers(0, 2) else list(AREAS)[::-1]
-        for status, region in zip(order, (HIDDEN.on(side), REACH.on(other))):
+        for status, region in zip(order, (HIDDEN.on(side), REACH.on(other)), strict=True):
             color, text = AREAS[status]
             draft.place(
                 "mat",

@@ -16,9 +16,9 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import routines as R
+from ...expert import routines
 from ...sim.assets.task_props import BELL_PRESSED
-from .. import predicates as P
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
 
@@ -36,12 +36,12 @@ class ClickBellRotateView(Task):
         draft.place("bell", "bell", "bell", Region(r=(0.35, 0.48), hidden=True), yaw="random", arms=("left",))
 
     def evaluate(self, sim, scene, monitor):
-        upright, in_place = P.upright(sim, "bell"), P.in_place(sim, "bell", 0.03)
-        top = P.body_point(sim, "bell", scene.obj("bell").extra["press_point"])
+        upright, in_place = predicates.upright(sim, "bell"), predicates.in_place(sim, "bell", 0.03)
+        top = predicates.body_point(sim, "bell", scene.obj("bell").extra["press_point"])
         pressed = monitor.event(
             "pressed",
-            P.joint_below(sim, "bell_plunger_joint", BELL_PRESSED)
-            and P.pressed_by(sim, "left", "bell", top, centered_within=CENTER_TOL)
+            predicates.joint_below(sim, "bell_plunger_joint", BELL_PRESSED)
+            and predicates.pressed_by(sim, "left", "bell", top, centered_within=CENTER_TOL)
             and upright
             and in_place,
         )
@@ -52,15 +52,15 @@ class ClickBellRotateView(Task):
         }
 
     def failure(self, sim, scene, monitor):
-        if P.knocked_over(sim, "bell"):
+        if predicates.knocked_over(sim, "bell"):
             return "the bell was knocked over"
-        if not P.in_place(sim, "bell", 0.06):
+        if not predicates.in_place(sim, "bell", 0.06):
             return "the bell was pushed out of place"
         return None
 
     def expert(self, ctx, scene):
         bell = ctx.idx("bell")
         with ctx.subtask(1):
-            yield from R.find_and_face(ctx, bell, side="left")
-            yield from R.press_object(ctx, "left", bell, depth=0.007)
-            yield from R.finish(ctx, "left")
+            yield from routines.find_and_face(ctx, bell, side="left")
+            yield from routines.press_object(ctx, "left", bell, depth=0.007)
+            yield from routines.finish(ctx, "left")

@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...expert import inspection as I, primitives as P, routines as R
-from .. import predicates as Pr
+from ...expert import inspection, primitives, routines
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH, Region
 
@@ -62,7 +62,7 @@ class MatchBacksideTwoBlocks(Task):
             "patch_block",
             BLOCKS[0],
             "gray block 1",
-            Region(r=I.INSPECT_R, hidden=True, side=hidden_side),
+            Region(r=inspection.INSPECT_R, hidden=True, side=hidden_side),
             patch_color=patches[0],
             margin=0.04,
             arms=ARMS,
@@ -83,7 +83,7 @@ class MatchBacksideTwoBlocks(Task):
             "patch_block",
             BLOCKS[1],
             "gray block 2",
-            Region(r=I.INSPECT_R, angle=(40.0, 140.0)),
+            Region(r=inspection.INSPECT_R, angle=(40.0, 140.0)),
             patch_color=patches[1],
             margin=0.04,
             arms=ARMS,
@@ -99,12 +99,12 @@ class MatchBacksideTwoBlocks(Task):
 
     def evaluate(self, sim, scene, monitor):
         checks = {}
-        for k, (block, color) in enumerate(zip(BLOCKS, scene.params["patch_colors"])):
+        for k, (block, color) in enumerate(zip(BLOCKS, scene.params["patch_colors"], strict=True)):
             pad = scene.obj(f"{color}_pad")
-            checks[f"block_{k}_on_matching_pad"] = Pr.resting_on(
+            checks[f"block_{k}_on_matching_pad"] = predicates.resting_on(
                 sim, block, pad.name, pad.half_extents[0], pad.extra["top"]
             )
-        checks["blocks_released"] = all(Pr.released(sim, b) for b in BLOCKS)
+        checks["blocks_released"] = all(predicates.released(sim, b) for b in BLOCKS)
         return checks
 
     def expert(self, ctx, scene):
@@ -112,33 +112,33 @@ class MatchBacksideTwoBlocks(Task):
         todo = [ctx.idx(b) for b in BLOCKS]
         for k in range(2):
             with ctx.subtask(3 * k + 1):
-                block = R.nearest_known(ctx, todo)
+                block = routines.nearest_known(ctx, todo)
                 todo.remove(block)
-                turn = yield from I.pick_for_inspection(ctx, block)
+                turn = yield from inspection.pick_for_inspection(ctx, block)
             with ctx.subtask(3 * k + 2):
-                yield from I.show_hidden_face(ctx, turn, block)
+                yield from inspection.show_hidden_face(ctx, turn, block)
                 color = ctx.obj(block).extra["patch_color"]  # read off the visible patch
                 ctx.notes[f"observed_color_{k}"] = color
-                I.record_reading(ctx, block, color, f"place on the {color} pad")
+                inspection.record_reading(ctx, block, color, f"place on the {color} pad")
             with ctx.subtask(3 * k + 3):
                 pad = ctx.idx(f"{color}_pad")
-                yield from R.find_and_face(ctx, pad, turn.side)
+                yield from routines.find_and_face(ctx, pad, turn.side)
                 target = pad_spot(
                     ctx, pad, used.get(pad, 0), shared=scene.params["patch_colors"].count(color) == 2
                 )
                 used[pad] = used.get(pad, 0) + 1
-                P.start_action(ctx, {block, pad})
+                primitives.start_action(ctx, {block, pad})
                 ctx.intent.carried = {block}
-                yield from P.place(ctx, turn.side, block, target, ctx.top_z(pad), yaw_free=True)
-                yield from P.retreat(ctx, turn.side)
-        yield from P.hold(ctx, 3)
+                yield from primitives.place(ctx, turn.side, block, target, ctx.top_z(pad), yaw_free=True)
+                yield from primitives.retreat(ctx, turn.side)
+        yield from primitives.hold(ctx, 3)
 
 
 def pad_spot(ctx, pad: int, n_on_it: int, shared: bool) -> np.ndarray:
     """Where on the pad the next block goes: the centre, or (two blocks on one pad) one of two
     spots on the pad's diagonal, far enough apart for blocks of any yaw."""
-    c, R = ctx.pose(pad)
+    c, rot = ctx.pose(pad)
     if not shared:
         return ctx.center(pad)[:2]
     sign = 1.0 if n_on_it == 0 else -1.0
-    return (c + R @ np.array([sign * SHARED_PAD_OFFSET, sign * SHARED_PAD_OFFSET, 0.0]))[:2]
+    return (c + rot @ np.array([sign * SHARED_PAD_OFFSET, sign * SHARED_PAD_OFFSET, 0.0]))[:2]

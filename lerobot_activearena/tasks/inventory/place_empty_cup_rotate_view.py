@@ -12,8 +12,8 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import primitives as P, routines as R
-from .. import predicates as Pr
+from ...expert import primitives, routines
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH
 
@@ -37,22 +37,24 @@ class PlaceEmptyCupRotateView(Task):
 
     def evaluate(self, sim, scene, monitor):
         coaster = scene.obj("coaster")
-        on = Pr.resting_on(
+        on = predicates.resting_on(
             sim, "cup", "coaster", coaster.half_extents[0] / 2**0.5, coaster.extra["top"], margin=0.0
-        ) and Pr.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
+        ) and predicates.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
         return {
             "cup_on_coaster": on,
-            "cup_upright": Pr.upright(sim, "cup"),
-            "cup_released": Pr.released(sim, "cup"),
+            "cup_upright": predicates.upright(sim, "cup"),
+            "cup_released": predicates.released(sim, "cup"),
         }
 
     def expert(self, ctx, scene):
         cup, coaster = ctx.idx("cup"), ctx.idx("coaster")
         with ctx.subtask(1):
-            side = yield from R.find_and_face(ctx, cup)
-            yield from P.pick(ctx, side, cup, closing=P.radial_tangent(ctx.center(cup)), lift=0.12)
+            side = yield from routines.find_and_face(ctx, cup)
+            yield from primitives.pick(
+                ctx, side, cup, closing=primitives.radial_tangent(ctx.center(cup)), lift=0.12
+            )
         with ctx.subtask(2):
-            yield from R.find_and_face(ctx, coaster, side)
-            P.start_action(ctx, {cup, coaster})
-            yield from P.place(ctx, side, cup, ctx.center(coaster)[:2], ctx.top_z(coaster) + 0.002)
-            yield from R.finish(ctx, side)
+            yield from routines.find_and_face(ctx, coaster, side)
+            primitives.start_action(ctx, {cup, coaster})
+            yield from primitives.place(ctx, side, cup, ctx.center(coaster)[:2], ctx.top_z(coaster) + 0.002)
+            yield from routines.finish(ctx, side)

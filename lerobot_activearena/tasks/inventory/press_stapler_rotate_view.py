@@ -15,8 +15,8 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import routines as R
-from .. import predicates as P
+from ...expert import routines
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
 
@@ -40,24 +40,24 @@ class PressStaplerRotateView(Task):
 
     def evaluate(self, sim, scene, monitor):
         extra = scene.obj("stapler").extra
-        upright, in_place = P.upright(sim, "stapler"), P.in_place(sim, "stapler", 0.03)
-        front = P.body_point(sim, extra["press_body"], extra["press_point"])
-        down = P.joint_pos(sim, extra["joint"]) >= extra["pressed_above"]
+        upright, in_place = predicates.upright(sim, "stapler"), predicates.in_place(sim, "stapler", 0.03)
+        front = predicates.body_point(sim, extra["press_body"], extra["press_point"])
+        down = predicates.joint_pos(sim, extra["joint"]) >= extra["pressed_above"]
         pressed = monitor.event(
-            "pressed", down and P.pressed_by_either(sim, "stapler", front) and upright and in_place
+            "pressed", down and predicates.pressed_by_either(sim, "stapler", front) and upright and in_place
         )
         return {"pressed_front_of_arm": pressed, "stapler_upright": upright, "stapler_in_place": in_place}
 
     def failure(self, sim, scene, monitor):
-        if P.knocked_over(sim, "stapler"):
+        if predicates.knocked_over(sim, "stapler"):
             return "the stapler was knocked over"
-        if not P.in_place(sim, "stapler", 0.06):
+        if not predicates.in_place(sim, "stapler", 0.06):
             return "the stapler was pushed out of place"
         return None
 
     def expert(self, ctx, scene):
         stapler = ctx.idx("stapler")
         with ctx.subtask(1):
-            side = yield from R.find_and_face(ctx, stapler)
-            yield from R.press_object(ctx, side, stapler, depth=0.02)
-            yield from R.finish(ctx, side)
+            side = yield from routines.find_and_face(ctx, stapler)
+            yield from routines.press_object(ctx, side, stapler, depth=0.02)
+            yield from routines.finish(ctx, side)

@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import math
 
-from ...expert import inspection as I, primitives as P, routines as R
-from .. import predicates as Pr
+from ...expert import inspection, primitives, routines
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
 
@@ -69,9 +69,11 @@ class RankBacksideRgbBlocks(Task):
                 arms=ARMS,
             )
         colors = [str(c) for c in rng.permutation(list(RANK))]
-        for k, (block, color) in enumerate(zip(BLOCKS, colors)):
+        for k, (block, color) in enumerate(zip(BLOCKS, colors, strict=True)):
             region = (
-                Region(r=I.INSPECT_R, hidden=True) if k == 0 else Region(r=I.INSPECT_R, angle=(40.0, 140.0))
+                Region(r=inspection.INSPECT_R, hidden=True)
+                if k == 0
+                else Region(r=inspection.INSPECT_R, angle=(40.0, 140.0))
             )
             draft.place(
                 "patch_block", block, f"gray block {k + 1}", region, patch_color=color, margin=0.04, arms=ARMS
@@ -84,12 +86,12 @@ class RankBacksideRgbBlocks(Task):
 
     def evaluate(self, sim, scene, monitor):
         checks = {}
-        for block, color in zip(BLOCKS, scene.params["patch_colors"]):
+        for block, color in zip(BLOCKS, scene.params["patch_colors"], strict=True):
             pad = scene.obj(f"{RANK[color]}_pad")
-            checks[f"{color}_on_{RANK[color]}_pad"] = Pr.resting_on(
+            checks[f"{color}_on_{RANK[color]}_pad"] = predicates.resting_on(
                 sim, block, pad.name, pad.half_extents[0], pad.extra["top"]
             )
-        checks["blocks_released"] = all(Pr.released(sim, b) for b in BLOCKS)
+        checks["blocks_released"] = all(predicates.released(sim, b) for b in BLOCKS)
         return dict(
             sorted(
                 checks.items(),
@@ -101,19 +103,21 @@ class RankBacksideRgbBlocks(Task):
         todo = [ctx.idx(b) for b in BLOCKS]
         for k in range(3):
             with ctx.subtask(3 * k + 1):
-                block = R.nearest_known(ctx, todo)
+                block = routines.nearest_known(ctx, todo)
                 todo.remove(block)
-                turn = yield from I.pick_for_inspection(ctx, block)
+                turn = yield from inspection.pick_for_inspection(ctx, block)
             with ctx.subtask(3 * k + 2):
-                yield from I.show_hidden_face(ctx, turn, block)
+                yield from inspection.show_hidden_face(ctx, turn, block)
                 color = ctx.obj(block).extra["patch_color"]  # read off the visible patch
                 ctx.notes[f"observed_color_{k}"] = color
-                I.record_reading(ctx, block, color, f"place on the {RANK[color]} pad")
+                inspection.record_reading(ctx, block, color, f"place on the {RANK[color]} pad")
             with ctx.subtask(3 * k + 3):
                 pad = ctx.idx(f"{RANK[color]}_pad")
-                yield from R.find_and_face(ctx, pad, turn.side)
-                P.start_action(ctx, {block, pad})
+                yield from routines.find_and_face(ctx, pad, turn.side)
+                primitives.start_action(ctx, {block, pad})
                 ctx.intent.carried = {block}
-                yield from P.place(ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True)
-                yield from P.retreat(ctx, turn.side)
-        yield from P.hold(ctx, 3)
+                yield from primitives.place(
+                    ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True
+                )
+                yield from primitives.retreat(ctx, turn.side)
+        yield from primitives.hold(ctx, 3)

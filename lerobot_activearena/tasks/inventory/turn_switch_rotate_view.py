@@ -17,8 +17,8 @@ from __future__ import annotations
 
 import math
 
-from ...expert import routines as R
-from .. import predicates as P
+from ...expert import routines
+from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
 
@@ -45,25 +45,26 @@ class TurnSwitchRotateView(Task):
 
     def evaluate(self, sim, scene, monitor):
         extra = scene.obj("switch").extra
-        upright, in_place = P.upright(sim, "switch"), P.in_place(sim, "switch", 0.03)
-        end = P.body_point(sim, extra["press_body"], extra["press_point"])
-        on = P.joint_pos(sim, extra["joint"]) >= extra["on_limit"] - ON_TOL
+        upright, in_place = predicates.upright(sim, "switch"), predicates.in_place(sim, "switch", 0.03)
+        end = predicates.body_point(sim, extra["press_body"], extra["press_point"])
+        on = predicates.joint_pos(sim, extra["joint"]) >= extra["on_limit"] - ON_TOL
         pressed = any(
-            P.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL) for arm in ("left", "right")
+            predicates.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL)
+            for arm in ("left", "right")
         )
         switched = monitor.event("switched_on", on and pressed and upright and in_place)
         return {"switched_on": switched, "switch_upright": upright, "switch_in_place": in_place}
 
     def failure(self, sim, scene, monitor):
-        if P.knocked_over(sim, "switch"):
+        if predicates.knocked_over(sim, "switch"):
             return "the switch was knocked over"
-        if not P.in_place(sim, "switch", 0.06):
+        if not predicates.in_place(sim, "switch", 0.06):
             return "the switch was pushed out of place"
         return None
 
     def expert(self, ctx, scene):
         switch = ctx.idx("switch")
         with ctx.subtask(1):
-            side = yield from R.find_and_face(ctx, switch)
-            yield from R.press_object(ctx, side, switch, depth=0.016)
-            yield from R.finish(ctx, side)
+            side = yield from routines.find_and_face(ctx, switch)
+            yield from routines.press_object(ctx, side, switch, depth=0.016)
+            yield from routines.finish(ctx, side)
