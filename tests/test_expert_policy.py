@@ -2,9 +2,6 @@
 lerobot-eval run."""
 
 import json
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -44,25 +41,26 @@ def test_policy_refuses_to_run_without_the_channel():
 
 
 def test_lerobot_eval_runs_the_oracle_on_manifest_seeds(tmp_path):
-    exe = shutil.which("lerobot-eval", path=str(Path(sys.executable).parent)) or shutil.which("lerobot-eval")
-    out = subprocess.run(
-        [
-            exe,
-            "--policy.type=activearena_expert",
-            "--env.type=activearena",
-            "--env.task=click_bell_rotate_view",
-            "--env.expert_channel=true",
-            "--eval.n_episodes=3",
-            "--eval.batch_size=2",
-            f"--env.episode_log_dir={tmp_path / 'eval' / 'episodes'}",
-            "--policy.device=cpu",
-            f"--output_dir={tmp_path / 'eval'}",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=900,
+    """LeRobot's eval entry point, in process (the CLI itself: test_plugin_discovery.py)."""
+    from lerobot.configs.default import EvalConfig
+    from lerobot.configs.eval import EvalPipelineConfig
+    from lerobot.scripts.lerobot_eval import eval_main
+
+    from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
+    from lerobot_activearena.policies.activearena_expert import ActiveArenaExpertConfig
+
+    env = ActiveArenaEnvConfig(
+        task="click_bell_rotate_view",
+        expert_channel=True,
+        episode_log_dir=str(tmp_path / "eval" / "episodes"),
     )
-    assert out.returncode == 0, out.stderr[-3000:]
+    cfg = EvalPipelineConfig(
+        env=env,
+        policy=ActiveArenaExpertConfig(device="cpu"),
+        eval=EvalConfig(n_episodes=3, batch_size=2),
+        output_dir=tmp_path / "eval",
+    )
+    eval_main(cfg)
     info = json.loads((tmp_path / "eval" / "eval_info.json").read_text())
     assert info["overall"]["pc_success"] == 100.0 and info["overall"]["n_episodes"] == 3
     assert "SS" in info["per_group"]
