@@ -78,24 +78,30 @@ def pytest_runtest_logreport(report):
 
 def pytest_terminal_summary(terminalreporter):
     """Test time (setup + call + teardown, summed over workers) that grows with the task registry:
-    tests parametrised by a task name, and that time per registered task."""
+    the test functions parametrised over every registered task, and that time per task."""
     from lerobot_activearena.tasks import task_names
 
     tasks = task_names("all")
     if not _DURATIONS:
         return
-    per_task = dict.fromkeys(tasks, 0.0)
+    by_function: dict[str, dict[str, float]] = {}
     for nodeid, seconds in _DURATIONS.items():
-        params = nodeid.partition("[")[2].rstrip("]").split("-")
-        for t in tasks:
-            if t in params:
-                per_task[t] += seconds
-                break
-    total, tasked = sum(_DURATIONS.values()), sum(per_task.values())
-    slowest = sorted(per_task.items(), key=lambda kv: -kv[1])[:3]
+        function, _, params = nodeid.partition("[")
+        task = next((t for t in tasks if t in params.rstrip("]").split("-")), None)
+        if task is not None:
+            per = by_function.setdefault(function, {})
+            per[task] = per.get(task, 0.0) + seconds
+    per_task = {f: per for f, per in by_function.items() if set(per) == set(tasks)}
+    total = sum(_DURATIONS.values())
+    tasked = sum(sum(per.values()) for per in per_task.values())
+    costs = dict.fromkeys(tasks, 0.0)
+    for per in per_task.values():
+        for t, sec in per.items():
+            costs[t] += sec
+    slowest = sorted(costs.items(), key=lambda kv: -kv[1])[:3]
     terminalreporter.write_sep("-", "test time per registered task")
     terminalreporter.write_line(
-        f"{total:.0f} s of test time (all workers); {tasked:.0f} s in tests parametrised by task: "
-        f"{tasked / len(tasks):.1f} s per task x {len(tasks)} tasks; slowest: "
-        + ", ".join(f"{t} {s:.1f} s" for t, s in slowest)
+        f"{total:.0f} s of test time (all workers); {tasked:.0f} s in {len(per_task)} test functions run "
+        f"for every task: {tasked / len(tasks):.1f} s per task x {len(tasks)} tasks; slowest: "
+        + ", ".join(f"{t} {sec:.1f} s" for t, sec in slowest)
     )
