@@ -8,11 +8,9 @@ targets; the full 50-seed table runs every adversary: ``benchmarks/validity.py``
 import json
 
 import pytest
-from conftest import expert_task_params
 
 from lerobot_activearena.cli.validity import main as validity_main
 from lerobot_activearena.envs.manifests import EVAL_SEED_START
-from lerobot_activearena.eval import adversaries
 from lerobot_activearena.eval.adversaries import (
     ADVERSARIES,
     VALIDITY_SEED_BASE,
@@ -33,17 +31,15 @@ TASKS = task_names("all")
 # In CI: held random targets (they reach further than a new random target every step, which
 # jitters around mid-range) and blind replay; ``random`` and ``still`` run in the full table.
 CI_ADVERSARIES = ("held_random", "blind_replay")
-EXPERT_TASKS = expert_task_params()
 SEEDS = (VALIDITY_SEED_BASE,)  # one episode each in CI; the 50-seed table is benchmarks/validity.py
 
 
 @pytest.mark.parametrize("adversary", CI_ADVERSARIES)
-@pytest.mark.parametrize("task", EXPERT_TASKS)
-def test_look_at_nothing_adversaries_never_score(task, adversary, expert_episode, monkeypatch):
-    # blind replay: the expert's actions of another scene (its seed-0 episode, shared with the expert tests)
-    monkeypatch.setattr(
-        adversaries, "replay_actions", lambda t, sp, seed: (0, expert_episode(t, 0, sp).actions)
-    )
+@pytest.mark.parametrize("task", TASKS)
+def test_look_at_nothing_adversaries_never_score(task, adversary):
+    # One seed each. Blind replay's target is a rate (<= 10 %, met in the 50-seed table): the replay
+    # comes from seed + k x 1000003 as in the table; the expert's seed-0 actions replayed on seed
+    # 900000 do press the right button (count_target) and shake the bottle (shake_horizontally).
     for seed in SEEDS:
         rec = run_episode(task, "id", adversary, seed)
         assert not rec["success"], f"{adversary} solved {task} seed {seed}: {rec}"
