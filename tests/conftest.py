@@ -22,12 +22,13 @@ BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 DATASET_REPO = "local/bench_id"
 
 
-def expert_task_params():
-    """Every registered task as a parameter grouped by task, so ``--dist loadgroup`` sends a task's
-    tests to one worker and the session cache serves its expert episodes once."""
+def expert_task_params(selector: str = "all"):
+    """The registered tasks (``task_names(selector)``) as parameters grouped by task, so ``--dist
+    loadgroup`` sends a task's tests to one worker and the session cache serves its expert episodes
+    once."""
     from lerobot_activearena.tasks import task_names
 
-    return [pytest.param(t, marks=pytest.mark.xdist_group(t)) for t in task_names("all")]
+    return [pytest.param(t, marks=pytest.mark.xdist_group(t)) for t in task_names(selector)]
 
 
 @pytest.fixture(scope="session")

@@ -15,6 +15,8 @@ import pytest
 from fake_slurm import install_fake_slurm, submitted_jobs
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
+from lerobot.scripts.lerobot_dataset_viz import main as dataset_viz_main
+from lerobot.scripts.lerobot_edit_dataset import main as edit_dataset_main
 
 from lerobot_activearena.annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
 from lerobot_activearena.cli.build_dataset import main as build_main
@@ -278,72 +280,64 @@ def test_push_to_hub_uses_lerobots_upload_path(built, monkeypatch, tmp_path):
     assert "activearena" in calls["card"][0]  # LeRobot's dataset card, with our tags
 
 
-def test_lerobot_edit_dataset_info_and_merge(built, tmp_path):
-    info = subprocess.run(
-        [
-            _exe("lerobot-edit-dataset"),
-            "--repo_id",
-            "local/bench_id",
-            "--root",
-            str(built),
-            "--operation.type",
-            "info",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
+def _run_cli(monkeypatch, main, *argv):
+    """A LeRobot console script in this process: its own argument parsing, no fresh import of torch."""
+    monkeypatch.setattr(sys, "argv", [main.__module__, *argv])
+    main()
+
+
+def test_lerobot_edit_dataset_info_and_merge(built, tmp_path, monkeypatch, capsys):
+    _run_cli(
+        monkeypatch,
+        edit_dataset_main,
+        "--repo_id",
+        "local/bench_id",
+        "--root",
+        str(built),
+        "--operation.type",
+        "info",
     )
-    assert info.returncode == 0, info.stderr[-2000:]
+    info = capsys.readouterr().out
     frames = json.loads((built / "meta/activearena/build.json").read_text())["frames"]
-    assert "Total episode: 2" in info.stdout and f"({frames})" in info.stdout and "FPS: 15" in info.stdout
+    assert "Total episode: 2" in info and f"({frames})" in info and "FPS: 15" in info
     merged = tmp_path / "merged"
-    out = subprocess.run(
-        [
-            _exe("lerobot-edit-dataset"),
-            "--new_repo_id",
-            "local/merged",
-            "--new_root",
-            str(merged),
-            "--operation.type",
-            "merge",
-            "--operation.repo_ids",
-            "['local/bench_id', 'local/bench_id2']",
-            "--operation.roots",
-            f"['{built}', '{built}']",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=600,
+    _run_cli(
+        monkeypatch,
+        edit_dataset_main,
+        "--new_repo_id",
+        "local/merged",
+        "--new_root",
+        str(merged),
+        "--operation.type",
+        "merge",
+        "--operation.repo_ids",
+        "['local/bench_id', 'local/bench_id2']",
+        "--operation.roots",
+        f"['{built}', '{built}']",
     )
-    assert out.returncode == 0, out.stderr[-2000:]
     meta = LeRobotDatasetMetadata("local/merged", root=merged)
     assert meta.total_episodes == 4 and set(dataset_features()) <= set(meta.features)
 
 
-def test_lerobot_dataset_viz_saves_a_recording(built, tmp_path):
-    out = subprocess.run(
-        [
-            _exe("lerobot-dataset-viz"),
-            "--repo-id",
-            "local/bench_id",
-            "--root",
-            str(built),
-            "--episode-index",
-            "0",
-            "--mode",
-            "local",
-            "--save",
-            "1",
-            "--output-dir",
-            str(tmp_path),
-            "--num-workers",
-            "0",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=600,
+def test_lerobot_dataset_viz_saves_a_recording(built, tmp_path, monkeypatch):
+    _run_cli(
+        monkeypatch,
+        dataset_viz_main,
+        "--repo-id",
+        "local/bench_id",
+        "--root",
+        str(built),
+        "--episode-index",
+        "0",
+        "--mode",
+        "local",
+        "--save",
+        "1",
+        "--output-dir",
+        str(tmp_path),
+        "--num-workers",
+        "0",
     )
-    assert out.returncode == 0, out.stderr[-2000:]
     rrd = list(tmp_path.glob("*.rrd"))
     assert rrd and rrd[0].stat().st_size > 100_000
 

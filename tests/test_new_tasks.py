@@ -6,16 +6,16 @@ import datetime as dt
 
 import numpy as np
 import pytest
+from conftest import expert_task_params
 
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.sim.action import LEFT_ARM, RIGHT_ARM
 from lerobot_activearena.sim.assets.task_objects import DATE_RANGE
 from lerobot_activearena.sim.simulator import ActiveArenaSim
-from lerobot_activearena.tasks import get_task, predicates, task_names
+from lerobot_activearena.tasks import get_task, predicates
 from lerobot_activearena.tasks.inventory.check_cola_date import expired
 from lerobot_activearena.tasks.inventory.count_random_object_press_button import CATEGORIES as PLURALS
 from lerobot_activearena.tasks.inventory.rank_backside_rgb_blocks import RANK
-from lerobot_activearena.tasks.rollout import run_expert_episode
 from lerobot_activearena.tasks.sampling import sample_scene
 from lerobot_activearena.tasks.shaking import ShakeDetector, reversals
 from lerobot_activearena.tasks.success import SuccessMonitor
@@ -98,14 +98,14 @@ def test_blocks_on_their_pads_without_every_patch_seen_is_not_success(name):
     sim.close()
 
 
-@pytest.mark.parametrize("name", task_names("IA"))
-def test_ia_expert_links_each_inspection_view_to_its_decision_without_branch_jumps(name):
+@pytest.mark.parametrize("name", expert_task_params("IA"))
+def test_ia_expert_links_each_inspection_view_to_its_decision_without_branch_jumps(name, expert_episode):
     """The sidecar says which frame and view revealed each hidden face, what was read and what it
     decided; and a continuous arm path never switches IK branch between two frames (that whips the
     arm and flings what it holds): commanded arm joints move < 0.6 rad per frame."""
-    r = run_expert_episode(name, 2, "id")
+    r = expert_episode(name, 0, "id")
     assert r.success, r.failure
-    task, scene = get_task(name), sample_scene(get_task(name), 2, "id")
+    task, scene = get_task(name), sample_scene(get_task(name), 0, "id")
     inspections = r.sidecar["expert_notes"]["inspections"]
     assert sorted(e["object"] for e in inspections) == sorted(task.information_faces(scene))
     for e in inspections:

@@ -14,7 +14,7 @@ def test_lerobot_eval_help_lists_activearena_env():
     choices = next(line for line in out.stdout.splitlines() if "--env.type {" in line)
     assert "activearena" in choices
     policies = next(line for line in out.stdout.splitlines() if "--policy.type {" in line)
-    assert "activearena_expert" in policies
+    assert "activearena_expert" in policies and "activearena_oft" in policies
 
 
 def test_plugin_registers_env_config_through_lerobot_discovery():

@@ -9,8 +9,6 @@ import shutil
 from importlib.metadata import version
 from pathlib import Path
 
-from lerobot.datasets.aggregate import aggregate_datasets
-
 from .plan import BuildPlan
 from .shard import SHARD_DONE, is_complete, shard_dir
 
@@ -20,6 +18,8 @@ META_DIR = "meta/activearena"
 def merge_shards(plan: BuildPlan, work_dir: Path, root: Path) -> dict:
     """Aggregate into ``<root>.merging`` and rename to ``root`` at the end: ``root`` only ever holds a
     complete dataset."""
+    from lerobot.datasets.aggregate import aggregate_datasets  # only when merging: a finished build skips it
+
     missing = [s.name for s in plan.shards if not is_complete(shard_dir(work_dir, s))]
     if missing:
         raise RuntimeError(

@@ -9,9 +9,6 @@ import logging
 import shutil
 from pathlib import Path
 
-import datasets
-from lerobot.datasets.lerobot_dataset import LeRobotDataset
-
 from ..sim.embodiment import ROBOT_TYPE
 from .features import FPS, dataset_features
 from .plan import ShardSpec
@@ -40,6 +37,9 @@ def build_shard(
 ) -> dict:
     """Record the shard's episodes; returns (and stores) its summary. Safe to call again: a complete
     shard is returned as is, leftovers of an interrupted attempt are removed first."""
+    import datasets  # LeRobot and torch load in the workers that record, not in the CLI that plans
+    from lerobot.datasets.lerobot_dataset import LeRobotDataset
+
     final = shard_dir(work_dir, spec)
     datasets.disable_progress_bars()  # the shard's own per-episode bookkeeping; the build shows its own bars
     logging.getLogger("lerobot.utils.import_utils").setLevel(logging.ERROR)  # decoder probe: we only encode

@@ -79,10 +79,13 @@ def replay_actions(task: str, split: str, seed: int) -> tuple[int, np.ndarray]:
     raise RuntimeError(f"blind_replay: the expert failed on every replay seed of {task}/{split}: {tried}")
 
 
-def _blind_replay(env, obs, task, split, seed) -> Act:
-    other, actions = replay_actions(task, split, seed)
+def _replay(env, other: int, actions: np.ndarray) -> Act:
     env.replay_seed = other  # reported in the episode record
     return lambda obs, t: actions[min(t, len(actions) - 1)]
+
+
+def _blind_replay(env, obs, task, split, seed) -> Act:
+    return _replay(env, *replay_actions(task, split, seed))
 
 
 def _expert(env, obs, task, split, seed) -> Act:
@@ -115,11 +118,17 @@ def get_adversary(name: str) -> Adversary:
     return ADVERSARIES[name]
 
 
-def run_episode(task: str, split: str, adversary: str, seed: int) -> dict:
-    """One episode of ``adversary`` on scene seed ``seed`` (played directly, no manifest)."""
+def run_episode(
+    task: str, split: str, adversary: str, seed: int, replay: tuple[int, np.ndarray] | None = None
+) -> dict:
+    """One episode of ``adversary`` on scene seed ``seed`` (played directly, no manifest).
+    ``replay``: blind_replay's (seed, actions) of an expert episode to replay, e.g. a training
+    demonstration (default: ``replay_actions``)."""
     from ..envs.gym_env import ActiveArenaEnv
 
     adv = get_adversary(adversary)
+    if replay is not None and adversary != "blind_replay":
+        raise ValueError(f"replay= is blind_replay's episode to replay; {adversary!r} replays nothing")
     t0 = time.perf_counter()
     env = ActiveArenaEnv(
         task=task,
@@ -132,7 +141,7 @@ def run_episode(task: str, split: str, adversary: str, seed: int) -> dict:
     env.replay_seed = None
     try:
         obs, _ = env.reset(seed=int(seed))
-        act = adv.make(env, obs, task, split, int(seed))
+        act = _replay(env, *replay) if replay is not None else adv.make(env, obs, task, split, int(seed))
         t, info = 0, {}
         while t < env._max_episode_steps:  # the env truncates at its step limit; this is a guard
             obs, _, terminated, truncated, info = env.step(act(obs, t))
