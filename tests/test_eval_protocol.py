@@ -15,6 +15,7 @@ import pytest
 from fake_slurm import install_fake_slurm, submitted_jobs
 from lerobot.configs.eval import EvalPipelineConfig
 from lerobot.configs.types import FeatureType, PolicyFeature
+from lerobot.scripts.lerobot_eval import main as lerobot_eval_cli
 
 from lerobot_activearena.cli.eval import main as eval_main
 from lerobot_activearena.envs.manifests import load_manifest
@@ -217,10 +218,13 @@ def test_env_configs_are_lerobot_eval_configs_of_the_protocol(name):
     assert cfg.seed == cfg.env.seed_base  # episode k of lerobot-eval plays manifest seed k
 
 
-def test_fixed_view_config_runs_in_lerobot_eval(tmp_path):
-    out = subprocess.run(
+def test_fixed_view_config_runs_in_lerobot_eval(tmp_path, monkeypatch):
+    """lerobot-eval's entry point (its own parsing of ``--config_path``) in this process."""
+    monkeypatch.setattr(
+        sys,
+        "argv",
         [
-            _exe("lerobot-eval"),
+            "lerobot-eval",
             f"--config_path={ROOT / 'configs/env/activearena_fixed_ood.json'}",
             "--policy.type=activearena_expert",
             "--policy.device=cpu",
@@ -232,11 +236,8 @@ def test_fixed_view_config_runs_in_lerobot_eval(tmp_path):
             "--eval.n_episodes=1",
             f"--output_dir={tmp_path / 'eval'}",
         ],
-        capture_output=True,
-        text=True,
-        timeout=600,
     )
-    assert out.returncode == 0, out.stderr[-2000:]
+    lerobot_eval_cli()
     rec = json.loads((next((tmp_path / "eval" / "episodes").glob("*.jsonl"))).read_text().splitlines()[0])
     assert rec["fixed_view"] is True and rec["split"] == "ood" and rec["episode"] == 0 and rec["steps"] == 20
     assert {tuple(v) for v in rec["view_targets"]} == {(0.0, 1.0)}  # torso and head held at home

@@ -6,25 +6,11 @@ import sys
 
 import av
 
+from lerobot_activearena.cli.expert_video import main as expert_video_main
+
 
 def test_expert_video_cli_writes_video_annotations_and_sidecar(tmp_path):
-    out = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "lerobot_activearena.cli.expert_video",
-            "--task",
-            "SS",
-            "--seed",
-            "1",
-            "--out",
-            str(tmp_path),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert out.returncode == 0, out.stderr[-2000:]
+    expert_video_main(["--task", "SS", "--seed", "1", "--out", str(tmp_path)])
     ep = tmp_path / "click_bell_rotate_view_id_1"
     side = json.loads((ep / "episode.json").read_text())
     assert side["success"] and side["task"] == "click_bell_rotate_view"
