@@ -87,7 +87,7 @@ def pytest_terminal_summary(terminalreporter):
         return
     by_function: dict[str, dict[str, float]] = {}
     for nodeid, seconds in _DURATIONS.items():
-        function, _, params = nodeid.partition("[")
+        function, _, params = nodeid.split("@")[0].partition("[")  # loadgroup appends "@<group>"
         task = next((t for t in tasks if t in params.rstrip("]").split("-")), None)
         if task is not None:
             per = by_function.setdefault(function, {})
