@@ -221,4 +221,4 @@ def test_mat_text_is_printed_only_when_asked():
     model = spec.compile()
     names = {model.geom(i).name for i in range(model.ngeom)}
     assert "printed_text" in names and "plain_text" not in names
-    assert (plain.extra["text"], printed.extra["text"]) == ("", "VALID")
+    assert (plain.attributes["text"], printed.attributes["text"]) == ("", "VALID")

@@ -58,7 +58,7 @@ def test_expiry_rule_and_balanced_cases():
     states = []
     for seed in range(30):
         scene = sample_scene(task, seed, "id")
-        label = scene.obj("cola_can").extra
+        label = scene.obj("cola_can").attributes
         today, production = scene.params["today"], label["production_date"]
         assert DATE_RANGE[0] <= dt.date.fromisoformat(production) <= dt.date.fromisoformat(today)
         assert today in scene.instruction

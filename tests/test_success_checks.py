@@ -72,7 +72,7 @@ def test_pressing_a_wrong_button_is_an_irreversible_failure():
 
 def test_a_placed_cup_succeeds_only_after_resting_for_the_stable_frames():
     task, scene, sim, mon = _sim("place_empty_cup_rotate_view", 2)
-    top = scene.obj("coaster").extra["top"]
+    top = scene.obj("coaster").functional.support.top
     _set_free_pose(sim, "cup", sim.data.body("coaster").xpos + [0, 0, top + 0.001])
     mon.observe(np.ones(len(scene.objects), bool))
     home = sim.home_action()
@@ -92,7 +92,9 @@ def test_a_placed_cup_succeeds_only_after_resting_for_the_stable_frames():
 def test_a_placed_cup_the_camera_never_saw_is_not_a_success():
     task, scene, sim, mon = _sim("place_empty_cup_rotate_view", 2)
     _set_free_pose(
-        sim, "cup", sim.data.body("coaster").xpos + [0, 0, scene.obj("coaster").extra["top"] + 0.001]
+        sim,
+        "cup",
+        sim.data.body("coaster").xpos + [0, 0, scene.obj("coaster").functional.support.top + 0.001],
     )
     for _ in range(STABLE_FRAMES + 4):
         sim.step(sim.home_action())
@@ -102,7 +104,7 @@ def test_a_placed_cup_the_camera_never_saw_is_not_a_success():
 
 def test_a_tipped_cup_on_the_coaster_is_not_placed():
     task, scene, sim, mon = _sim("place_empty_cup_rotate_view", 2)
-    top = scene.obj("coaster").extra["top"]
+    top = scene.obj("coaster").functional.support.top
     tilt = np.radians(40) / 2
     _set_free_pose(
         sim,

@@ -61,7 +61,7 @@ def test_patch_block_matches_the_paper_dimensions():
     np.testing.assert_allclose(m.geom("b_patch").size, [0.0015, 0.012, 0.012])
     outer = m.geom("b_patch").pos[0] + 0.0015
     assert abs(outer - (0.024 + 0.00005)) < 1e-9  # protrudes 0.05 mm
-    assert info.extra["patch_color"] == "green"
+    assert info.attributes["patch_color"] == "green"
 
 
 def test_digit_labels_differ():

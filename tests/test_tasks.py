@@ -113,7 +113,7 @@ def test_check_block_color_patch_faces_away_at_reset():
         pos = scene.model.body("gray_block").pos
         outward = math.atan2(pos[1], pos[0])
         assert abs((yaw - outward + math.pi) % (2 * math.pi) - math.pi) < 0.3
-        assert info.extra["patch_color"] == scene.params["patch_color"]
+        assert info.attributes["patch_color"] == scene.params["patch_color"]
 
 
 def test_principle_check_rejects_an_object_out_of_reach():

@@ -64,7 +64,7 @@ def turn_angles(ctx: ExpertContext, i: int, point) -> list[float]:
     """Turns (rad, about the vertical) that would show object ``i``'s face to the head camera from
     ``point``, best first: exactly facing it (either way round), then 25 / 50 deg off (oblique)."""
     _, body_rot = ctx.pose(i)
-    normal = body_rot @ np.asarray(ctx.obj(i).extra["face_normal_body"])
+    normal = body_rot @ np.asarray(ctx.obj(i).functional.info_face.normal)
     cam = ctx.sim.data.cam_xpos[ctx.sim.model.camera(embodiment.HEAD_CAMERA).id]
     want = math.atan2(cam[1] - point[1], cam[0] - point[0]) - math.atan2(normal[1], normal[0])
     base = math.remainder(want, 2 * math.pi)

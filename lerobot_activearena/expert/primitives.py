@@ -281,11 +281,12 @@ def start_action(ctx: ExpertContext, targets: set[int]) -> None:
 
 
 def grasp_point(ctx: ExpertContext, i: int) -> np.ndarray:
-    """Where the TCP closes on object ``i``: its registered ``extra['grasp_point']`` (body frame; tall
+    """Where the TCP closes on object ``i``: its first registered grasp point (``functional.grasp``, body frame; tall
     objects are held high so the palm clears their top), else its centre kept high enough that the
     open pads stay off the table."""
-    local = ctx.obj(i).extra.get("grasp_point")
-    if local is not None:
+    grasp = ctx.obj(i).functional.grasp
+    if grasp:
+        local = grasp[0]
         p, rot = ctx.pose(i)
         return p + rot @ np.asarray(local, float)
     c = ctx.center(i)

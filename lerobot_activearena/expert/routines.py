@@ -34,15 +34,15 @@ def nearest_known(ctx: ExpertContext, candidates: list[int]) -> int:
 
 
 def press_point(ctx: ExpertContext, i: int) -> np.ndarray:
-    """World position of object ``i``'s registered press point (its ``extra['press_point']``, in the
-    frame of the moving part ``extra['press_body']`` when it has one: a rocker, a stapler arm)."""
-    extra = ctx.obj(i).extra
-    if "press_body" in extra:
-        body = ctx.sim.data.body(extra["press_body"])
+    """World position of object ``i``'s registered press point (``functional.press``, in the frame
+    of the moving part it is on when it has one: a rocker, a stapler arm)."""
+    press = ctx.obj(i).functional.press
+    if press.body is not None:
+        body = ctx.sim.data.body(press.body)
         pos, rot = body.xpos.copy(), body.xmat.reshape(3, 3).copy()
     else:
         pos, rot = ctx.pose(i)
-    return pos + rot @ np.asarray(extra["press_point"])
+    return pos + rot @ np.asarray(press.point)
 
 
 def press_object(ctx: ExpertContext, side: str, i: int, depth: float):

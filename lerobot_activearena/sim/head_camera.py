@@ -25,19 +25,20 @@ def head_visibility_checker(model: mujoco.MjModel, objects: list[ObjectInfo]) ->
 
 
 def hidden_face_visible(model: mujoco.MjModel, data: mujoco.MjData, info: ObjectInfo) -> bool:
-    """Whether the head camera sees object ``info``'s information face (its ``extra['face_*']``:
+    """Whether the head camera sees object ``info``'s information face (its ``functional.info_face``:
     a back patch, a date label) right now: facing the camera, in the image and not occluded."""
     body = data.body(info.body)
     rot = body.xmat.reshape(3, 3)
-    point = body.xpos + rot @ np.asarray(info.extra["face_center_body"])
-    normal = rot @ np.asarray(info.extra["face_normal_body"])
+    face = info.functional.info_face
+    point = body.xpos + rot @ np.asarray(face.center)
+    normal = rot @ np.asarray(face.normal)
     return surface_point_visible(
         model,
         data,
         model.camera(embodiment.HEAD_CAMERA).id,
         point,
         normal,
-        model.geom(info.extra["face_geom"]).id,
+        model.geom(face.geom).id,
         HEAD_WIDTH,
         HEAD_HEIGHT,
         exclude_body=model.body(HEAD_BODY).id,

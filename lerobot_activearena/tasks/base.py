@@ -86,7 +86,7 @@ class Task:
         return list(range(len(scene.objects)))
 
     def information_faces(self, scene: TaskScene) -> list[str]:
-        """Objects whose hidden information face (``extra['face_*']``: a back patch, a date label)
+        """Objects whose hidden information face (``functional.info_face``: a back patch, a date label)
         the task needs read. Each must face away from the camera at reset and be seen before success."""
         return []
 

@@ -48,13 +48,16 @@ class InspectCanTask(Task):
         return [CAN]
 
     def search_targets(self, scene):
-        return [scene.objects.index(CAN), scene.objects.index(self.area_for(scene, scene.obj(CAN).extra))]
+        return [
+            scene.objects.index(CAN),
+            scene.objects.index(self.area_for(scene, scene.obj(CAN).attributes)),
+        ]
 
     def evaluate(self, sim, scene, monitor):
-        area = scene.obj(self.area_for(scene, scene.obj(CAN).extra))
+        area = scene.obj(self.area_for(scene, scene.obj(CAN).attributes))
         return {
             "can_in_matching_area": predicates.resting_on(
-                sim, CAN, area.name, area.half_extents[:2], area.extra["top"]
+                sim, CAN, area.name, area.half_extents[:2], area.functional.support.top
             ),
             "can_upright": predicates.upright(sim, CAN),
             "can_released": predicates.released(sim, CAN),
@@ -66,7 +69,7 @@ class InspectCanTask(Task):
             turn = yield from inspection.pick_for_inspection(ctx, can, fine_print=self.fine_print)
         with ctx.subtask(2):
             yield from inspection.show_hidden_face(ctx, turn, can)
-            label = ctx.obj(can).extra  # read off the visible label
+            label = ctx.obj(can).attributes  # read off the visible label
             area = self.area_for(scene, label)
             reading = {k: v for k, v in label.items() if k in ("label_color", "production_date")}
             ctx.notes["observed_label"] = reading

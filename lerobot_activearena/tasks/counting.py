@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from ..expert import primitives, routines
 from ..expert.context import ExpertError
-from ..sim.assets.task_props import BUTTON_PRESSED
 from . import predicates
 from .base import Subtask, Task
 from .draft import REACH
@@ -51,19 +50,17 @@ class CountAndPressTask(Task):
 
     def evaluate(self, sim, scene, monitor):
         button = f"button_{scene.params['count']}"
-        point = predicates.body_point(sim, button, scene.obj(button).extra["press_point"])
+        info = scene.obj(button)
         pressed = monitor.event(
             "pressed",
-            predicates.joint_below(sim, f"{button}_joint", BUTTON_PRESSED)
-            and predicates.pressed_by_either(sim, button, point),
+            predicates.press_moved(sim, info)
+            and predicates.pressed_by_either(sim, button, predicates.press_point(sim, info)),
         )
         return {"pressed_matching_button": pressed}
 
     def failure(self, sim, scene, monitor):
         for n in BUTTONS:
-            if n != scene.params["count"] and predicates.joint_below(
-                sim, f"button_{n}_joint", BUTTON_PRESSED
-            ):
+            if n != scene.params["count"] and predicates.press_moved(sim, scene.obj(f"button_{n}")):
                 return f"pressed button {n}; the count was {scene.params['count']}"
         return None
 

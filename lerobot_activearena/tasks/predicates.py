@@ -1,7 +1,9 @@
 """Named predicates over the simulator state that success checks compose.
 
-State predicates (``resting_on``, ``inside``, ``left_of`` ...) read object poses; contact predicates
-(``touched_by_robot``, ``pressed_by``) read MuJoCo's contact list. All take body names.
+State predicates (``resting_on``, ``left_of`` ...) read object poses; contact predicates
+(``touched_by_robot``, ``pressed_by``) read MuJoCo's contact list; both take body names. The
+placement relations at the end (``on_support``, ``in_container``, ``stacked_on``, ``beside``,
+``facing``, ``touching``, ``struck``) take ``ObjectInfo`` and read its typed functional metadata.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import numpy as np
 
 from ..sim import embodiment
 from ..sim.action import LEFT_GRIPPER, RIGHT_GRIPPER
+from ..sim.assets.base import ObjectInfo
 from ..sim.simulator import ActiveArenaSim
 from ..sim.workspace import TABLE_TOP
 
@@ -30,10 +33,6 @@ def position(sim: ActiveArenaSim, body: str) -> np.ndarray:
 
 def joint_pos(sim: ActiveArenaSim, joint: str) -> float:
     return float(sim.data.joint(joint).qpos[0])
-
-
-def joint_below(sim: ActiveArenaSim, joint: str, threshold: float) -> bool:
-    return joint_pos(sim, joint) < threshold
 
 
 def upright(sim: ActiveArenaSim, body: str, max_tilt_deg: float = 15.0) -> bool:
@@ -201,6 +200,19 @@ def body_point(sim: ActiveArenaSim, body: str, local) -> np.ndarray:
     return b.xpos + b.xmat.reshape(3, 3) @ np.asarray(local, float)
 
 
+def press_point(sim: ActiveArenaSim, obj: ObjectInfo) -> np.ndarray:
+    """World position of ``obj``'s press point (``functional.press``), on its moving part if any."""
+    press = obj.functional.press
+    return body_point(sim, press.body or obj.body, press.point)
+
+
+def press_moved(sim: ActiveArenaSim, obj: ObjectInfo) -> bool:
+    """``obj``'s pressed part (plunger, cap, stapler arm, rocker) has travelled past its press
+    threshold (who pressed it is for ``pressed_by`` to say)."""
+    press = obj.functional.press
+    return press.is_pressed(joint_pos(sim, press.joint))
+
+
 def resting_on(
     sim: ActiveArenaSim,
     body: str,
@@ -232,3 +244,141 @@ def left_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
 
 def right_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
     return left_of(sim, b, a, min_deg)
+
+
+# ---- placement relations on typed functional metadata -------------------------------------------
+FOOTPRINT_GRID = 5  # points per side sampled over an object's footprint
+
+
+def _pose(sim: ActiveArenaSim, obj: ObjectInfo) -> tuple[np.ndarray, np.ndarray]:
+    b = sim.data.body(obj.body)
+    return b.xpos.copy(), b.xmat.reshape(3, 3).copy()
+
+
+def _local(sim: ActiveArenaSim, frame: ObjectInfo, points) -> np.ndarray:
+    """World points in ``frame``'s body frame."""
+    pos, rot = _pose(sim, frame)
+    return (np.atleast_2d(points) - pos) @ rot
+
+
+def footprint_points(sim: ActiveArenaSim, obj: ObjectInfo, n: int = FOOTPRINT_GRID) -> np.ndarray:
+    """World points on an n x n grid over the base of ``obj``'s bounding box."""
+    half, centre = np.asarray(obj.half_extents, float), np.asarray(obj.center_offset, float)
+    u = np.linspace(-1.0, 1.0, n)
+    gx, gy = np.meshgrid(centre[0] + u * half[0], centre[1] + u * half[1])
+    base = centre[2] - half[2]
+    local = np.stack([gx.ravel(), gy.ravel(), np.full(gx.size, base)], axis=1)
+    pos, rot = _pose(sim, obj)
+    return pos + local @ rot.T
+
+
+def centre_point(sim: ActiveArenaSim, obj: ObjectInfo) -> np.ndarray:
+    pos, rot = _pose(sim, obj)
+    return pos + rot @ np.asarray(obj.center_offset, float)
+
+
+def _over_top(local_xy: np.ndarray, support, margin: float) -> np.ndarray:
+    if support.shape == "disc":
+        return np.hypot(local_xy[:, 0], local_xy[:, 1]) <= support.half[0] - margin
+    return (np.abs(local_xy[:, 0]) <= support.half[0] - margin) & (
+        np.abs(local_xy[:, 1]) <= support.half[1] - margin
+    )
+
+
+def on_support(
+    sim: ActiveArenaSim,
+    obj: ObjectInfo,
+    support: ObjectInfo,
+    min_overlap: float = 0.5,
+    margin: float = 0.0,
+    z_tol: float = 0.012,
+) -> bool:
+    """``obj`` rests on ``support``'s top surface (``functional.support``, box or disc): its base at
+    the top's height (+/- ``z_tol``), its centre over the top and at least ``min_overlap`` of its
+    footprint over it (the top shrunk by ``margin``). Not a fixed radius: a large object half off
+    a small mat does not count."""
+    top = support.functional.support
+    if top is None:
+        raise ValueError(f"{support.name} ({support.category}) declares no support surface")
+    base = _local(sim, support, footprint_points(sim, obj))
+    centre = _local(sim, support, centre_point(sim, obj))
+    if abs(base[:, 2].mean() - top.top) > z_tol:
+        return False
+    return bool(
+        _over_top(centre[:, :2], top, margin)[0] and _over_top(base[:, :2], top, margin).mean() >= min_overlap
+    )
+
+
+def in_container(sim: ActiveArenaSim, obj: ObjectInfo, container: ObjectInfo, z_tol: float = 0.01) -> bool:
+    """``obj`` is inside ``container`` (``functional.container``): its centre over the inner floor,
+    its base above the floor (- ``z_tol``) and below the rim (inside, not lying across the top)."""
+    box = container.functional.container
+    if box is None:
+        raise ValueError(f"{container.name} ({container.category}) declares no container")
+    c = _local(sim, container, centre_point(sim, obj))[0]
+    base = _local(sim, container, footprint_points(sim, obj))[:, 2].min()
+    inside = abs(c[0]) <= box.inner_half[0] and abs(c[1]) <= box.inner_half[1]
+    return bool(inside and box.floor - z_tol <= base < box.rim)
+
+
+def stacked_on(
+    sim: ActiveArenaSim, upper: ObjectInfo, lower: ObjectInfo, xy_tol: float = 0.025, z_tol: float = 0.012
+) -> bool:
+    """``upper`` sits on top of ``lower``: centres within ``xy_tol`` horizontally and ``upper``'s base
+    at ``lower``'s top height (+/- ``z_tol``)."""
+    c_up, c_low = centre_point(sim, upper), centre_point(sim, lower)
+    base = footprint_points(sim, upper)[:, 2].mean()
+    top = c_low[2] + lower.half_extents[2]
+    return bool(np.hypot(*(c_up[:2] - c_low[:2])) <= xy_tol and abs(base - top) <= z_tol)
+
+
+def beside(
+    sim: ActiveArenaSim,
+    a: ObjectInfo,
+    b: ObjectInfo,
+    side: str,
+    gap: tuple[float, float] = (0.08, 0.20),
+    max_radial: float = 0.08,
+) -> bool:
+    """``a`` is on ``side`` ('left' / 'right', as the robot sees them: angular order about its base)
+    of ``b``: centres ``gap`` m apart (min, max) and within ``max_radial`` m of the same distance
+    from the base."""
+    if side not in ("left", "right"):
+        raise ValueError(f"side must be 'left' or 'right', got {side!r}")
+    pa, pb = centre_point(sim, a), centre_point(sim, b)
+    (ra, ta), (rb, tb) = polar(pa), polar(pb)
+    order = ta > tb if side == "left" else ta < tb
+    return bool(order and gap[0] <= np.hypot(*(pa[:2] - pb[:2])) <= gap[1] and abs(ra - rb) < max_radial)
+
+
+def facing(sim: ActiveArenaSim, obj: ObjectInfo, direction=None, tol_deg: float = 30.0) -> bool:
+    """``obj``'s front (``functional.front``) points along the horizontal ``direction`` within
+    ``tol_deg``; ``direction=None``: towards the robot's base."""
+    front = obj.functional.front
+    if front is None:
+        raise ValueError(f"{obj.name} ({obj.category}) declares no front")
+    pos, rot = _pose(sim, obj)
+    f = (rot @ np.asarray(front, float))[:2]
+    d = -pos[:2] if direction is None else np.asarray(direction, float)[:2]
+    cos = f @ d / (np.linalg.norm(f) * np.linalg.norm(d) + 1e-12)
+    return bool(cos >= math.cos(math.radians(tol_deg)))
+
+
+def touching(sim: ActiveArenaSim, a: ObjectInfo, b: ObjectInfo) -> bool:
+    """Some geom of ``a`` (or a part attached to it) is in contact with ``b``."""
+    root = sim.model.body_rootid[sim.model.body(b.body).id]
+    return any(sim.model.body_rootid[other] == root for other, _ in contacts_with(sim, a.body))
+
+
+def struck(sim: ActiveArenaSim, tool: ObjectInfo, target: ObjectInfo, radius_xy: float = 0.02) -> bool:
+    """``tool``'s head (``functional.tool_head``) touches ``target`` over its top, its centre within
+    ``radius_xy`` of the top centre horizontally. Momentary: a task latches it with
+    ``monitor.event("struck", ...)`` (and adds who held the tool)."""
+    head = tool.functional.tool_head
+    if head is None:
+        raise ValueError(f"{tool.name} ({tool.category}) declares no tool head")
+    centre = body_point(sim, tool.body, head.point)
+    top = centre_point(sim, target)
+    top[2] += target.half_extents[2]
+    over = np.hypot(*(centre[:2] - top[:2])) <= radius_xy and centre[2] >= top[2]
+    return bool(over and touching(sim, tool, target))

@@ -8,6 +8,7 @@ import mujoco
 import numpy as np
 
 from ..workspace import WORLD_CONAFFINITY, WORLD_CONTYPE
+from .functional import Functional
 
 OBJECT_GROUP = 0
 
@@ -17,8 +18,9 @@ class ObjectInfo:
     """A registered scene object: what visibility, tasks and annotations refer to.
 
     The body origin is the object's bottom centre; ``half_extents``/``center_offset`` give its
-    bounding box in the body frame. ``extra`` holds asset-specific handles (joint names, colours,
-    functional points in the body frame, ...)."""
+    bounding box in the body frame. ``functional``: where it supports, holds, is grasped, pressed,
+    strikes, faces or carries information (typed, validated when built). ``attributes``: what an
+    episode drew for it (colours, a number, a date), which instructions and hidden faces report."""
 
     name: str
     category: str
@@ -26,13 +28,8 @@ class ObjectInfo:
     half_extents: tuple[float, float, float] = (0.0, 0.0, 0.0)
     center_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
     mass: float = 0.0
-    extra: dict = field(default_factory=dict)
-
-
-def hidden_face(geom: str, center_body, normal_body) -> dict:
-    """``ObjectInfo.extra`` entries of a surface that carries task information (a colour patch, a
-    date label): its geom and its centre and outward normal in the body frame."""
-    return {"face_geom": geom, "face_center_body": tuple(center_body), "face_normal_body": tuple(normal_body)}
+    attributes: dict = field(default_factory=dict)
+    functional: Functional = field(default_factory=Functional)
 
 
 def add_geom(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import mujoco
 
 from .base import ObjectInfo, add_geom as _geom, free_body as _free_body
+from .functional import Functional
 from .registry import register_asset
 
 
@@ -92,5 +93,5 @@ def add_bottle(
         (radius, radius, height / 2),
         (0, 0, height / 2),
         mass,
-        {"grasp_point": (0.0, 0.0, body_h + 0.03)},
+        functional=Functional(grasp=((0.0, 0.0, body_h + 0.03),)),
     )

@@ -79,6 +79,7 @@ def build_asset(
         params = {**entry.randomize(rng), **params}
     info = entry.build(spec, name, np.asarray(pos, float), yaw, **params)
     info.category = category
+    info.functional.validate(f"asset {category!r} ({name})", info.half_extents, info.center_offset)
     return info
 
 

@@ -10,6 +10,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
+from .functional import Functional
 
 KIND = {
     "box": mujoco.mjtGeom.mjGEOM_BOX,
@@ -36,7 +37,8 @@ def compound(
     parts: list[tuple],
     mass: float,
     static: bool = False,
-    extra: dict | None = None,
+    functional: Functional | None = None,
+    attributes: dict | None = None,
 ) -> ObjectInfo:
     """``parts``: (kind, size, pos, rgba[, options]) with options ``quat``, ``visual`` (no collision),
     ``material``, ``mesh``. The first part is the main collision geom ``<name>_body``. Mass is spread
@@ -67,7 +69,16 @@ def compound(
     lo, hi = _bbox(parts)
     half = tuple(float(x) for x in (hi - lo) / 2)
     center = tuple(float(x) for x in (hi + lo) / 2)
-    return ObjectInfo(name, category, name, half, center, 0.0 if static else mass, dict(extra or {}))
+    return ObjectInfo(
+        name,
+        category,
+        name,
+        half,
+        center,
+        0.0 if static else mass,
+        dict(attributes or {}),
+        functional or Functional(),
+    )
 
 
 def _volume(g) -> float:

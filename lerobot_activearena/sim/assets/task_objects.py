@@ -12,7 +12,8 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from ..appearance import table_texture
-from .base import ObjectInfo, add_geom, add_texture_material, free_body, hidden_face, static_body
+from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
+from .functional import Container, Functional, InfoFace, Press, Support, ToolHead
 from .registry import register_asset
 from .shapes import arc_label, compound, quat_axis_angle, text_texture
 
@@ -59,7 +60,9 @@ def add_hammer(spec, name, pos, yaw=0.0, handle=(0.6, 0.4, 0.2)):
             ("box", (0.018, 0.05, 0.018), (0.11, 0, 0.018), (0.3, 0.3, 0.33, 1)),
         ],
         0.35,
-        extra={"handle_point": (-0.03, 0.0, 0.012), "head_point": (0.11, 0.0, 0.018)},
+        functional=Functional(
+            grasp=((-0.03, 0.0, 0.012),), tool_head=ToolHead((0.11, 0.0, 0.018), (0.018, 0.05, 0.018))
+        ),
     )
 
 
@@ -88,7 +91,7 @@ STAPLER_PRESSED = 0.1  # rad of travel that counts as a press (of 0.14)
 @register_asset("stapler", footprint=0.09, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng))})
 def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
     """Desk stapler: base plate, rear post and a spring-loaded top arm hinged at the rear
-    (``extra['joint']``: 0 = open, ``STAPLER_OPEN`` = pressed shut; press point at the front end
+    (``functional.press``'s joint: 0 = open, ``STAPLER_OPEN`` = pressed shut; press point at the front end
     of the arm, in the arm body's frame)."""
     b = free_body(spec, name, pos, yaw)
     add_geom(
@@ -125,24 +128,24 @@ def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
         (0.075, 0.02, 0.03),
         (0, 0, 0.03),
         0.28,
-        {
-            "joint": f"{name}_joint",
-            "press_body": f"{name}_arm",
-            "press_point": (0.115, 0.0, 0.008),
-            "pressed_above": STAPLER_PRESSED,
-            "grasp_point": (0.0, 0.0, 0.03),
-        },
+        functional=Functional(
+            grasp=((0.0, 0.0, 0.03),),
+            press=Press(
+                (0.115, 0.0, 0.008), f"{name}_joint", STAPLER_PRESSED, direction="above", body=f"{name}_arm"
+            ),
+        ),
     )
 
 
 SWITCH_TILT = 0.25  # rad the rocker rests tilted to each side of flat
 SWITCH_ON = 2 * SWITCH_TILT  # joint value when the rocker is fully over to "on"
+SWITCH_ON_AT = SWITCH_ON - 0.05  # rad: counts as switched on within 0.05 rad of the on-limit
 
 
 @register_asset("switch", footprint=0.055, role="task")
 def add_switch(spec, name, pos, yaw=0.0, rgba=(0.92, 0.92, 0.9, 1)):
     """Rocker switch on a small heavy base: the red rocker rests tilted with its +x end (white
-    mark) up; pressing that end down rocks it over to on (``extra['joint']``: 0 = off,
+    mark) up; pressing that end down rocks it over to on (``functional.press``'s joint: 0 = off,
     ``SWITCH_ON`` = on; it stays where it is put)."""
     b = free_body(spec, name, pos, yaw)
     add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.045, 0.03, 0.012), (0, 0, 0.012), rgba, 0.45, f"{name}_body")
@@ -177,12 +180,11 @@ def add_switch(spec, name, pos, yaw=0.0, rgba=(0.92, 0.92, 0.9, 1)):
         (0.045, 0.03, 0.022),
         (0, 0, 0.022),
         0.465,
-        {
-            "joint": f"{name}_joint",
-            "press_body": f"{name}_rocker",
-            "press_point": (0.026, 0.0, 0.005),
-            "on_limit": SWITCH_ON,
-        },
+        functional=Functional(
+            press=Press(
+                (0.026, 0.0, 0.005), f"{name}_joint", SWITCH_ON_AT, direction="above", body=f"{name}_rocker"
+            )
+        ),
     )
 
 
@@ -287,7 +289,7 @@ def add_plastic_box(spec, name, pos, yaw=0.0, rgba=(0.3, 0.55, 0.85, 1)):
         yaw,
         _open_box(rgba, (0.16, 0.12), 0.006, 0.07),
         0.2,
-        extra={"inner_half": (0.08, 0.06), "floor_z": 0.006},
+        functional=Functional(container=Container(0.006, (0.08, 0.06), 0.07)),
     )
 
 
@@ -301,7 +303,7 @@ def add_bread_basket(spec, name, pos, yaw=0.0, rgba=(0.62, 0.42, 0.2, 1)):
         yaw,
         _open_box(rgba, (0.17, 0.12), 0.008, 0.05),
         0.2,
-        extra={"inner_half": (0.085, 0.06), "floor_z": 0.008},
+        functional=Functional(container=Container(0.008, (0.085, 0.06), 0.05)),
     )
 
 
@@ -339,7 +341,7 @@ def add_plate(spec, name, pos, yaw=0.0, rgba=(0.96, 0.96, 0.94, 1)):
             ("cyl", (0.07, 0.0005, 0), (0, 0, 0.0145), (0.85, 0.85, 0.83, 1), {"visual": True}),
         ],
         0.3,
-        extra={"top": 0.014},
+        functional=Functional(support=Support(0.014, (0.08, 0.08), "disc")),
     )
 
 
@@ -367,7 +369,7 @@ def add_fan(spec, name, pos, yaw=0.0, rgba=(0.2, 0.5, 0.85, 1)):
             ),
         ],
         0.4,
-        extra={"front_body": (-1.0, 0.0, 0.0)},
+        functional=Functional(front=(-1.0, 0.0, 0.0)),
     )
 
 
@@ -415,7 +417,7 @@ def add_electronic_scale(spec, name, pos, yaw=0.0):
             ),
         ],
         0.5,
-        extra={"top": 0.024},
+        functional=Functional(support=Support(0.024, (0.075, 0.065))),
     )
 
 
@@ -433,7 +435,7 @@ def add_display_stand(spec, name, pos, yaw=0.0, rgba=(0.9, 0.9, 0.92, 1)):
             ("cyl", (0.04, 0.004, 0), (0, 0, 0.076), rgba),
         ],
         0.3,
-        extra={"top": 0.08},
+        functional=Functional(support=Support(0.08, (0.04, 0.04), "disc")),
     )
 
 
@@ -472,7 +474,7 @@ def add_seal(spec, name, pos, yaw=0.0, rgba=(0.55, 0.25, 0.15, 1)):
             ("sph", (0.018, 0, 0), (0, 0, 0.085), rgba),
         ],
         0.12,
-        extra={"grasp_point": (0.0, 0.0, 0.06)},
+        functional=Functional(grasp=((0.0, 0.0, 0.06),)),
     )
 
 
@@ -520,7 +522,8 @@ def add_mat(spec, name, pos, yaw=0.0, color_name: str = "black", half=(0.075, 0.
         (*half, 0.002),
         (0, 0, 0.002),
         0.0,
-        {"color_name": color_name, "top": 0.004, "text": text},
+        {"color_name": color_name, "text": text},
+        Functional(support=Support(0.004, tuple(half))),
     )
 
 
@@ -584,13 +587,15 @@ def add_labeled_can(
     mat = add_texture_material(spec, f"{name}_label", img)
     (z0, z1), arc = ((0.018, 0.088), 100.0) if label_kind == "date" else ((0.042, 0.078), 45.0)
     arc_label(spec, name, f"{name}_label_mesh", mat, 0.029, z0, z1, arc_deg=arc)
-    extra = {
-        "label_kind": label_kind,
-        "grasp_point": (0.0, 0.0, 0.095),  # the palm clears the top
-        **hidden_face(f"{name}_label_mesh_geom", (0.029, 0.0, (z0 + z1) / 2), (1.0, 0.0, 0.0)),
-    }
+    attributes = {"label_kind": label_kind}
     if label_kind == "date":
-        extra["production_date"] = date
+        attributes["production_date"] = date
     else:
-        extra["label_color"] = label_color
-    return ObjectInfo(name, "labeled_can", name, (0.029, 0.029, 0.063), (0, 0, 0.063), 0.3, extra)
+        attributes["label_color"] = label_color
+    functional = Functional(
+        grasp=((0.0, 0.0, 0.095),),  # the palm clears the top
+        info_face=InfoFace(f"{name}_label_mesh_geom", (0.029, 0.0, (z0 + z1) / 2), (1.0, 0.0, 0.0)),
+    )
+    return ObjectInfo(
+        name, "labeled_can", name, (0.029, 0.029, 0.063), (0, 0, 0.063), 0.3, attributes, functional
+    )

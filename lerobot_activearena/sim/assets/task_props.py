@@ -7,7 +7,8 @@ import mujoco
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from .base import ObjectInfo, add_geom, add_texture_material, free_body, hidden_face, static_body
+from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
+from .functional import Functional, InfoFace, Press, Support
 from .registry import register_asset
 
 BLOCK_COLORS = {  # named colours shared by blocks, patches and pads
@@ -43,7 +44,7 @@ def _spring_slide(body, name: str, travel: float, stiffness: float, damping: flo
 def add_bell(
     spec, name, pos, yaw=0.0, radius=0.05, rgba=(0.85, 0.72, 0.25, 1), base_rgba=(0.15, 0.15, 0.16, 1)
 ):
-    """Desk bell: heavy base, dome, spring-loaded plunger on top (``extra['joint']``)."""
+    """Desk bell: heavy base, dome, spring-loaded plunger on top (``functional.press``)."""
     b = free_body(spec, name, pos, yaw)
     add_geom(
         b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius, 0.008, 0), (0, 0, 0.008), base_rgba, 0.45, f"{name}_body"
@@ -96,7 +97,7 @@ def add_bell(
         (radius, radius, top / 2),
         (0, 0, top / 2),
         0.51,
-        {"joint": f"{name}_plunger_joint", "press_point": (0.0, 0.0, top), "pressed_below": BELL_PRESSED},
+        functional=Functional(press=Press((0.0, 0.0, top), f"{name}_plunger_joint", BELL_PRESSED)),
     )
 
 
@@ -163,7 +164,15 @@ def add_coaster(spec, name, pos, yaw=0.0, radius=0.052, rgba=(0.55, 0.2, 0.7, 1)
         (0.9, 0.88, 0.8, 1),
         collide=False,
     )
-    return ObjectInfo(name, "coaster", name, (radius, radius, 0.003), (0, 0, 0.003), 0.06, {"top": 0.006})
+    return ObjectInfo(
+        name,
+        "coaster",
+        name,
+        (radius, radius, 0.003),
+        (0, 0, 0.003),
+        0.06,
+        functional=Functional(support=Support(0.006, (radius, radius), "disc")),
+    )
 
 
 def digit_image(digit: str, size: int = 64) -> np.ndarray:
@@ -177,7 +186,7 @@ def digit_image(digit: str, size: int = 64) -> np.ndarray:
 
 @register_asset("button", footprint=0.07, role="task", static=True)
 def add_button(spec, name, pos, yaw=0.0, number: int = 1, cap_rgba=(0.85, 0.15, 0.12, 1)):
-    """Static push button with a spring-loaded cap (``extra['joint']``) and its number on a label
+    """Static push button with a spring-loaded cap (``functional.press``) and its number on a label
     plate in front of the cap (readable from the robot's side)."""
     b = static_body(spec, name, pos, yaw)
     add_geom(
@@ -224,13 +233,8 @@ def add_button(spec, name, pos, yaw=0.0, number: int = 1, cap_rgba=(0.85, 0.15, 
         (0.06, 0.04, 0.0155),
         (0, 0, 0.0155),
         0.0,
-        {
-            "joint": f"{name}_joint",
-            "number": int(number),
-            "press_point": (0.022, 0.0, 0.038),
-            "pressed_below": BUTTON_PRESSED,
-            "reset_above": BUTTON_RESET,
-        },
+        {"number": int(number)},
+        Functional(press=Press((0.022, 0.0, 0.038), f"{name}_joint", BUTTON_PRESSED, reset_at=BUTTON_RESET)),
     )
 
 
@@ -266,7 +270,8 @@ def add_patch_block(spec, name, pos, yaw=0.0, patch_color: str = "red"):
         (h, h, h),
         (0, 0, h),
         0.08,
-        {"patch_color": patch_color, **hidden_face(f"{name}_patch", (h, 0.0, h), (1.0, 0.0, 0.0))},
+        {"patch_color": patch_color},
+        Functional(info_face=InfoFace(f"{name}_patch", (h, 0.0, h), (1.0, 0.0, 0.0))),
     )
 
 
@@ -281,5 +286,12 @@ def add_color_pad(spec, name, pos, yaw=0.0, color: str = "red", half: float = 0.
         b, mujoco.mjtGeom.mjGEOM_BOX, (half, half, 0.002), (0, 0, 0.002), colors[color], None, f"{name}_body"
     )
     return ObjectInfo(
-        name, "color_pad", name, (half, half, 0.002), (0, 0, 0.002), 0.0, {"color": color, "top": 0.004}
+        name,
+        "color_pad",
+        name,
+        (half, half, 0.002),
+        (0, 0, 0.002),
+        0.0,
+        {"color": color},
+        Functional(support=Support(0.004, (half, half))),
     )

@@ -84,7 +84,7 @@ class CheckBlockColor(Task):
         info = scene.obj(pad)
         return {
             "on_matching_pad": predicates.resting_on(
-                sim, "gray_block", pad, info.half_extents[0], info.extra["top"]
+                sim, "gray_block", pad, info.half_extents[0], info.functional.support.top
             ),
             "block_released": predicates.released(sim, "gray_block"),
         }
@@ -95,7 +95,7 @@ class CheckBlockColor(Task):
             turn = yield from inspection.pick_for_inspection(ctx, block)
         with ctx.subtask(2):
             yield from inspection.show_hidden_face(ctx, turn, block)
-            color = ctx.obj(block).extra["patch_color"]  # read off the visible patch
+            color = ctx.obj(block).attributes["patch_color"]  # read off the visible patch
             ctx.notes["observed_color"] = color
             inspection.record_reading(ctx, block, color, f"place on the {color} pad")
         with ctx.subtask(3):

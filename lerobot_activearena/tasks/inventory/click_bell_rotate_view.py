@@ -17,7 +17,6 @@ Success Conditions:
 from __future__ import annotations
 
 from ...expert import routines
-from ...sim.assets.task_props import BELL_PRESSED
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
@@ -37,10 +36,11 @@ class ClickBellRotateView(Task):
 
     def evaluate(self, sim, scene, monitor):
         upright, in_place = predicates.upright(sim, "bell"), predicates.in_place(sim, "bell", 0.03)
-        top = predicates.body_point(sim, "bell", scene.obj("bell").extra["press_point"])
+        bell = scene.obj("bell")
+        top = predicates.press_point(sim, bell)
         pressed = monitor.event(
             "pressed",
-            predicates.joint_below(sim, "bell_plunger_joint", BELL_PRESSED)
+            predicates.press_moved(sim, bell)
             and predicates.pressed_by(sim, "left", "bell", top, centered_within=CENTER_TOL)
             and upright
             and in_place,

@@ -102,7 +102,7 @@ class MatchBacksideTwoBlocks(Task):
         for k, (block, color) in enumerate(zip(BLOCKS, scene.params["patch_colors"], strict=True)):
             pad = scene.obj(f"{color}_pad")
             checks[f"block_{k}_on_matching_pad"] = predicates.resting_on(
-                sim, block, pad.name, pad.half_extents[0], pad.extra["top"]
+                sim, block, pad.name, pad.half_extents[0], pad.functional.support.top
             )
         checks["blocks_released"] = all(predicates.released(sim, b) for b in BLOCKS)
         return checks
@@ -117,7 +117,7 @@ class MatchBacksideTwoBlocks(Task):
                 turn = yield from inspection.pick_for_inspection(ctx, block)
             with ctx.subtask(3 * k + 2):
                 yield from inspection.show_hidden_face(ctx, turn, block)
-                color = ctx.obj(block).extra["patch_color"]  # read off the visible patch
+                color = ctx.obj(block).attributes["patch_color"]  # read off the visible patch
                 ctx.notes[f"observed_color_{k}"] = color
                 inspection.record_reading(ctx, block, color, f"place on the {color} pad")
             with ctx.subtask(3 * k + 3):

@@ -38,7 +38,12 @@ class PlaceEmptyCupRotateView(Task):
     def evaluate(self, sim, scene, monitor):
         coaster = scene.obj("coaster")
         on = predicates.resting_on(
-            sim, "cup", "coaster", coaster.half_extents[0] / 2**0.5, coaster.extra["top"], margin=0.0
+            sim,
+            "cup",
+            "coaster",
+            coaster.half_extents[0] / 2**0.5,
+            coaster.functional.support.top,
+            margin=0.0,
         ) and predicates.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
         return {
             "cup_on_coaster": on,

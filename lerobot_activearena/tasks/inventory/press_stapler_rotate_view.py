@@ -39,10 +39,10 @@ class PressStaplerRotateView(Task):
         )
 
     def evaluate(self, sim, scene, monitor):
-        extra = scene.obj("stapler").extra
+        stapler = scene.obj("stapler")
         upright, in_place = predicates.upright(sim, "stapler"), predicates.in_place(sim, "stapler", 0.03)
-        front = predicates.body_point(sim, extra["press_body"], extra["press_point"])
-        down = predicates.joint_pos(sim, extra["joint"]) >= extra["pressed_above"]
+        front = predicates.press_point(sim, stapler)
+        down = predicates.press_moved(sim, stapler)
         pressed = monitor.event(
             "pressed", down and predicates.pressed_by_either(sim, "stapler", front) and upright and in_place
         )

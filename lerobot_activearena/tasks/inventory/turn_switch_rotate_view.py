@@ -23,7 +23,6 @@ from ..base import Subtask, Task
 from ..draft import Region
 
 CENTER_TOL = 0.01  # m: the gripper's centre over the marked end (the rocker is 3.6 cm wide)
-ON_TOL = 0.05  # rad from the on-limit
 
 
 class TurnSwitchRotateView(Task):
@@ -44,10 +43,10 @@ class TurnSwitchRotateView(Task):
         )
 
     def evaluate(self, sim, scene, monitor):
-        extra = scene.obj("switch").extra
+        switch = scene.obj("switch")
         upright, in_place = predicates.upright(sim, "switch"), predicates.in_place(sim, "switch", 0.03)
-        end = predicates.body_point(sim, extra["press_body"], extra["press_point"])
-        on = predicates.joint_pos(sim, extra["joint"]) >= extra["on_limit"] - ON_TOL
+        end = predicates.press_point(sim, switch)
+        on = predicates.press_moved(sim, switch)
         pressed = any(
             predicates.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL)
             for arm in ("left", "right")
