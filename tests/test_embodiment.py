@@ -85,3 +85,9 @@ def test_gripper_fingers_are_coupled_and_open_close(sim):
     assert q["R11"] == pytest.approx(-q["L1"], abs=0.02)
     assert sim.state()[7] < 0.1 and sim.state()[15] > 0.95
     sim.reset()
+
+
+def test_other_arm_is_the_other_side_and_names_a_wrong_one():
+    assert [embodiment.other_arm(a) for a in embodiment.ARMS] == ["right", "left"]
+    with pytest.raises(ValueError, match="arm must be one of"):
+        embodiment.other_arm("middle")

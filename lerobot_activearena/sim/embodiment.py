@@ -17,7 +17,8 @@ import numpy as np
 
 ROBOT_TYPE = "astribot_s1"  # LeRobot robot_type of datasets recorded on this embodiment
 PREFIX = "astribot_"
-ARM_JOINTS = {side: [f"{PREFIX}arm_{side}_joint_{i}" for i in range(1, 8)] for side in ("left", "right")}
+ARMS = ("left", "right")
+ARM_JOINTS = {side: [f"{PREFIX}arm_{side}_joint_{i}" for i in range(1, 8)] for side in ARMS}
 TORSO_YAW_JOINT = f"{PREFIX}torso_joint_4"
 HEAD_PITCH_JOINT = f"{PREFIX}head_joint_2"
 HEAD_CAMERA = f"{PREFIX}head"
@@ -26,8 +27,16 @@ HEAD_CAMERA = f"{PREFIX}head"
 # so the home view is symmetric about the torso heading (the official model's camera sits 8 cm left).
 HEAD_CAMERA_MOUNT = (0.066, -0.210, 0.0)
 HEAD_CAMERA_RPY = (np.pi / 2, 0.0, 0.0)
-WRIST_CAMERAS = {side: f"{PREFIX}arm_{side}_effector" for side in ("left", "right")}
-TCP_SITES = {side: f"{PREFIX}{side}_tcp" for side in ("left", "right")}
+WRIST_CAMERAS = {side: f"{PREFIX}arm_{side}_effector" for side in ARMS}
+TCP_SITES = {side: f"{PREFIX}{side}_tcp" for side in ARMS}
+
+
+def other_arm(side: str) -> str:
+    """The arm on the other side."""
+    if side not in ARMS:
+        raise ValueError(f"arm must be one of {ARMS}, got {side!r}")
+    return ARMS[1 - ARMS.index(side)]
+
 
 # Fixed joints of the real robot (rad): the lift chain (joints 1-3) folded as a standing pose that
 # keeps link 4 upright, and head yaw at 0 (horizontal view changes come from torso yaw).
@@ -292,7 +301,7 @@ def add_robot(spec: mujoco.MjSpec, base_pos=(0.0, 0.0, 0.097), base_yaw: float =
     _add_fixed_visuals(chassis, chassis.name)
     _add_body(chassis, kin["tree"], info, STANDING_POSE)
 
-    for side in ("left", "right"):
+    for side in ARMS:
         prefix = f"{PREFIX}gripper_{side}_joint_"
         active = prefix + "L1"
         info.gripper_joints[side] = active
@@ -320,7 +329,7 @@ def _position_actuator(spec, name, joint, kp, kv, force=None):
 
 
 def _add_actuators(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
-    for side in ("left", "right"):
+    for side in ARMS:
         for j in ARM_JOINTS[side]:
             _position_actuator(spec, j, j, *ARM_GAINS)
     # Torso and head drives track the reference's position AND velocity (a PD drive with a velocity
@@ -328,7 +337,7 @@ def _add_actuators(spec: mujoco.MjSpec, info: RobotSpecInfo) -> None:
     # (damping) whose control is the rate-limited reference's velocity.
     for joint, (kp, _kv) in ((TORSO_YAW_JOINT, TORSO_GAINS), (HEAD_PITCH_JOINT, HEAD_GAINS)):
         _position_actuator(spec, joint, joint, kp, 0.0)
-    for side in ("left", "right"):
+    for side in ARMS:
         _position_actuator(
             spec,
             f"{PREFIX}gripper_{side}",

@@ -9,12 +9,12 @@ asset parameters), and maps what the expert read to the area (``area_for``).
 from __future__ import annotations
 
 from ..expert import inspection, primitives, routines
+from ..sim.embodiment import ARMS
 from . import predicates
 from .base import Task
 from .draft import Region
 
 CAN = "cola_can"
-ARMS = ("left", "right")
 
 
 class InspectCanTask(Task):

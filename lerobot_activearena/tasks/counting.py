@@ -9,11 +9,11 @@ from __future__ import annotations
 
 from ..expert import primitives, routines
 from ..expert.context import ExpertError
+from ..sim.embodiment import ARMS
 from . import predicates
 from .base import Subtask, Task
 from .draft import REACH
 
-ARMS = ("left", "right")
 BUTTONS = (1, 2, 3)
 PRESS_SUBTASK = Subtask(
     2, "press_matching_number_button", "localize and press the button corresponding to the inferred count", 1

@@ -16,6 +16,7 @@ import numpy as np
 from ..sim import embodiment
 from ..sim.action import LEFT_GRIPPER, RIGHT_GRIPPER
 from ..sim.assets.base import ObjectInfo
+from ..sim.embodiment import ARMS
 from ..sim.simulator import ActiveArenaSim
 from ..sim.workspace import TABLE_TOP
 
@@ -105,7 +106,7 @@ def held_by_gripper(sim: ActiveArenaSim, body: str) -> str | None:
     for other, _ in contacts_with(sim, body):
         if not _robot_body(sim, other):
             return None
-        for side in ("left", "right"):
+        for side in ARMS:
             if _gripper_body(sim, other, side):
                 arm = side
     return arm
@@ -191,7 +192,7 @@ def pressed_by(
 def pressed_by_either(
     sim: ActiveArenaSim, body: str, point, radius_xy: float = 0.025, radius_z: float = 0.03
 ) -> bool:
-    return any(pressed_by(sim, arm, body, point, radius_xy, radius_z) for arm in ("left", "right"))
+    return any(pressed_by(sim, arm, body, point, radius_xy, radius_z) for arm in ARMS)
 
 
 def body_point(sim: ActiveArenaSim, body: str, local) -> np.ndarray:
@@ -343,7 +344,7 @@ def beside(
     """``a`` is on ``side`` ('left' / 'right', as the robot sees them: angular order about its base)
     of ``b``: centres ``gap`` m apart (min, max) and within ``max_radial`` m of the same distance
     from the base."""
-    if side not in ("left", "right"):
+    if side not in ARMS:
         raise ValueError(f"side must be 'left' or 'right', got {side!r}")
     pa, pb = centre_point(sim, a), centre_point(sim, b)
     (ra, ta), (rb, tb) = polar(pa), polar(pb)

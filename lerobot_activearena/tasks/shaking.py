@@ -17,6 +17,7 @@ import numpy as np
 
 from ..expert import primitives, routines
 from ..expert.motion import CONTROL_DT
+from ..sim.embodiment import ARMS
 from . import predicates
 from .base import Task
 from .draft import Region
@@ -103,7 +104,7 @@ class ShakeBottleTask(Task):
             "bottle",
             Region(r=self.bottle_r, hidden=True),
             yaw="random",
-            arms=("left", "right"),
+            arms=ARMS,
             height=height,
             radius=radius,
             mass=mass,

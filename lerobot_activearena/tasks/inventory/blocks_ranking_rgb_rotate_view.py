@@ -20,13 +20,13 @@ import numpy as np
 
 from ...expert import primitives, routines
 from ...sim.assets.task_props import BLOCK_COLORS
+from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH, Region
 
 SPACING = 0.085  # m between neighbouring block centres in the final row
 HALF = 0.025
-ARMS = ("left", "right")
 BLOCKS = ("red_block", "green_block", "blue_block")
 
 

@@ -17,6 +17,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ...expert import inspection, primitives, routines
+from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, Region
@@ -41,7 +42,7 @@ class CheckBlockColor(Task):
     def layout(self, draft):
         rng = draft.rng
         colors = list(rng.permutation(PAD_COLORS))
-        arms = ("left", "right")
+        arms = ARMS
         draft.place(
             "color_pad",
             f"{colors[0]}_pad",

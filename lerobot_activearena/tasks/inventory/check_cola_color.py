@@ -19,8 +19,9 @@ Success Conditions:
 
 from __future__ import annotations
 
+from ...sim.embodiment import ARMS, other_arm
 from ..base import Subtask
-from ..can_inspection import ARMS, InspectCanTask
+from ..can_inspection import InspectCanTask
 from ..draft import HIDDEN, REACH
 
 AREA_COLORS = ("red", "green", "blue", "yellow", "orange", "purple")
@@ -42,7 +43,7 @@ class CheckColaColor(InspectCanTask):
         rng = draft.rng
         colors = [str(c) for c in rng.choice(AREA_COLORS, size=2, replace=False)]
         side = draft.side()
-        other = "left" if side == "right" else "right"
+        other = other_arm(side)
         draft.place(
             "mat",
             f"{colors[0]}_area",

@@ -22,8 +22,9 @@ from __future__ import annotations
 import datetime as dt
 
 from ...sim.assets.task_objects import DATE_RANGE, SHELF_LIFE_DAYS
+from ...sim.embodiment import ARMS, other_arm
 from ..base import Subtask
-from ..can_inspection import ARMS, InspectCanTask
+from ..can_inspection import InspectCanTask
 from ..draft import HIDDEN, REACH
 
 AREAS = {"expired": ("red", "EXPIRED"), "valid": ("green", "VALID")}
@@ -74,7 +75,7 @@ class CheckColaDate(InspectCanTask):
         draft.params["today"] = today.isoformat()
         draft.params["expired"] = is_expired
         side = draft.side()
-        other = "left" if side == "right" else "right"
+        other = other_arm(side)
         order = list(AREAS) if rng.integers(0, 2) else list(AREAS)[::-1]
         for status, region in zip(order, (HIDDEN.on(side), REACH.on(other)), strict=True):
             color, text = AREAS[status]

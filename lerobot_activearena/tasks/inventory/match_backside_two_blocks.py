@@ -22,13 +22,13 @@ from __future__ import annotations
 import numpy as np
 
 from ...expert import inspection, primitives, routines
+from ...sim.embodiment import ARMS, other_arm
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH, Region
 
 PAD_COLORS = ("red", "green", "blue")
 BLOCKS = ("gray_block_0", "gray_block_1")
-ARMS = ("left", "right")
 SHARED_PAD_OFFSET = 0.026  # m along each pad axis when both blocks go on one pad
 
 
@@ -57,7 +57,7 @@ class MatchBacksideTwoBlocks(Task):
         pads = [str(c) for c in rng.choice(PAD_COLORS, size=2, replace=False)]
         patches = [pads[int(rng.integers(0, 2))] for _ in BLOCKS]
         hidden_side = draft.side()
-        other = "left" if hidden_side == "right" else "right"
+        other = other_arm(hidden_side)
         draft.place(
             "patch_block",
             BLOCKS[0],

@@ -13,11 +13,10 @@ Success Conditions:
 from __future__ import annotations
 
 from ...expert import primitives, routines
+from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH
-
-ARMS = ("left", "right")
 
 
 class PlaceEmptyCupRotateView(Task):

@@ -16,6 +16,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ...expert import routines
+from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
@@ -35,7 +36,7 @@ class PressStaplerRotateView(Task):
             "stapler",
             Region(r=(0.40, 0.48), hidden=True),
             yaw="random",
-            arms=("left", "right"),
+            arms=ARMS,
         )
 
     def evaluate(self, sim, scene, monitor):

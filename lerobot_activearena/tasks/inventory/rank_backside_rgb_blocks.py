@@ -21,13 +21,13 @@ from __future__ import annotations
 import math
 
 from ...expert import inspection, primitives, routines
+from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
 
 RANK = {"red": "left", "green": "middle", "blue": "right"}
 BLOCKS = ("gray_block_0", "gray_block_1", "gray_block_2")
-ARMS = ("left", "right")
 PAD_SPACING = 0.145  # m between neighbouring pad centres (2.5 cm gaps between 12 cm pads)
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 from ...expert import routines
+from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import Region
@@ -39,7 +40,7 @@ class TurnSwitchRotateView(Task):
             "switch",
             Region(r=(0.37, 0.45), hidden=True),
             yaw_jitter=math.radians(45),
-            arms=("left", "right"),
+            arms=ARMS,
         )
 
     def evaluate(self, sim, scene, monitor):
@@ -48,8 +49,7 @@ class TurnSwitchRotateView(Task):
         end = predicates.press_point(sim, switch)
         on = predicates.press_moved(sim, switch)
         pressed = any(
-            predicates.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL)
-            for arm in ("left", "right")
+            predicates.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL) for arm in ARMS
         )
         switched = monitor.event("switched_on", on and pressed and upright and in_place)
         return {"switched_on": switched, "switch_upright": upright, "switch_in_place": in_place}
