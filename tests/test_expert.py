@@ -184,3 +184,31 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
     with pytest.raises(ExpertError, match="has not been seen"):
         ctx.objects = ["ghost"]
         list(primitives.look_at_object(ctx, 0))
+
+
+def test_pick_and_place_carries_to_a_spot_and_names_bad_arguments(monkeypatch):
+    """The routine with a table spot instead of a destination object: the cup, set down at the
+    coaster's spawn point, rests on it, released (the coaster itself is never searched for)."""
+    from lerobot_activearena.expert import routines
+    from lerobot_activearena.tasks.rollout import run_expert_episode
+
+    task = get_task("place_empty_cup_rotate_view")
+    scene = sample_scene(task, 0, "id")
+    pos = scene.model.body("coaster").pos
+    spot = (pos[0], pos[1], pos[2] + scene.obj("coaster").functional.support.top)
+
+    def to_spot(self, ctx, scene):
+        yield from routines.pick_and_place(ctx, ctx.idx("cup"), spot=spot, grasp_across="radial")
+
+    monkeypatch.setattr(type(task), "expert", to_spot)
+    r = run_expert_episode(task.name, 0, "id")
+    assert r.sidecar["final_checks"]["cup_on_coaster"] and r.sidecar["final_checks"]["cup_released"], (
+        r.failure
+    )
+    for bad, match in (
+        ({}, "exactly one of"),
+        ({"dest": 1, "spot": spot}, "exactly one of"),
+        ({"dest": 1, "grasp_across": "side"}, "grasp_across must be"),
+    ):
+        with pytest.raises(ValueError, match=match):
+            next(routines.pick_and_place(None, 0, **bad))

@@ -8,6 +8,7 @@ import pytest
 from conftest import expert_task_params
 from gymnasium.utils.env_checker import check_env
 
+from lerobot_activearena.cli.make_manifests import main as make_manifests_main
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.envs.manifests import EVAL_SEED_START, MANIFEST_SIZE, load_manifest
 from lerobot_activearena.tasks import CATEGORIES, get_task, task_names
@@ -80,6 +81,15 @@ def test_expert_succeeds_within_the_step_limit(name, expert_episode):
         assert r.success, f"{name} seed {seed} {split}: {r.failure}"
         assert r.length <= task.max_episode_steps and r.health["problem"] is None
         assert all(r.sidecar["final_checks"].values())
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", TASKS)
+def test_regenerated_manifest_equals_the_shipped_one(name):
+    """``activearena-make-manifests --check``: the expert still solves exactly the shipped seeds, so
+    a refactor that changes a task's behaviour shows here (minutes per task; the fast suite
+    compares expert episodes through ``expert_episode`` and the IA tests)."""
+    make_manifests_main(["--tasks", name, "--check", "--workers", "2"])
 
 
 @pytest.mark.parametrize("name", TASKS)

@@ -1,5 +1,6 @@
 """Idioms the task experts share, built from the primitives: find an object and face it with the
-arm that will act, press an object at its press point, and finish (retreat and hold)."""
+arm that will act, press an object at its press point, pick an object and set it down on a
+destination or a spot, and finish (retreat and hold)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ from collections.abc import Generator
 
 import numpy as np
 
+from ..sim.workspace import TABLE_TOP
 from . import primitives
 from .context import ExpertContext
 
@@ -54,3 +56,57 @@ def finish(ctx: ExpertContext, side: str, hold: int = 3):
     """Return the arm home with the gripper open, then hold still."""
     yield from primitives.retreat(ctx, side)
     yield from primitives.hold(ctx, hold)
+
+
+GRASP_ACROSS = ("box", "radial")
+
+
+def surface_z(ctx: ExpertContext, dest: int) -> float:
+    """Height an object is set down at on ``dest``: a container's inner floor, else the top of its
+    box (a pad's, mat's, plate's or stand's top is the top of its box)."""
+    box = ctx.obj(dest).functional.container
+    if box is not None:
+        p, _ = ctx.pose(dest)
+        return float(p[2] + box.floor)
+    return ctx.top_z(dest)
+
+
+def pick_and_place(
+    ctx: ExpertContext,
+    obj: int,
+    dest: int | None = None,
+    spot=None,
+    subtasks: tuple[int, int] = (1, 2),
+    side: str | None = None,
+    grasp_across: str = "box",
+    lift: float = 0.12,
+    above: float = 0.002,
+    finish_after: bool = True,
+) -> Generator[np.ndarray, None, str]:
+    """Find object ``obj`` and pick it up (subtask ``subtasks[0]``; the arm on its half of the fan
+    unless ``side``), then find the destination object ``dest`` and set ``obj`` down on its centre
+    (or carry it to ``spot``: a table point (x, y), or (x, y, surface z)), release it and, with ``finish_after``, retreat
+    (subtask ``subtasks[1]``). ``grasp_across``: 'box' (fingers across the object's box) or 'radial'
+    (across the line from the robot's base: round objects). Keeps the intent up to date (what is
+    carried, the action's targets). Returns the arm."""
+    if (dest is None) == (spot is None):
+        raise ValueError("pick_and_place needs exactly one of a destination object (dest) or a spot")
+    if grasp_across not in GRASP_ACROSS:
+        raise ValueError(f"grasp_across must be one of {GRASP_ACROSS}, got {grasp_across!r}")
+    with ctx.subtask(subtasks[0]):
+        side = yield from find_and_face(ctx, obj, side)
+        closing = primitives.radial_tangent(ctx.center(obj)) if grasp_across == "radial" else None
+        yield from primitives.pick(ctx, side, obj, closing=closing, lift=lift)
+    with ctx.subtask(subtasks[1]):
+        if dest is not None:
+            yield from find_and_face(ctx, dest, side)
+            primitives.start_action(ctx, {obj, dest})
+            target, z = ctx.center(dest)[:2], surface_z(ctx, dest)
+        else:
+            target, z = np.asarray(spot, float)[:2], float(spot[2]) if len(spot) > 2 else TABLE_TOP
+            yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)
+            primitives.start_action(ctx, {obj})
+        yield from primitives.place(ctx, side, obj, target, z + above)
+        if finish_after:
+            yield from finish(ctx, side)
+    return side

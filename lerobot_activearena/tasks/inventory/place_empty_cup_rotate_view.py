@@ -12,7 +12,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import primitives, routines
+from ...expert import routines
 from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
@@ -51,14 +51,4 @@ class PlaceEmptyCupRotateView(Task):
         }
 
     def expert(self, ctx, scene):
-        cup, coaster = ctx.idx("cup"), ctx.idx("coaster")
-        with ctx.subtask(1):
-            side = yield from routines.find_and_face(ctx, cup)
-            yield from primitives.pick(
-                ctx, side, cup, closing=primitives.radial_tangent(ctx.center(cup)), lift=0.12
-            )
-        with ctx.subtask(2):
-            yield from routines.find_and_face(ctx, coaster, side)
-            primitives.start_action(ctx, {cup, coaster})
-            yield from primitives.place(ctx, side, cup, ctx.center(coaster)[:2], ctx.top_z(coaster) + 0.002)
-            yield from routines.finish(ctx, side)
+        yield from routines.pick_and_place(ctx, ctx.idx("cup"), ctx.idx("coaster"), grasp_across="radial")

@@ -17,53 +17,21 @@ from __future__ import annotations
 
 import math
 
-from ...expert import routines
-from ...sim.embodiment import ARMS
-from .. import predicates
-from ..base import Subtask, Task
+from ..base import Subtask
 from ..draft import Region
+from ..pressing import PressDeviceTask
 
-CENTER_TOL = 0.01  # m: the gripper's centre over the marked end (the rocker is 3.6 cm wide)
 
-
-class TurnSwitchRotateView(Task):
+class TurnSwitchRotateView(PressDeviceTask):
     name = "turn_switch_rotate_view"
     category = "SS"
     instruction = "Locate and activate the switch."
     subtasks = (Subtask(1, "_turn_switch", "localize and trigger the switch", 0),)
     max_episode_steps = 143
 
-    def layout(self, draft):
-        draft.place(
-            "switch",
-            "switch",
-            "switch",
-            Region(r=(0.37, 0.45), hidden=True),
-            yaw_jitter=math.radians(45),
-            arms=ARMS,
-        )
-
-    def evaluate(self, sim, scene, monitor):
-        switch = scene.obj("switch")
-        upright, in_place = predicates.upright(sim, "switch"), predicates.in_place(sim, "switch", 0.03)
-        end = predicates.press_point(sim, switch)
-        on = predicates.press_moved(sim, switch)
-        pressed = any(
-            predicates.pressed_by(sim, arm, "switch", end, centered_within=CENTER_TOL) for arm in ARMS
-        )
-        switched = monitor.event("switched_on", on and pressed and upright and in_place)
-        return {"switched_on": switched, "switch_upright": upright, "switch_in_place": in_place}
-
-    def failure(self, sim, scene, monitor):
-        if predicates.knocked_over(sim, "switch"):
-            return "the switch was knocked over"
-        if not predicates.in_place(sim, "switch", 0.06):
-            return "the switch was pushed out of place"
-        return None
-
-    def expert(self, ctx, scene):
-        switch = ctx.idx("switch")
-        with ctx.subtask(1):
-            side = yield from routines.find_and_face(ctx, switch)
-            yield from routines.press_object(ctx, side, switch, depth=0.016)
-            yield from routines.finish(ctx, side)
+    device = "switch"
+    region = Region(r=(0.37, 0.45), hidden=True)
+    placement = {"yaw_jitter": math.radians(45)}
+    centered_within = 0.01  # m: over the marked end (the rocker is 3.6 cm wide)
+    press_check = event = "switched_on"
+    depth = 0.016
