@@ -1,12 +1,13 @@
 """Task registry, scene sampling (ID/OOD, determinism, design principles) and success checks."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from lerobot_activearena.sim.assets import ASSETS
-from lerobot_activearena.tasks import TASKS, get_task, task_names
+from lerobot_activearena.tasks import CATEGORIES, TASKS, get_task, task_names
 from lerobot_activearena.tasks.base import TaskScene
 from lerobot_activearena.tasks.draft import SceneDraft
 from lerobot_activearena.tasks.sampling import derived_rng, principle_violations, sample_scene
@@ -162,3 +163,23 @@ def test_task_modules_are_discovered_without_a_list():
 
     modules = {m.name for m in pkgutil.iter_modules(inventory.__path__) if not m.name.startswith("_")}
     assert modules == set(task_names("all"))
+
+
+def test_readme_task_table_is_the_registry():
+    """The README's task table lists exactly the registered tasks, each with its category, step
+    limit and instruction (the paper's sentence), in category order."""
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    rows = [line for line in readme.splitlines() if line.startswith("| `") and line.count("|") == 5]
+    table = {}
+    for line in rows:
+        name, cat, limit, instruction = (c.strip() for c in line.strip("|").split("|"))
+        table[name.strip("`")] = (cat, int(limit), instruction)
+    names = task_names("all")
+    assert sorted(table) == sorted(names), set(table) ^ set(names)
+    for name in names:
+        t = get_task(name)
+        cat, limit, instruction = table[name]
+        assert (cat, limit) == (t.category, t.max_episode_steps), name
+        assert instruction.startswith(t.instruction), (name, instruction)
+    order = [list(CATEGORIES).index(table[n][0]) for n in [r.split("`")[1] for r in rows]]
+    assert order == sorted(order), "README rows are grouped by category (SS, SL, ML, MD, IA)"

@@ -1,0 +1,71 @@
+"""Shared shape of the pick-and-place tasks (SL): find an object, pick it up, find its destination
+and set it down there. One of the two (at random) starts out of the home view on a random side, the
+other anywhere in the arms' band.
+
+A subclass states its row and: ``obj`` / ``dest`` (object names), ``obj_asset`` / ``dest_asset``
+(asset categories; default: the names), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
+options drawn per episode), ``obj_yaw`` (``draft.place``'s yaw), ``grasp_across``
+(``routines.pick_and_place``) and ``extra_checks`` (more named checks). Success, held 8 frames after both were seen: the object rests on
+the destination's support surface (``predicates.on_support``: footprint-aware), upright, released.
+Failure: the object off the table (the monitor's, as for every task).
+"""
+
+from __future__ import annotations
+
+from ..expert import routines
+from ..sim.embodiment import ARMS
+from . import predicates
+from .base import Task
+from .draft import HIDDEN, REACH
+
+
+class PickPlaceTask(Task):
+    obj: str
+    dest: str
+    obj_asset: str | None = None
+    dest_asset: str | None = None
+    obj_yaw: float | str | None = "random"
+    grasp_across: str = "box"
+
+    def layout(self, draft):
+        obj_hidden = bool(draft.rng.integers(0, 2))
+        draft.place(
+            self.obj_asset or self.obj,
+            self.obj,
+            self.obj.replace("_", " "),
+            HIDDEN if obj_hidden else REACH,
+            yaw=self.obj_yaw,
+            arms=ARMS,
+            **self.obj_options(draft),
+        )
+        draft.place(
+            self.dest_asset or self.dest,
+            self.dest,
+            self.dest.replace("_", " "),
+            REACH if obj_hidden else HIDDEN,
+            arms=ARMS,
+            **self.dest_options(draft),
+        )
+
+    def obj_options(self, draft) -> dict:
+        return {}
+
+    def dest_options(self, draft) -> dict:
+        return {}
+
+    def evaluate(self, sim, scene, monitor):
+        obj, dest = scene.obj(self.obj), scene.obj(self.dest)
+        return {
+            f"{self.obj}_on_{self.dest}": predicates.on_support(sim, obj, dest),
+            f"{self.obj}_upright": predicates.upright(sim, self.obj),
+            f"{self.obj}_released": predicates.released(sim, self.obj),
+            **self.extra_checks(sim, scene, monitor),
+        }
+
+    def extra_checks(self, sim, scene, monitor) -> dict[str, bool]:
+        return {}
+
+    def expert(self, ctx, scene):
+        yield from routines.pick_and_place(
+            ctx, ctx.idx(self.obj), ctx.idx(self.dest), grasp_across=self.grasp_across
+        )
