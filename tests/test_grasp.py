@@ -1,4 +1,5 @@
-"""Physical grasping: a 0.3 kg can is lifted 15 cm and shaken without slipping out (no welds)."""
+"""Physical grasping: a 0.3 kg can is lifted 15 cm and shaken without slipping out, and the pill bottle
+carried by the pick-and-place routine stays in the gripper (no welds)."""
 
 from collections.abc import Iterator
 
@@ -104,3 +105,26 @@ def test_can_lifted_and_shaken_stays_in_gripper():
     assert slip < 0.005, f"can slipped {slip * 1000:.1f} mm in the gripper"
     assert np.ptp(shake_disp) < 0.01
     assert 0.3 < sim.state()[15] < 0.9, "gripper should be stopped by the can, neither open nor closed"
+
+
+def test_the_expert_carries_the_pill_bottle_without_slip():
+    """The pick-and-place routine's grasp is physical too: while a gripper alone holds the pill
+    bottle up, the bottle stays put in the gripper's frame (within 5 mm)."""
+    from lerobot_activearena.sim.embodiment import TCP_SITES
+    from lerobot_activearena.tasks.predicates import held_by_gripper
+    from lerobot_activearena.tasks.rollout import run_expert_episode
+
+    offsets, welds = [], []
+
+    def on_frame(t, sim, frame, action):
+        welds.append(sum(sim.model.eq_type == 1))  # mjEQ_WELD
+        arm = held_by_gripper(sim, "pill_bottle")
+        if arm is not None:
+            tcp, bottle = sim.data.site(TCP_SITES[arm]), sim.data.body("pill_bottle")
+            offsets.append(tcp.xmat.reshape(3, 3).T @ (bottle.xpos - tcp.xpos))
+
+    r = run_expert_episode("move_pillbottle_pad_rotate_view", 0, "id", on_frame=on_frame)
+    assert r.success and max(welds) == 0 and len(offsets) > 20, (r.failure, len(offsets))
+    offsets = np.array(offsets)
+    drift = np.linalg.norm(offsets - offsets[0], axis=1).max()  # 3.3 mm over 57 frames, seed 0
+    assert drift < 0.005, f"the bottle moved {drift * 1000:.1f} mm in the gripper while carried"
