@@ -274,8 +274,13 @@ def footprint_points(sim: ActiveArenaSim, obj: ObjectInfo, n: int = FOOTPRINT_GR
 
 
 def centre_point(sim: ActiveArenaSim, obj: ObjectInfo) -> np.ndarray:
-    pos, rot = _pose(sim, obj)
-    return pos + rot @ np.asarray(obj.center_offset, float)
+    """World centre of ``obj``'s bounding box."""
+    return body_point(sim, obj.body, obj.center_offset)
+
+
+def top_point(sim: ActiveArenaSim, obj: ObjectInfo) -> np.ndarray:
+    """World centre of the top of ``obj``'s bounding box (upright)."""
+    return centre_point(sim, obj) + [0.0, 0.0, obj.half_extents[2]]
 
 
 def _over_top(local_xy: np.ndarray, support, margin: float) -> np.ndarray:
@@ -327,10 +332,9 @@ def stacked_on(
 ) -> bool:
     """``upper`` sits on top of ``lower``: centres within ``xy_tol`` horizontally and ``upper``'s base
     at ``lower``'s top height (+/- ``z_tol``)."""
-    c_up, c_low = centre_point(sim, upper), centre_point(sim, lower)
+    c_up, top = centre_point(sim, upper), top_point(sim, lower)
     base = footprint_points(sim, upper)[:, 2].mean()
-    top = c_low[2] + lower.half_extents[2]
-    return bool(np.hypot(*(c_up[:2] - c_low[:2])) <= xy_tol and abs(base - top) <= z_tol)
+    return bool(np.hypot(*(c_up[:2] - top[:2])) <= xy_tol and abs(base - top[2]) <= z_tol)
 
 
 def beside(
@@ -379,7 +383,6 @@ def struck(sim: ActiveArenaSim, tool: ObjectInfo, target: ObjectInfo, radius_xy:
     if head is None:
         raise ValueError(f"{tool.name} ({tool.category}) declares no tool head")
     centre = body_point(sim, tool.body, head.point)
-    top = centre_point(sim, target)
-    top[2] += target.half_extents[2]
+    top = top_point(sim, target)
     over = np.hypot(*(centre[:2] - top[:2])) <= radius_xy and centre[2] >= top[2]
     return bool(over and touching(sim, tool, target))

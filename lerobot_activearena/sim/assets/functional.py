@@ -78,7 +78,6 @@ class Functional:
     tool_head: ToolHead | None = None
     front: Vec3 | None = None  # the direction its front faces (a fan's airflow), unit
     info_face: InfoFace | None = None
-    upright_axis: bool = True  # it has a right side up (a seal, a cup); False for a ball
 
     def validate(self, obj: str, half_extents, center_offset) -> None:
         """Raise ValueError naming the asset and the field when a declaration cannot be right for
