@@ -5,6 +5,7 @@ from collections.abc import Iterator
 
 import mujoco
 import numpy as np
+import pytest
 
 from lerobot_activearena.expert.ik import ArmIK, grasp_rotation, interpolate_pose
 from lerobot_activearena.expert.motion import CONTROL_DT, arm_of, interpolate_joints, with_arm
@@ -108,25 +109,36 @@ def test_can_lifted_and_shaken_stays_in_gripper():
     assert 0.3 < sim.state()[15] < 0.9, "gripper should be stopped by the can, neither open nor closed"
 
 
-def test_the_expert_carries_the_pill_bottle_without_slip():
-    """The pick-and-place routine's grasp is physical too: while a gripper alone holds the pill
-    bottle up, the bottle stays put in the gripper's frame (within 5 mm)."""
+CARRIED = {  # pick-and-place task -> the object its expert carries
+    "move_pillbottle_pad_rotate_view": "pill_bottle",
+    "move_stapler_pad_rotate_view": "stapler",
+    "place_mouse_pad_rotate_view": "mouse",
+    "place_shoe_rotate_view": "shoe",
+}
+
+
+@pytest.mark.parametrize("task", sorted(CARRIED))
+def test_the_expert_carries_without_slip(task):
+    """The pick-and-place routine's grasp is physical too (no welds): while a gripper alone holds
+    the object up, it stays put in the gripper's frame (within 5 mm)."""
     from lerobot_activearena.sim.embodiment import TCP_SITES
     from lerobot_activearena.tasks.predicates import held_by_gripper
     from lerobot_activearena.tasks.rollout import run_expert_episode
 
+    obj = CARRIED[task]
     offsets, welds = [], []
 
     def on_frame(t, sim, frame, action):
         if t == 0:
             welds.append(int((sim.model.eq_type == mujoco.mjtEq.mjEQ_WELD).sum()))
-        arm = held_by_gripper(sim, "pill_bottle")
+        arm = held_by_gripper(sim, obj)
         if arm is not None:
-            tcp, bottle = sim.data.site(TCP_SITES[arm]), sim.data.body("pill_bottle")
-            offsets.append(tcp.xmat.reshape(3, 3).T @ (bottle.xpos - tcp.xpos))
+            tcp, body = sim.data.site(TCP_SITES[arm]), sim.data.body(obj)
+            offsets.append(tcp.xmat.reshape(3, 3).T @ (body.xpos - tcp.xpos))
 
-    r = run_expert_episode("move_pillbottle_pad_rotate_view", 0, "id", on_frame=on_frame)
+    r = run_expert_episode(task, 0, "id", on_frame=on_frame)
     assert r.success and welds == [0] and len(offsets) > 20, (r.failure, len(offsets))
     offsets = np.array(offsets)
-    drift = np.linalg.norm(offsets - offsets[0], axis=1).max()  # 3.3 mm over 57 frames, seed 0
-    assert drift < 0.005, f"the bottle moved {drift * 1000:.1f} mm in the gripper while carried"
+    drift = np.linalg.norm(offsets - offsets[0], axis=1).max()
+    print(f"{task}: {obj} moved {drift * 1000:.1f} mm over {len(offsets)} held frames")
+    assert drift < 0.005, f"the {obj} moved {drift * 1000:.1f} mm in the gripper while carried"

@@ -183,3 +183,39 @@ def test_readme_task_table_is_the_registry():
         assert instruction.startswith(t.instruction), (name, instruction)
     order = [list(CATEGORIES).index(table[n][0]) for n in [r.split("`")[1] for r in rows]]
     assert order == sorted(order), "README rows are grouped by category (SS, SL, ML, MD, IA)"
+
+
+def test_templated_instructions_name_the_episode_values():
+    """Every templated task fills its sentence from the scene it sampled (the stapler's mat colour
+    is the mat's), the sentence varies across seeds, and its paper sentence is one instance."""
+    templated = [n for n in task_names("all") if get_task(n).instruction_template is not None]
+    assert "move_stapler_pad_rotate_view" in templated
+    for name in templated:
+        task = get_task(name)
+        seen = set()
+        for seed in range(6):
+            scene = sample_scene(task, seed, "id")
+            assert scene.instruction == task.instruction_for(scene.params)
+            for key, values in task.instruction_values.items():
+                assert scene.params[key] in values and scene.params[key] in scene.instruction
+            seen.add(scene.instruction)
+        assert len(seen) > 1, f"{name}: six seeds gave one instruction {seen}"
+    stapler = sample_scene(get_task("move_stapler_pad_rotate_view"), 3, "id")
+    assert stapler.obj("mat").attributes["color_name"] == stapler.params["mat_color"]
+
+
+def test_an_instruction_template_must_have_the_paper_sentence_as_an_instance():
+    from lerobot_activearena.tasks.base import check_instruction_template
+
+    class Bad:
+        instruction = "Move the stapler onto the black mat."
+        instruction_template = "Move the stapler onto the {mat_color} pad."
+        instruction_values = {"mat_color": ("black", "red")}
+
+    with pytest.raises(TypeError, match="not an instance"):
+        check_instruction_template(Bad)
+    Bad.instruction_template = "Move the stapler onto the {color} mat."
+    with pytest.raises(TypeError, match="fields"):
+        check_instruction_template(Bad)
+    Bad.instruction_template, Bad.instruction_values = "Move the stapler onto the {c} mat.", {"c": ("black",)}
+    check_instruction_template(Bad)  # the paper's sentence is the instance c = black

@@ -4,6 +4,7 @@ destination or a spot, and finish (retreat and hold)."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Generator
 
 import numpy as np
@@ -80,15 +81,21 @@ def pick_and_place(
     side: str | None = None,
     grasp_across: str = "box",
     lift: float = 0.12,
+    approach: float = 0.12,
+    hover: float = 0.10,
     above: float = 0.002,
     finish_after: bool = True,
+    face_robot: bool = False,
 ) -> Generator[np.ndarray, None, str]:
     """Find object ``obj`` and pick it up (subtask ``subtasks[0]``; the arm on its half of the fan
     unless ``side``), then find the destination object ``dest`` and set ``obj`` down on its centre
     (or carry it to ``spot``: a table point (x, y), or (x, y, surface z)), release it and, with ``finish_after``, retreat
     (subtask ``subtasks[1]``). ``grasp_across``: 'box' (fingers across the object's box) or 'radial'
     (across the line from the robot's base: round objects). Keeps the intent up to date (what is
-    carried, the action's targets). Returns the arm."""
+    carried, the action's targets). ``lift`` / ``approach`` / ``hover``: how high the object is lifted, how high above the grasp point
+    the gripper comes in, how high above the set-down pose it carries the object in.
+    ``face_robot``: set ``obj`` down with its ``functional.front``
+    towards the robot's base. Returns the arm."""
     if (dest is None) == (spot is None):
         raise ValueError("pick_and_place needs exactly one of a destination object (dest) or a spot")
     if grasp_across not in GRASP_ACROSS:
@@ -96,7 +103,7 @@ def pick_and_place(
     with ctx.subtask(subtasks[0]):
         side = yield from find_and_face(ctx, obj, side)
         closing = primitives.radial_tangent(ctx.center(obj)) if grasp_across == "radial" else None
-        yield from primitives.pick(ctx, side, obj, closing=closing, lift=lift)
+        yield from primitives.pick(ctx, side, obj, closing=closing, lift=lift, approach=approach)
     with ctx.subtask(subtasks[1]):
         if dest is not None:
             yield from find_and_face(ctx, dest, side)
@@ -106,7 +113,17 @@ def pick_and_place(
             target, z = np.asarray(spot, float)[:2], float(spot[2]) if len(spot) > 2 else TABLE_TOP
             yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)
             primitives.start_action(ctx, {obj})
-        yield from primitives.place(ctx, side, obj, target, z + above)
+        yaw = facing_robot_yaw(ctx.obj(obj), target) if face_robot else None
+        yield from primitives.place(ctx, side, obj, target, z + above, obj_yaw=yaw, hover=hover)
         if finish_after:
             yield from finish(ctx, side)
     return side
+
+
+def facing_robot_yaw(obj, target_xy) -> float:
+    """The body yaw that turns ``obj``'s ``functional.front`` towards the robot's base from ``target_xy``."""
+    front = obj.functional.front
+    if front is None:
+        raise ValueError(f"{obj.name} ({obj.category}) declares no front to turn towards the robot")
+    to_robot = math.atan2(-target_xy[1], -target_xy[0])
+    return to_robot - math.atan2(front[1], front[0])

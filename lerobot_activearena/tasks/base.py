@@ -7,6 +7,7 @@ registers it. See ``tasks/inventory/click_bell_rotate_view.py`` for a commented 
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, ClassVar
@@ -64,13 +65,18 @@ class TaskScene:
 class Task:
     name: ClassVar[str]
     category: ClassVar[str]
-    instruction: ClassVar[str]
+    instruction: ClassVar[str]  # the paper's sentence (one instance of a template)
+    # A sentence with ``{field}``s the episode fills from ``scene.params`` (the mat's colour, the
+    # object's name, the arm), and the values each field takes; None: the sentence is fixed.
+    instruction_template: ClassVar[str | None] = None
+    instruction_values: ClassVar[dict[str, tuple[str, ...]]] = {}
     subtasks: ClassVar[tuple[Subtask, ...]]
     max_episode_steps: ClassVar[int]  # the protocol's evaluation step limit (paper's release)
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         if "name" in cls.__dict__:
+            check_instruction_template(cls)
             register_task(cls)
 
     # ---- scene -------------------------------------------------------------------------------
@@ -79,7 +85,23 @@ class Task:
         raise NotImplementedError
 
     def instruction_for(self, params: dict) -> str:
-        return self.instruction
+        """The episode's instruction: the template filled from ``params`` (the sampler's
+        ``draft.params``), or the fixed sentence."""
+        if self.instruction_template is None:
+            return self.instruction
+        values = {}
+        for key, allowed in self.instruction_values.items():
+            if key not in params:
+                raise KeyError(f"{self.name}: the layout did not set params[{key!r}] for its instruction")
+            if params[key] not in allowed:
+                raise ValueError(f"{self.name}: params[{key!r}] = {params[key]!r} is not one of {allowed}")
+            values[key] = params[key]
+        return self.instruction_template.format(**values)
+
+    @classmethod
+    def instruction_texts(cls) -> list[str]:
+        """The sentence, and every value a template field takes (a tokenizer's corpus)."""
+        return [cls.instruction, *(v for vals in cls.instruction_values.values() for v in vals)]
 
     def search_targets(self, scene: TaskScene) -> list[int]:
         """Objects whose observation the task needs (design-principle checks, DM/CO/CR)."""
@@ -139,3 +161,25 @@ def register_task(cls: type[Task]) -> type[Task]:
         raise ValueError(f"task {cls.name!r}: subtask ids must be 1..n in declaration order, got {ids}")
     TASKS[cls.name] = cls
     return cls
+
+
+def check_instruction_template(cls) -> None:
+    """A template's fields are exactly ``instruction_values``' keys, and the paper's sentence is one
+    of its instances (so the template says what the paper says)."""
+    template = cls.__dict__.get("instruction_template", cls.instruction_template)
+    if template is None:
+        return
+    fields = set(re.findall(r"{(\w+)}", template))
+    if fields != set(cls.instruction_values):
+        raise TypeError(
+            f"{cls.__name__}: instruction_template fields {sorted(fields)} differ from "
+            f"instruction_values {sorted(cls.instruction_values)}"
+        )
+    pattern = re.escape(template)
+    for key, vals in cls.instruction_values.items():
+        pattern = pattern.replace(re.escape("{" + key + "}"), "(?:" + "|".join(map(re.escape, vals)) + ")")
+    if not re.fullmatch(pattern, cls.instruction):
+        raise TypeError(
+            f"{cls.__name__}: the paper's instruction {cls.instruction!r} is not an instance of "
+            f"the template {template!r} with the values {cls.instruction_values}"
+        )

@@ -3,7 +3,7 @@ and set it down there. One of the two (at random) starts out of the home view on
 other anywhere in the arms' band.
 
 A subclass states its row and: ``obj`` / ``dest`` (object names), ``obj_asset`` / ``dest_asset``
-(asset categories; default: the names), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
+(asset categories; default: the names), ``regions(draft)`` (where each goes), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
 options drawn per episode), ``obj_yaw`` (``draft.place``'s yaw), ``grasp_across``
 (``routines.pick_and_place``) and ``extra_checks`` (more named checks). Success, held 8 frames after both were seen: the object rests on
 the destination's support surface (``predicates.on_support``: footprint-aware), upright, released.
@@ -13,10 +13,11 @@ Failure: the object off the table (the monitor's, as for every task).
 from __future__ import annotations
 
 from ..expert import routines
+from ..sim.assets.task_objects import RELEASE_MAT_COLORS
 from ..sim.embodiment import ARMS
 from . import predicates
 from .base import Task
-from .draft import HIDDEN, REACH
+from .draft import HIDDEN, REACH, Region
 
 
 class PickPlaceTask(Task):
@@ -26,14 +27,16 @@ class PickPlaceTask(Task):
     dest_asset: str | None = None
     obj_yaw: float | str | None = "random"
     grasp_across: str = "box"
+    face_robot: bool = False  # set the object down with its functional.front towards the robot
+    lift, approach, hover = 0.12, 0.12, 0.10  # m: routines.pick_and_place's heights
 
     def layout(self, draft):
-        obj_hidden = bool(draft.rng.integers(0, 2))
+        obj_region, dest_region = self.regions(draft)
         draft.place(
             self.obj_asset or self.obj,
             self.obj,
             self.obj.replace("_", " "),
-            HIDDEN if obj_hidden else REACH,
+            obj_region,
             yaw=self.obj_yaw,
             arms=ARMS,
             **self.obj_options(draft),
@@ -42,10 +45,16 @@ class PickPlaceTask(Task):
             self.dest_asset or self.dest,
             self.dest,
             self.dest.replace("_", " "),
-            REACH if obj_hidden else HIDDEN,
+            dest_region,
             arms=ARMS,
             **self.dest_options(draft),
         )
+
+    def regions(self, draft) -> tuple[Region, Region]:
+        """Where the object and the destination go: one of them (at random) out of the home view on
+        a random side, the other anywhere in the arms' band; a subclass may fix them."""
+        obj_hidden = bool(draft.rng.integers(0, 2))
+        return (HIDDEN, REACH) if obj_hidden else (REACH, HIDDEN)
 
     def obj_options(self, draft) -> dict:
         return {}
@@ -67,5 +76,20 @@ class PickPlaceTask(Task):
 
     def expert(self, ctx, scene):
         yield from routines.pick_and_place(
-            ctx, ctx.idx(self.obj), ctx.idx(self.dest), grasp_across=self.grasp_across
+            ctx,
+            ctx.idx(self.obj),
+            ctx.idx(self.dest),
+            grasp_across=self.grasp_across,
+            face_robot=self.face_robot,
+            lift=self.lift,
+            approach=self.approach,
+            hover=self.hover,
         )
+
+
+def colored_mat(draft, colors=RELEASE_MAT_COLORS, half: float = 0.05) -> dict:
+    """Builder options of a square mat (``half`` m) in a colour drawn from ``colors``, which the
+    instruction names (``draft.params['mat_color']``)."""
+    color = str(draft.rng.choice(colors))
+    draft.params["mat_color"] = color
+    return {"color_name": color, "half": (half, half)}

@@ -33,7 +33,7 @@ def task_texts() -> list[str]:
     out = []
     for name in task_names("all"):
         task = get_task(name)
-        out += [task.instruction, *(s.text for s in task.subtasks), name.replace("_", " ")]
+        out += [*task.instruction_texts(), *(s.text for s in task.subtasks), name.replace("_", " ")]
     return out
 
 

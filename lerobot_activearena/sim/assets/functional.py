@@ -74,6 +74,7 @@ class Functional:
     support: Support | None = None
     container: Container | None = None
     grasp: tuple[Vec3, ...] = ()  # where a gripper closes on it, preferred first
+    grasp_axis: Vec3 | None = None  # the body axis the fingers close along (None: the expert picks)
     press: Press | None = None
     tool_head: ToolHead | None = None
     front: Vec3 | None = None  # the direction its front faces (a fan's airflow), unit
@@ -110,6 +111,8 @@ class Functional:
                 problem(f"container inner half sizes {c.inner_half} must fit inside the box {half[:2]}")
         for k, p in enumerate(self.grasp):
             inside(f"grasp point {k}", p)
+        if self.grasp_axis is not None and abs(np.linalg.norm(self.grasp_axis) - 1.0) > 1e-6:
+            problem(f"grasp axis {self.grasp_axis} must be a unit vector")
         if self.press is not None:
             if self.press.direction not in ("below", "above"):
                 problem(f"press direction must be 'below' or 'above', got {self.press.direction!r}")

@@ -30,7 +30,10 @@ MAT_COLORS = {
     "orange": (0.95, 0.5, 0.1),
     "purple": (0.55, 0.25, 0.7),
     "white": (0.96, 0.96, 0.96),
+    "magenta": (0.85, 0.15, 0.75),
+    "gray": (0.45, 0.45, 0.47),
 }
+RELEASE_MAT_COLORS = ("red", "green", "blue", "yellow", "cyan", "magenta", "black", "gray")  # stapler, mouse
 DATE_RANGE = (dt.date(2023, 1, 1), dt.date(2026, 12, 31))  # paper: production dates
 SHELF_LIFE_DAYS = 365
 YAXIS_90 = quat_axis_angle([0, 1, 0], np.pi / 2)
@@ -130,6 +133,7 @@ def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
         0.28,
         functional=Functional(
             grasp=((0.0, 0.0, 0.03),),
+            grasp_axis=(0.0, 1.0, 0.0),  # across its width: fingers along the long axis would land on the arm
             press=Press(
                 (0.115, 0.0, 0.008), f"{name}_joint", STAPLER_PRESSED, direction="above", body=f"{name}_arm"
             ),
@@ -349,7 +353,10 @@ def add_plate(spec, name, pos, yaw=0.0, rgba=(0.96, 0.96, 0.94, 1)):
     "fan", footprint=0.08, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.95))}
 )
 def add_fan(spec, name, pos, yaw=0.0, rgba=(0.2, 0.5, 0.85, 1)):
-    """Desk fan: base, stand, round guard facing the body's -x side (the front), hub."""
+    """Desk fan: base, stand, a motor housing over the base behind a round guard that faces the
+    body's -x side (the front), hub. Grasped across the housing above the base, near the centre of
+    mass (the guard stays 2.8 cm clear of the fingers)."""
+    dark = (0.2, 0.2, 0.22, 1)
     return compound(
         spec,
         name,
@@ -357,19 +364,20 @@ def add_fan(spec, name, pos, yaw=0.0, rgba=(0.2, 0.5, 0.85, 1)):
         pos,
         yaw,
         [
-            ("cyl", (0.055, 0.01, 0), (0, 0, 0.01), (0.2, 0.2, 0.22, 1)),
-            ("cyl", (0.008, 0.05, 0), (0, 0, 0.06), (0.3, 0.3, 0.32, 1)),
-            ("cyl", (0.07, 0.012, 0), (0, 0, 0.17), rgba, {"quat": YAXIS_90}),
+            ("cyl", (0.045, 0.008, 0), (0, 0, 0.008), dark),
+            ("cyl", (0.007, 0.04, 0), (0, 0, 0.05), (0.3, 0.3, 0.32, 1)),
+            ("cyl", (0.019, 0.035, 0), (-0.005, 0, 0.11), dark, {"quat": YAXIS_90}),
+            ("cyl", (0.052, 0.004, 0), (-0.045, 0, 0.11), rgba, {"quat": YAXIS_90}),
             (
                 "cyl",
-                (0.02, 0.016, 0),
-                (-0.004, 0, 0.17),
+                (0.016, 0.002, 0),
+                (-0.051, 0, 0.11),
                 (0.15, 0.15, 0.15, 1),
                 {"quat": YAXIS_90, "visual": True},
             ),
         ],
-        0.4,
-        functional=Functional(front=(-1.0, 0.0, 0.0)),
+        0.35,
+        functional=Functional(grasp=((0.0, 0.0, 0.11),), grasp_axis=(0.0, 1.0, 0.0), front=(-1.0, 0.0, 0.0)),
     )
 
 
@@ -394,6 +402,7 @@ def add_mouse(spec, name, pos, yaw=0.0, rgba=(0.12, 0.12, 0.14, 1)):
             ),
         ],
         0.09,
+        functional=Functional(grasp_axis=(0.0, 1.0, 0.0)),  # across its width
     )
 
 
@@ -455,6 +464,7 @@ def add_shoe(spec, name, pos, yaw=0.0, rgba=(0.75, 0.2, 0.2, 1)):
             ("box", (0.035, 0.036, 0.04), (-0.08, 0, 0.04), rgba),
         ],
         0.3,
+        functional=Functional(grasp_axis=(0.0, 1.0, 0.0)),  # across its width
     )
 
 

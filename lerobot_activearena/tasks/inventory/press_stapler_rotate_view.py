@@ -8,8 +8,9 @@ Randomizations:
     and (OOD) appearance.
 Success Conditions:
     pressed: the top arm went down at least 0.1 rad (of its 0.14 rad travel) while a closed
-    gripper touched it within 2.5 cm of the arm's front end (its press point), the stapler upright
-    and in place; stapler_upright, stapler_in_place: still true afterwards. Failure: the stapler
+    gripper touched it within 2.5 cm of the arm's front end (its press point) with its tool centre
+    within 1.2 cm of that point (a press there, not a brush past the arm), the stapler upright and
+    in place; stapler_upright, stapler_in_place: still true afterwards. Failure: the stapler
     knocked over or pushed more than 6 cm (irreversible).
 """
 
@@ -30,4 +31,5 @@ class PressStaplerRotateView(PressDeviceTask):
     device = "stapler"
     region = Region(r=(0.40, 0.48), hidden=True)
     press_check = "pressed_front_of_arm"
+    centered_within = 0.012  # m: blind replays brushed the arm down from the side in ~8 % of scenes
     depth = 0.02
