@@ -114,6 +114,9 @@ CARRIED = {  # pick-and-place task -> the object its expert carries
     "move_stapler_pad_rotate_view": "stapler",
     "place_mouse_pad_rotate_view": "mouse",
     "place_shoe_rotate_view": "shoe",
+    "place_container_plate_rotate_view": "container",
+    "place_object_scale_rotate_view": "target_object",
+    "place_object_stand_rotate_view": "target_object",
 }
 
 

@@ -219,3 +219,24 @@ def test_an_instruction_template_must_have_the_paper_sentence_as_an_instance():
         check_instruction_template(Bad)
     Bad.instruction_template, Bad.instruction_values = "Move the stapler onto the {c} mat.", {"c": ("black",)}
     check_instruction_template(Bad)  # the paper's sentence is the instance c = black
+
+
+def test_docs_tables_cover_the_registry():
+    """docs/tasks.md's task table (name, category, step limit), docs/eval.md's validity summary
+    and docs/tasks.md's expert table (both splits) list exactly the registered tasks."""
+    import re
+
+    docs = Path(__file__).resolve().parents[1] / "docs"
+    tasks_md, eval_md = (docs / "tasks.md").read_text(), (docs / "eval.md").read_text()
+    rows = dict(re.findall(r"^\| `(\w+)` \((\w\w, \d+)\) \|", tasks_md, re.M))
+    names = task_names("all")
+    assert sorted(rows) == sorted(names), set(rows) ^ set(names)
+    for name in names:
+        t = get_task(name)
+        assert rows[name] == f"{t.category}, {t.max_episode_steps}", name
+    summary = set(re.findall(r"^\| (\w+) \| \d+/50", eval_md, re.M))
+    assert summary == set(names), summary ^ set(names)
+    expert = set(re.findall(r"^\| (\w+) \| (id|ood) \| \d+/\d+ \(", tasks_md, re.M))
+    assert expert == {(n, s) for n in names for s in ("id", "ood")}, expert ^ {
+        (n, s) for n in names for s in ("id", "ood")
+    }

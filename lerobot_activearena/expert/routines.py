@@ -86,16 +86,19 @@ def pick_and_place(
     above: float = 0.002,
     finish_after: bool = True,
     face_robot: bool = False,
+    carry_in: float | None = None,
 ) -> Generator[np.ndarray, None, str]:
     """Find object ``obj`` and pick it up (subtask ``subtasks[0]``; the arm on its half of the fan
     unless ``side``), then find the destination object ``dest`` and set ``obj`` down on its centre
-    (or carry it to ``spot``: a table point (x, y), or (x, y, surface z)), release it and, with ``finish_after``, retreat
-    (subtask ``subtasks[1]``). ``grasp_across``: 'box' (fingers across the object's box) or 'radial'
-    (across the line from the robot's base: round objects). Keeps the intent up to date (what is
-    carried, the action's targets). ``lift`` / ``approach`` / ``hover``: how high the object is lifted, how high above the grasp point
-    the gripper comes in, how high above the set-down pose it carries the object in.
-    ``face_robot``: set ``obj`` down with its ``functional.front``
-    towards the robot's base. Returns the arm."""
+    (or carry it to ``spot``: a table point (x, y), or (x, y, surface z)), release it and, with
+    ``finish_after``, retreat (subtask ``subtasks[1]``). ``grasp_across``: 'box' (fingers across
+    the object's box) or 'radial' (across the line from the robot's base: round objects). Keeps the
+    intent up to date (what is carried, the action's targets).
+    ``lift`` / ``approach`` / ``hover``: how high the object is lifted, how high above the grasp
+    point the gripper comes in, how high above the set-down pose it carries the object in.
+    ``face_robot``: set ``obj`` down with its ``functional.front`` towards the robot's base.
+    ``carry_in``: pull the held object in to this distance from the robot's base before the torso
+    turns (a long object swings wide). Returns the arm."""
     if (dest is None) == (spot is None):
         raise ValueError("pick_and_place needs exactly one of a destination object (dest) or a spot")
     if grasp_across not in GRASP_ACROSS:
@@ -105,6 +108,10 @@ def pick_and_place(
         closing = primitives.radial_tangent(ctx.center(obj)) if grasp_across == "radial" else None
         yield from primitives.pick(ctx, side, obj, closing=closing, lift=lift, approach=approach)
     with ctx.subtask(subtasks[1]):
+        if carry_in is not None:
+            p, rot = primitives.tcp_pose(ctx, side)
+            xy = p[:2] * (carry_in / np.linalg.norm(p[:2]))
+            yield from primitives.arm_line(ctx, side, [xy[0], xy[1], p[2]], rot, 0.0, speed=0.25)
         if dest is not None:
             yield from find_and_face(ctx, dest, side)
             primitives.start_action(ctx, {obj, dest})

@@ -118,6 +118,7 @@ class SceneDraft:
         self.hidden: list[str] = []  # objects placed out of the home view (checked after compiling)
         self.reach: dict[str, tuple[str, ...]] = {}  # object -> arms allowed to touch it
         self.placements: list[dict] = []  # (name, role, r, angle) of every registered object
+        self.clutter_excluded: set[str] = set()  # asset families the clutter must not use
 
     def is_free(self, xy, radius: float, margin: float) -> bool:
         return all(np.linalg.norm(np.asarray(xy) - p) >= radius + r + margin for p, r in self.discs)
@@ -208,7 +209,7 @@ class SceneDraft:
     def add_clutter(self) -> int:
         """Static distractors beyond the arms' band; returns how many fitted."""
         ood = self.split == "ood"
-        present = {ASSETS[o.category].family for o in self.builder.info.objects}
+        present = {ASSETS[o.category].family for o in self.builder.info.objects} | self.clutter_excluded
         pool = [c for c in categories(None if ood else "distractor") if ASSETS[c].family not in present]
         n = int(self.rng.integers(9, 14) if ood else self.rng.integers(4, 8))
         placed = 0

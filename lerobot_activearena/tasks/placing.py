@@ -13,6 +13,7 @@ Failure: the object off the table (the monitor's, as for every task).
 from __future__ import annotations
 
 from ..expert import routines
+from ..sim.assets import ASSETS
 from ..sim.assets.task_objects import RELEASE_MAT_COLORS
 from ..sim.embodiment import ARMS
 from . import predicates
@@ -29,13 +30,24 @@ class PickPlaceTask(Task):
     grasp_across: str = "box"
     face_robot: bool = False  # set the object down with its functional.front towards the robot
     lift, approach, hover = 0.12, 0.12, 0.10  # m: routines.pick_and_place's heights
+    carry_in: float | None = None  # m from the base the held object is pulled in to (long objects)
+    min_overlap = 0.5  # on_support: the share of the object's footprint over the destination's top
+
+    # One object category per episode (category -> its name in the instruction, params['object']);
+    # their families are kept out of the clutter, so the object is the only one of its kind.
+    obj_choices: dict[str, str] = {}
 
     def layout(self, draft):
         obj_region, dest_region = self.regions(draft)
+        category, label = self.obj_asset or self.obj, self.obj.replace("_", " ")
+        if self.obj_choices:
+            category = str(draft.rng.choice(list(self.obj_choices)))
+            label = draft.params["object"] = self.obj_choices[category]
+            draft.clutter_excluded |= {ASSETS[c].family for c in self.obj_choices}
         draft.place(
-            self.obj_asset or self.obj,
+            category,
             self.obj,
-            self.obj.replace("_", " "),
+            label,
             obj_region,
             yaw=self.obj_yaw,
             arms=ARMS,
@@ -65,7 +77,7 @@ class PickPlaceTask(Task):
     def evaluate(self, sim, scene, monitor):
         obj, dest = scene.obj(self.obj), scene.obj(self.dest)
         return {
-            f"{self.obj}_on_{self.dest}": predicates.on_support(sim, obj, dest),
+            f"{self.obj}_on_{self.dest}": predicates.on_support(sim, obj, dest, self.min_overlap),
             f"{self.obj}_upright": predicates.upright(sim, self.obj),
             f"{self.obj}_released": predicates.released(sim, self.obj),
             **self.extra_checks(sim, scene, monitor),
@@ -84,6 +96,7 @@ class PickPlaceTask(Task):
             lift=self.lift,
             approach=self.approach,
             hover=self.hover,
+            carry_in=self.carry_in,
         )
 
 

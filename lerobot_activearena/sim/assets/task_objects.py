@@ -323,7 +323,7 @@ def add_container(spec, name, pos, yaw=0.0, lid=(0.2, 0.6, 0.3, 1)):
         yaw,
         [
             ("box", (0.045, 0.035, 0.025), (0, 0, 0.025), (0.92, 0.92, 0.9, 0.95)),
-            ("box", (0.048, 0.038, 0.005), (0, 0, 0.055), lid),
+            ("box", (0.045, 0.035, 0.005), (0, 0, 0.055), lid),  # flush: an overhang caught the pads
         ],
         0.12,
     )
@@ -441,10 +441,10 @@ def add_display_stand(spec, name, pos, yaw=0.0, rgba=(0.9, 0.9, 0.92, 1)):
         [
             ("cyl", (0.045, 0.006, 0), (0, 0, 0.006), rgba),
             ("cyl", (0.012, 0.03, 0), (0, 0, 0.042), rgba),
-            ("cyl", (0.04, 0.004, 0), (0, 0, 0.076), rgba),
+            ("cyl", (0.05, 0.004, 0), (0, 0, 0.076), rgba),
         ],
         0.3,
-        functional=Functional(support=Support(0.08, (0.04, 0.04), "disc")),
+        functional=Functional(support=Support(0.08, (0.05, 0.05), "disc")),
     )
 
 

@@ -2,7 +2,8 @@
 
 Task Description:
     A 16 x 16 cm mat lies straight ahead, in the home view; find the shoe elsewhere on the fan,
-    pick it up and set it down on the mat.
+    pick it up and set it down on the mat (the expert pulls the held shoe in towards the robot
+    before it turns: held out at arm's length, its heel swept into clutter).
 Randomizations:
     Shoe out of the home view on a random side, any yaw; the mat straight ahead (0.38-0.42 m,
     85-95 deg; the release fixes it); shoe and mat colours; clutter and (OOD) appearance.
@@ -32,6 +33,8 @@ class PlaceShoeRotateView(PickPlaceTask):
     max_episode_steps = 170
 
     obj, dest = "shoe", "mat"
+    carry_in = 0.30  # the 24 cm shoe would swing into clutter as the torso turns
+    lift, approach, hover = 0.08, 0.08, 0.06  # nothing tall between the shoe and the mat
 
     def regions(self, draft):
         return HIDDEN, MAT_AHEAD
