@@ -316,10 +316,12 @@ def pick(
     lift: float = 0.15,
     flip_ok: bool = True,
     approach: float = 0.12,
+    straight_approach: bool = False,
 ) -> Actions:
     """Top-down grasp of object ``i`` from ``approach`` m above the grasp point, and lift; raises
     ExpertError if it did not come up. ``flip_ok=False`` keeps the finger order given by ``closing``
-    (no 180 deg wrist flip)."""
+    (no 180 deg wrist flip). ``straight_approach``: the gripper rises to the approach height and comes in
+    along straight lines (a tall object: the approach's joint path dips and sweeps over it)."""
     start_action(ctx, {i})
     closing = box_closing_axis(ctx, i) if closing is None else closing
     grasp = grasp_point(ctx, i)
@@ -328,7 +330,13 @@ def pick(
     else:
         rot = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
     z0 = ctx.bottom_z(i)
-    yield from arm_goto(ctx, side, grasp + [0, 0, approach], rot, gripper=1.0)
+    if straight_approach:
+        p, rot_now = tcp_pose(ctx, side)
+        if p[2] < grasp[2] + approach:
+            yield from arm_line(ctx, side, [p[0], p[1], grasp[2] + approach], rot_now, 1.0, speed=0.25)
+        yield from arm_line(ctx, side, grasp + [0, 0, approach], rot, 1.0, speed=0.25)
+    else:
+        yield from arm_goto(ctx, side, grasp + [0, 0, approach], rot, gripper=1.0)
     yield from arm_line(ctx, side, grasp, rot, 1.0, speed=0.18)
     yield from set_gripper(ctx, side, 0.0, 10)
     ctx.intent.carried = {i}

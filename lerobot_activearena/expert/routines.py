@@ -87,6 +87,7 @@ def pick_and_place(
     finish_after: bool = True,
     face_robot: bool = False,
     carry_in: float | None = None,
+    straight_approach: bool = False,
 ) -> Generator[np.ndarray, None, str]:
     """Find object ``obj`` and pick it up (subtask ``subtasks[0]``; the arm on its half of the fan
     unless ``side``), then find the destination object ``dest`` and set ``obj`` down on its centre
@@ -98,7 +99,7 @@ def pick_and_place(
     point the gripper comes in, how high above the set-down pose it carries the object in.
     ``face_robot``: set ``obj`` down with its ``functional.front`` towards the robot's base.
     ``carry_in``: pull the held object in to this distance from the robot's base before the torso
-    turns (a long object swings wide). Returns the arm."""
+    turns (a long object swings wide). ``straight_approach``: see ``primitives.pick``. Returns the arm."""
     if (dest is None) == (spot is None):
         raise ValueError("pick_and_place needs exactly one of a destination object (dest) or a spot")
     if grasp_across not in GRASP_ACROSS:
@@ -106,7 +107,9 @@ def pick_and_place(
     with ctx.subtask(subtasks[0]):
         side = yield from find_and_face(ctx, obj, side)
         closing = primitives.radial_tangent(ctx.center(obj)) if grasp_across == "radial" else None
-        yield from primitives.pick(ctx, side, obj, closing=closing, lift=lift, approach=approach)
+        yield from primitives.pick(
+            ctx, side, obj, closing=closing, lift=lift, approach=approach, straight_approach=straight_approach
+        )
     with ctx.subtask(subtasks[1]):
         if carry_in is not None:
             p, rot = primitives.tcp_pose(ctx, side)

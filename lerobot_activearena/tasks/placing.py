@@ -31,6 +31,7 @@ class PickPlaceTask(Task):
     face_robot: bool = False  # set the object down with its functional.front towards the robot
     lift, approach, hover = 0.12, 0.12, 0.10  # m: routines.pick_and_place's heights
     carry_in: float | None = None  # m from the base the held object is pulled in to (long objects)
+    straight_approach = False  # come in to the pick along straight lines (tall objects)
     min_overlap = 0.5  # on_support: the share of the object's footprint over the destination's top
 
     # One object category per episode (category -> its name in the instruction, params['object']);
@@ -97,6 +98,7 @@ class PickPlaceTask(Task):
             approach=self.approach,
             hover=self.hover,
             carry_in=self.carry_in,
+            straight_approach=self.straight_approach,
         )
 
 

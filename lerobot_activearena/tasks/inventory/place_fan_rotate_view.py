@@ -45,6 +45,7 @@ class PlaceFanRotateView(PickPlaceTask):
     face_robot = True
     # Carried low: a top-down wrist can turn the fan to face the robot only near the table.
     lift, hover = 0.05, 0.05
+    straight_approach = True  # the approach's joint path dipped and swept over the guard
 
     def regions(self, draft):
         obj_region, dest_region = super().regions(draft)
