@@ -39,6 +39,7 @@ SECTOR_YAWS = tuple(yaw for yaw, _ in SEARCH_VIEWS)  # torso yaw of each search 
 TORSO_VMAX, TORSO_AMAX = embodiment.TORSO_LIMITS  # the paper's 2.5 rad/s, 10 rad/s^2
 HEAD_VMAX, HEAD_AMAX = embodiment.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^2
 FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
+PLACE_TURN_SPEED = 2.5  # rad/s: peak wrist turn when an object is turned to a set yaw while carried
 GRASP_Z_MIN_ABOVE_BOTTOM = 0.033  # open pads reach 0.028 m past the TCP: keep them off the table
 
 
@@ -213,13 +214,23 @@ def arm_goto(
 
 
 def arm_line(
-    ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, speed: float = 0.15
+    ctx: ExpertContext,
+    side: str,
+    pos,
+    rot,
+    gripper: float | None = None,
+    speed: float = 0.15,
+    turn_speed: float | None = None,
 ) -> Actions:
-    """Straight TCP segment with a smooth (cosine) speed profile peaking at ``speed`` m/s."""
+    """Straight TCP segment with a smooth (cosine) speed profile peaking at ``speed`` m/s (and, with
+    ``turn_speed``, the wrist's turn peaking at that many rad/s: a carried object does not swing)."""
     ctx.intent.camera_mode = CAMERA_HOLD
     p0, rot0 = tcp_pose(ctx, side)
     dist = float(np.linalg.norm(np.asarray(pos) - p0))
     n = max(3, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))))
+    if turn_speed is not None:
+        angle = math.acos(np.clip((np.trace(rot0.T @ np.asarray(rot)) - 1.0) / 2.0, -1.0, 1.0))
+        n = max(n, int(math.ceil(angle * math.pi / 2 / (turn_speed * CONTROL_DT))))
     q = arm_of(ctx.action, side)
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
@@ -359,11 +370,19 @@ def place(
     surface_z: float,
     clearance: float = 0.006,
     yaw_free: bool = True,
+    obj_yaw: float | None = None,
     hover: float = 0.10,
 ) -> Actions:
     """Carry object ``i`` over ``target_xy``, lower its bottom to ``surface_z + clearance``, release, rise.
+    ``obj_yaw``: the world yaw (rad) the object's body x axis must end at (the wrist turns the object
+    there); None: any yaw (with ``yaw_free`` the wrist may turn it by quarter turns to reach).
     ``hover``: how high above the set-down pose it comes in and the gripper rises after."""
     p, rot = tcp_pose(ctx, side)
+    if obj_yaw is not None:
+        _, obj_rot = ctx.pose(i)
+        turn = obj_yaw - math.atan2(obj_rot[1, 0], obj_rot[0, 0])
+        rot = rot_z(math.atan2(math.sin(turn), math.cos(turn))) @ rot
+        yaw_free = False
     c = ctx.center(i)
     offset = rot.T @ np.array([*(p[:2] - c[:2]), 0.0])  # TCP offset from the object centre, gripper frame
     tcp_above_bottom = p[2] - ctx.bottom_z(i)
@@ -375,7 +394,8 @@ def place(
     z_down = surface_z + clearance + tcp_above_bottom
     z_above = max(z_down + hover, p[2])
     grip_rot = _feasible_rotation(ctx, side, rot, [tcp_for(rot, z_above), tcp_for(rot, z_down)], yaw_free)
-    yield from arm_line(ctx, side, tcp_for(grip_rot, z_above), grip_rot, 0.0, speed=0.25)
+    turn = None if obj_yaw is None else PLACE_TURN_SPEED
+    yield from arm_line(ctx, side, tcp_for(grip_rot, z_above), grip_rot, 0.0, speed=0.25, turn_speed=turn)
     yield from arm_line(ctx, side, tcp_for(grip_rot, z_down), grip_rot, 0.0, speed=0.12)
     yield from set_gripper(ctx, side, 1.0, 6)
     ctx.intent.carried = set()

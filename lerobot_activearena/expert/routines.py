@@ -4,6 +4,7 @@ destination or a spot, and finish (retreat and hold)."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Generator
 
 import numpy as np
@@ -84,6 +85,7 @@ def pick_and_place(
     hover: float = 0.10,
     above: float = 0.002,
     finish_after: bool = True,
+    face_robot: bool = False,
     carry_in: float | None = None,
     straight_approach: bool = False,
 ) -> Generator[np.ndarray, None, str]:
@@ -95,6 +97,7 @@ def pick_and_place(
     intent up to date (what is carried, the action's targets).
     ``lift`` / ``approach`` / ``hover``: how high the object is lifted, how high above the grasp
     point the gripper comes in, how high above the set-down pose it carries the object in.
+    ``face_robot``: set ``obj`` down with its ``functional.front`` towards the robot's base.
     ``carry_in``: pull the held object in to this distance from the robot's base before the torso
     turns (a long object swings wide). ``straight_approach``: see ``primitives.pick``. Returns the arm."""
     if (dest is None) == (spot is None):
@@ -120,7 +123,17 @@ def pick_and_place(
             target, z = np.asarray(spot, float)[:2], float(spot[2]) if len(spot) > 2 else TABLE_TOP
             yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)
             primitives.start_action(ctx, {obj})
-        yield from primitives.place(ctx, side, obj, target, z + above, hover=hover)
+        yaw = facing_robot_yaw(ctx.obj(obj), target) if face_robot else None
+        yield from primitives.place(ctx, side, obj, target, z + above, obj_yaw=yaw, hover=hover)
         if finish_after:
             yield from finish(ctx, side)
     return side
+
+
+def facing_robot_yaw(obj, target_xy) -> float:
+    """The body yaw that turns ``obj``'s ``functional.front`` towards the robot's base from ``target_xy``."""
+    front = obj.functional.front
+    if front is None:
+        raise ValueError(f"{obj.name} ({obj.category}) declares no front to turn towards the robot")
+    to_robot = math.atan2(-target_xy[1], -target_xy[0])
+    return to_robot - math.atan2(front[1], front[0])

@@ -3,13 +3,12 @@ and set it down there. One of the two (at random) starts out of the home view on
 other anywhere in the arms' band.
 
 A subclass states its row and: ``obj`` / ``dest`` (object names), ``obj_asset`` / ``dest_asset``
-(asset categories; default: the names) or ``obj_choices`` (one category per episode),
-``regions(draft)`` (where each goes), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
-options drawn per episode), ``obj_yaw`` (``draft.place``'s yaw), ``grasp_across`` and the pick /
-carry heights (``routines.pick_and_place``), ``min_overlap`` and ``extra_checks`` (more named
-checks). Success, held 8 frames after both were seen: the object rests on the destination's support
-surface (``predicates.on_support``: footprint-aware), upright, released.
-Failure: the object off the table (the monitor's, as for every task)."""
+(asset categories; default: the names), ``regions(draft)`` (where each goes), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
+options drawn per episode), ``obj_yaw`` (``draft.place``'s yaw), ``grasp_across``
+(``routines.pick_and_place``) and ``extra_checks`` (more named checks). Success, held 8 frames after both were seen: the object rests on
+the destination's support surface (``predicates.on_support``: footprint-aware), upright, released.
+Failure: the object off the table (the monitor's, as for every task).
+"""
 
 from __future__ import annotations
 
@@ -29,6 +28,7 @@ class PickPlaceTask(Task):
     dest_asset: str | None = None
     obj_yaw: float | str | None = "random"
     grasp_across: str = "box"
+    face_robot: bool = False  # set the object down with its functional.front towards the robot
     lift, approach, hover = 0.12, 0.12, 0.10  # m: routines.pick_and_place's heights
     carry_in: float | None = None  # m from the base the held object is pulled in to (long objects)
     straight_approach = False  # come in to the pick along straight lines (tall objects)
@@ -93,6 +93,7 @@ class PickPlaceTask(Task):
             ctx.idx(self.obj),
             ctx.idx(self.dest),
             grasp_across=self.grasp_across,
+            face_robot=self.face_robot,
             lift=self.lift,
             approach=self.approach,
             hover=self.hover,
