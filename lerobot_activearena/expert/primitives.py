@@ -213,6 +213,42 @@ def arm_goto(
     yield from move_arm_joint(ctx, side, q_goal, gripper, max_vel)
 
 
+def line_path(
+    ctx: ExpertContext,
+    side: str,
+    pos,
+    rot,
+    speed: float = 0.15,
+    turn_speed: float | None = None,
+    q0=None,
+) -> list[np.ndarray]:
+    """The arm's joint waypoints of a straight TCP segment with a smooth (cosine) speed profile peaking
+    at ``speed`` m/s (and, with ``turn_speed``, the wrist's turn peaking at that many rad/s: a carried
+    object does not swing), from joints ``q0`` (default: the commanded ones); raises ExpertError where
+    IK loses the path."""
+    q = arm_of(ctx.action, side) if q0 is None else np.asarray(q0, float)
+    p0, rot0 = ctx.ik.tcp_pose(side, q, ctx.yaw)
+    dist = float(np.linalg.norm(np.asarray(pos) - p0))
+    n = max(3, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))))
+    if turn_speed is not None:
+        angle = math.acos(np.clip((np.trace(rot0.T @ np.asarray(rot)) - 1.0) / 2.0, -1.0, 1.0))
+        n = max(n, int(math.ceil(angle * math.pi / 2 / (turn_speed * CONTROL_DT))))
+    path = []
+    for k in range(1, n + 1):
+        s = 0.5 - 0.5 * math.cos(math.pi * k / n)
+        pk, rot_k = interpolate_pose(p0, rot0, pos, rot, s)
+        q = solve_ik(ctx, side, q, pk, rot_k, max_step=MAX_PATH_STEP)
+        path.append(q)
+    return path
+
+
+def follow(ctx: ExpertContext, side: str, path, gripper: float | None = None) -> Actions:
+    ctx.intent.camera_mode = CAMERA_HOLD
+    for q in path:
+        ctx.action = with_arm(ctx.action, side, q, gripper)
+        yield ctx.emit()
+
+
 def arm_line(
     ctx: ExpertContext,
     side: str,
@@ -220,24 +256,9 @@ def arm_line(
     rot,
     gripper: float | None = None,
     speed: float = 0.15,
-    turn_speed: float | None = None,
 ) -> Actions:
-    """Straight TCP segment with a smooth (cosine) speed profile peaking at ``speed`` m/s (and, with
-    ``turn_speed``, the wrist's turn peaking at that many rad/s: a carried object does not swing)."""
-    ctx.intent.camera_mode = CAMERA_HOLD
-    p0, rot0 = tcp_pose(ctx, side)
-    dist = float(np.linalg.norm(np.asarray(pos) - p0))
-    n = max(3, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))))
-    if turn_speed is not None:
-        angle = math.acos(np.clip((np.trace(rot0.T @ np.asarray(rot)) - 1.0) / 2.0, -1.0, 1.0))
-        n = max(n, int(math.ceil(angle * math.pi / 2 / (turn_speed * CONTROL_DT))))
-    q = arm_of(ctx.action, side)
-    for k in range(1, n + 1):
-        s = 0.5 - 0.5 * math.cos(math.pi * k / n)
-        pk, rot_k = interpolate_pose(p0, rot0, pos, rot, s)
-        q = solve_ik(ctx, side, q, pk, rot_k, max_step=MAX_PATH_STEP)
-        ctx.action = with_arm(ctx.action, side, q, gripper)
-        yield ctx.emit()
+    """Straight TCP segment (``line_path``)."""
+    yield from follow(ctx, side, line_path(ctx, side, pos, rot, speed), gripper)
 
 
 def set_gripper(ctx: ExpertContext, side: str, value: float, steps: int) -> Actions:
@@ -394,12 +415,34 @@ def place(
     z_down = surface_z + clearance + tcp_above_bottom
     z_above = max(z_down + hover, p[2])
     grip_rot = _feasible_rotation(ctx, side, rot, [tcp_for(rot, z_above), tcp_for(rot, z_down)], yaw_free)
-    turn = None if obj_yaw is None else PLACE_TURN_SPEED
-    yield from arm_line(ctx, side, tcp_for(grip_rot, z_above), grip_rot, 0.0, speed=0.25, turn_speed=turn)
+    if obj_yaw is None:
+        yield from arm_line(ctx, side, tcp_for(grip_rot, z_above), grip_rot, 0.0, speed=0.25)
+    else:
+        yield from follow(ctx, side, _turning_carry(ctx, side, tcp_for(grip_rot, z_above), grip_rot), 0.0)
     yield from arm_line(ctx, side, tcp_for(grip_rot, z_down), grip_rot, 0.0, speed=0.12)
     yield from set_gripper(ctx, side, 1.0, 6)
     ctx.intent.carried = set()
     yield from arm_line(ctx, side, tcp_for(grip_rot, z_down + hover), grip_rot, 1.0, speed=0.2)
+
+
+def _turning_carry(ctx: ExpertContext, side: str, pos, rot) -> list[np.ndarray]:
+    """Joint path that carries the held object to ``pos`` while the wrist turns it about the vertical
+    to ``rot``: along a straight line turning the short way, else the long way (where the short way
+    runs the wrist into a joint limit)."""
+    p0, rot0 = tcp_pose(ctx, side)
+    rel = rot @ rot0.T  # a turn about the world vertical
+    short = math.atan2(rel[1, 0], rel[0, 0])
+    long = short - math.copysign(2 * math.pi, short)
+    mid = (np.asarray(p0) + np.asarray(pos)) / 2
+    for plan in (((pos, rot),), ((mid, rot_z(long / 2) @ rot0), (pos, rot))):
+        path: list[np.ndarray] = []
+        try:
+            for p, r in plan:
+                path += line_path(ctx, side, p, r, 0.25, PLACE_TURN_SPEED, q0=path[-1] if path else None)
+        except ExpertError:
+            continue
+        return path
+    raise ExpertError(f"{side} arm cannot turn the held object to its set-down yaw on the way to {pos}")
 
 
 def press(

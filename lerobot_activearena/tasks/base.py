@@ -166,7 +166,7 @@ def register_task(cls: type[Task]) -> type[Task]:
 def check_instruction_template(cls) -> None:
     """A template's fields are exactly ``instruction_values``' keys, and the paper's sentence is one
     of its instances (so the template says what the paper says)."""
-    template = cls.__dict__.get("instruction_template", cls.instruction_template)
+    template = cls.instruction_template
     if template is None:
         return
     fields = set(re.findall(r"{(\w+)}", template))

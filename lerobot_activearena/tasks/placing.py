@@ -3,12 +3,13 @@ and set it down there. One of the two (at random) starts out of the home view on
 other anywhere in the arms' band.
 
 A subclass states its row and: ``obj`` / ``dest`` (object names), ``obj_asset`` / ``dest_asset``
-(asset categories; default: the names), ``regions(draft)`` (where each goes), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
-options drawn per episode), ``obj_yaw`` (``draft.place``'s yaw), ``grasp_across``
-(``routines.pick_and_place``) and ``extra_checks`` (more named checks). Success, held 8 frames after both were seen: the object rests on
-the destination's support surface (``predicates.on_support``: footprint-aware), upright, released.
-Failure: the object off the table (the monitor's, as for every task).
-"""
+(asset categories; default: the names) or ``obj_choices`` (one category per episode),
+``regions(draft)`` (where each goes), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
+options drawn per episode), ``obj_yaw`` (``draft.place``'s yaw), ``grasp_across``, ``face_robot``,
+``straight_approach`` and the pick / carry heights (``routines.pick_and_place``), ``min_overlap``
+and ``extra_checks`` (more named checks). Success, held 8 frames after both were seen: the object
+rests on the destination's support surface (``predicates.on_support``: footprint-aware), upright,
+released. Failure: the object off the table (the monitor's, as for every task)."""
 
 from __future__ import annotations
 
