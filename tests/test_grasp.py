@@ -109,7 +109,7 @@ def test_can_lifted_and_shaken_stays_in_gripper():
     assert 0.3 < sim.state()[15] < 0.9, "gripper should be stopped by the can, neither open nor closed"
 
 
-CARRIED = {  # pick-and-place task -> the object its expert carries
+CARRIED = {  # pick-and-place task -> the object its expert carries (seed 0, ID)
     "move_pillbottle_pad_rotate_view": "pill_bottle",
     "move_stapler_pad_rotate_view": "stapler",
     "place_mouse_pad_rotate_view": "mouse",
@@ -117,11 +117,18 @@ CARRIED = {  # pick-and-place task -> the object its expert carries
     "place_container_plate_rotate_view": "container",
     "place_object_scale_rotate_view": "target_object",
     "place_object_stand_rotate_view": "target_object",
+    "place_fan_rotate_view": "fan",
 }
+# place_fan, ID seed 1: the wrist turns the held fan half a turn (the long way round: the short way
+# meets a wrist limit). The 0.35 kg fan creeps along the pads meanwhile (14 mm; seeds 0-15: 1-26 mm,
+# the largest while the torso turns) but stays held: the bound for it is looser.
+LONG_TURN_SEED, FAN_CREEP = 1, 0.02
 
 
-@pytest.mark.parametrize("task", sorted(CARRIED))
-def test_the_expert_carries_without_slip(task):
+@pytest.mark.parametrize(
+    "task, seed", [(task, 0) for task in sorted(CARRIED)] + [("place_fan_rotate_view", LONG_TURN_SEED)]
+)
+def test_the_expert_carries_without_slip(task, seed):
     """The pick-and-place routine's grasp is physical too (no welds): while a gripper alone holds
     the object up, it stays put in the gripper's frame (within 5 mm)."""
     from lerobot_activearena.sim.embodiment import TCP_SITES
@@ -139,9 +146,10 @@ def test_the_expert_carries_without_slip(task):
             tcp, body = sim.data.site(TCP_SITES[arm]), sim.data.body(obj)
             offsets.append(tcp.xmat.reshape(3, 3).T @ (body.xpos - tcp.xpos))
 
-    r = run_expert_episode(task, 0, "id", on_frame=on_frame)
+    r = run_expert_episode(task, seed, "id", on_frame=on_frame)
     assert r.success and welds == [0] and len(offsets) > 20, (r.failure, len(offsets))
     offsets = np.array(offsets)
     drift = np.linalg.norm(offsets - offsets[0], axis=1).max()
     print(f"{task}: {obj} moved {drift * 1000:.1f} mm over {len(offsets)} held frames")
-    assert drift < 0.005, f"the {obj} moved {drift * 1000:.1f} mm in the gripper while carried"
+    bound = FAN_CREEP if (task, seed) == ("place_fan_rotate_view", LONG_TURN_SEED) else 0.005
+    assert drift < bound, f"the {obj} moved {drift * 1000:.1f} mm in the gripper while carried"

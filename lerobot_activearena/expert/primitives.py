@@ -220,23 +220,26 @@ def line_path(
     rot,
     speed: float = 0.15,
     turn_speed: float | None = None,
-    q0=None,
+    yaw_turn: float | None = None,
 ) -> list[np.ndarray]:
     """The arm's joint waypoints of a straight TCP segment with a smooth (cosine) speed profile peaking
     at ``speed`` m/s (and, with ``turn_speed``, the wrist's turn peaking at that many rad/s: a carried
-    object does not swing), from joints ``q0`` (default: the commanded ones); raises ExpertError where
-    IK loses the path."""
-    q = arm_of(ctx.action, side) if q0 is None else np.asarray(q0, float)
-    p0, rot0 = ctx.ik.tcp_pose(side, q, ctx.yaw)
+    object does not swing); ``yaw_turn``: the wrist turns by this angle (rad, either way, any size)
+    about the vertical instead of the short way to ``rot``. Raises ExpertError where IK loses the path."""
+    q = arm_of(ctx.action, side)
+    p0, rot0 = tcp_pose(ctx, side)
     dist = float(np.linalg.norm(np.asarray(pos) - p0))
     n = max(3, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))))
     if turn_speed is not None:
         angle = math.acos(np.clip((np.trace(rot0.T @ np.asarray(rot)) - 1.0) / 2.0, -1.0, 1.0))
+        angle = angle if yaw_turn is None else abs(yaw_turn)
         n = max(n, int(math.ceil(angle * math.pi / 2 / (turn_speed * CONTROL_DT))))
     path = []
     for k in range(1, n + 1):
         s = 0.5 - 0.5 * math.cos(math.pi * k / n)
         pk, rot_k = interpolate_pose(p0, rot0, pos, rot, s)
+        if yaw_turn is not None:
+            rot_k = rot if k == n else rot_z(s * yaw_turn) @ rot0
         q = solve_ik(ctx, side, q, pk, rot_k, max_step=MAX_PATH_STEP)
         path.append(q)
     return path
@@ -429,19 +432,14 @@ def _turning_carry(ctx: ExpertContext, side: str, pos, rot) -> list[np.ndarray]:
     """Joint path that carries the held object to ``pos`` while the wrist turns it about the vertical
     to ``rot``: along a straight line turning the short way, else the long way (where the short way
     runs the wrist into a joint limit)."""
-    p0, rot0 = tcp_pose(ctx, side)
-    rel = rot @ rot0.T  # a turn about the world vertical
+    _, rot0 = tcp_pose(ctx, side)
+    rel = np.asarray(rot) @ rot0.T  # a turn about the world vertical
     short = math.atan2(rel[1, 0], rel[0, 0])
-    long = short - math.copysign(2 * math.pi, short)
-    mid = (np.asarray(p0) + np.asarray(pos)) / 2
-    for plan in (((pos, rot),), ((mid, rot_z(long / 2) @ rot0), (pos, rot))):
-        path: list[np.ndarray] = []
+    for turn in (short, short - math.copysign(2 * math.pi, short)):
         try:
-            for p, r in plan:
-                path += line_path(ctx, side, p, r, 0.25, PLACE_TURN_SPEED, q0=path[-1] if path else None)
+            return line_path(ctx, side, pos, rot, 0.25, PLACE_TURN_SPEED, yaw_turn=turn)
         except ExpertError:
             continue
-        return path
     raise ExpertError(f"{side} arm cannot turn the held object to its set-down yaw on the way to {pos}")
 
 

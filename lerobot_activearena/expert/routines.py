@@ -88,6 +88,7 @@ def pick_and_place(
     face_robot: bool = False,
     carry_in: float | None = None,
     straight_approach: bool = False,
+    set_down=None,
 ) -> Generator[np.ndarray, None, str]:
     """Find object ``obj`` and pick it up (subtask ``subtasks[0]``; the arm on its half of the fan
     unless ``side``), then find the destination object ``dest`` and set ``obj`` down on its centre
@@ -99,7 +100,9 @@ def pick_and_place(
     point the gripper comes in, how high above the set-down pose it carries the object in.
     ``face_robot``: set ``obj`` down with its ``functional.front`` towards the robot's base.
     ``carry_in``: pull the held object in to this distance from the robot's base before the torso
-    turns (a long object swings wide). ``straight_approach``: see ``primitives.pick``. Returns the arm."""
+    turns (a long object swings wide). ``straight_approach``: see ``primitives.pick``. ``set_down``: a
+    function of the destination's centre giving the table point (x, y) to set ``obj`` down at instead
+    of the destination's top (placing beside it). Returns the arm."""
     if (dest is None) == (spot is None):
         raise ValueError("pick_and_place needs exactly one of a destination object (dest) or a spot")
     if grasp_across not in GRASP_ACROSS:
@@ -119,6 +122,9 @@ def pick_and_place(
             yield from find_and_face(ctx, dest, side)
             primitives.start_action(ctx, {obj, dest})
             target, z = ctx.center(dest)[:2], surface_z(ctx, dest)
+            if set_down is not None:
+                target, z = np.asarray(set_down(ctx.center(dest)), float)[:2], TABLE_TOP
+                yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)
         else:
             target, z = np.asarray(spot, float)[:2], float(spot[2]) if len(spot) > 2 else TABLE_TOP
             yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)

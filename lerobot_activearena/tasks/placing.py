@@ -34,6 +34,7 @@ class PickPlaceTask(Task):
     carry_in: float | None = None  # m from the base the held object is pulled in to (long objects)
     straight_approach = False  # come in to the pick along straight lines (tall objects)
     min_overlap = 0.5  # on_support: the share of the object's footprint over the destination's top
+    set_down = None  # f(destination centre) -> table (x, y) to set the object down at (beside it)
 
     # One object category per episode (category -> its name in the instruction, params['object']);
     # their families are kept out of the clutter, so the object is the only one of its kind.
@@ -100,6 +101,7 @@ class PickPlaceTask(Task):
             hover=self.hover,
             carry_in=self.carry_in,
             straight_approach=self.straight_approach,
+            set_down=self.set_down,
         )
 
 

@@ -3,7 +3,8 @@
 Task Description:
     Find the desk fan, pick it up by its motor housing, find the mat the instruction names
     elsewhere on the table and set the fan down on it with its front towards the robot (the
-    expert carries it low: a top-down wrist turns it that far only near the table).
+    expert carries it low: a top-down wrist turns it that far only near the table; the long way
+    round where the short way meets a wrist limit).
 Randomizations:
     One of fan / mat (random) out of the home view on a random side (the release always puts the
     mat on the left, by a bug), the other anywhere in the arms' band (the fan at 0.38-0.45 m);
