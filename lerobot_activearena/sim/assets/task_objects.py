@@ -264,6 +264,8 @@ def add_coffee_box(spec, name, pos, yaw=0.0):
         yaw,
         [("box", (0.05, 0.035, 0.06), (0, 0, 0.06), (1, 1, 1, 1), {"material": mat})],
         0.25,
+        # Held 3 cm below its 12 cm top (the palm clears it) across its 7 cm side (10 cm is too wide).
+        functional=Functional(grasp=((0.0, 0.0, 0.09),), grasp_axis=(0.0, 1.0, 0.0)),
     )
 
 
