@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from .functional import Functional
 from .registry import register_asset
 from .shapes import compound, quat_axis_angle
 
@@ -48,10 +49,11 @@ def _pick(palette, amount=0.05):
     return lambda rng: _jitter(palette[int(rng.integers(len(palette)))], rng, amount)
 
 
-def _simple(category, footprint, family, parts, mass, colors=None):
+def _simple(category, footprint, family, parts, mass, colors=None, functional=None):
     """Register a distractor made of ``parts`` (see ``shapes.compound``); part colours given as
     'main' are replaced by the ``rgba`` parameter, randomised by ``colors(rng)``. A callable part
-    ``fn(spec, name)`` returns a part built at build time (meshes need the object's name)."""
+    ``fn(spec, name)`` returns a part built at build time (meshes need the object's name).
+    ``functional``: its metadata where a task uses it (a grasp)."""
     default = (0.7, 0.7, 0.7, 1) if colors is None else colors(np.random.default_rng(0))
 
     def build(spec, name, pos, yaw=0.0, rgba=default):
@@ -59,7 +61,7 @@ def _simple(category, footprint, family, parts, mass, colors=None):
         for p in parts:
             p = p(spec, name) if callable(p) else p
             resolved.append((p[0], p[1], p[2], rgba if p[3] == "main" else p[3], *p[4:]))
-        return compound(spec, name, category, pos, yaw, resolved, mass)
+        return compound(spec, name, category, pos, yaw, resolved, mass, functional=functional)
 
     register_asset(
         category,
@@ -388,6 +390,8 @@ _simple(
     ],
     0.15,
     _pick(PLASTICS[:8]),
+    # Held across its 6 cm body, low enough that the palm clears the cabin (place_a2b_*).
+    functional=Functional(grasp=((0.0, 0.0, 0.035),), grasp_axis=(0.0, 1.0, 0.0)),
 )
 _simple(
     "rubber_duck",
