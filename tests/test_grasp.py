@@ -119,6 +119,7 @@ CARRIED = {  # pick-and-place task -> the object its expert carries (seed 0, ID)
     "place_object_stand_rotate_view": "target_object",
     "place_fan_rotate_view": "fan",
     "place_a2b_left_rotate_view": "object_a",
+    "stack_blocks_two_rotate_view": "green_block",
 }
 # place_fan, ID seed 1: the wrist turns the held fan half a turn (the long way round: the short way
 # meets a wrist limit). The 0.35 kg fan creeps along the pads meanwhile (14 mm; seeds 0-15: 1-26 mm,
