@@ -121,8 +121,9 @@ def pick_and_place(
         if dest is not None:
             yield from find_and_face(ctx, dest, side)
             primitives.start_action(ctx, {obj, dest})
-            target, z = ctx.center(dest)[:2], surface_z(ctx, dest)
-            if set_down is not None:
+            if set_down is None:
+                target, z = ctx.center(dest)[:2], surface_z(ctx, dest)
+            else:  # beside the destination: turn to the spot
                 target, z = np.asarray(set_down(ctx.center(dest)), float)[:2], TABLE_TOP
                 yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)
         else:
