@@ -109,7 +109,7 @@ def test_can_lifted_and_shaken_stays_in_gripper():
     assert 0.3 < sim.state()[15] < 0.9, "gripper should be stopped by the can, neither open nor closed"
 
 
-CARRIED = {  # pick-and-place task -> the object its expert carries (seed 0, ID)
+CARRIED = {  # task -> the object its expert carries (seed 0, ID)
     "move_pillbottle_pad_rotate_view": "pill_bottle",
     "move_stapler_pad_rotate_view": "stapler",
     "place_mouse_pad_rotate_view": "mouse",
@@ -120,6 +120,7 @@ CARRIED = {  # pick-and-place task -> the object its expert carries (seed 0, ID)
     "place_fan_rotate_view": "fan",
     "place_a2b_left_rotate_view": "object_a",
     "stack_blocks_two_rotate_view": "green_block",
+    "stamp_seal_rotate_view": "seal",
 }
 # place_fan, ID seed 1: the wrist turns the held fan half a turn (the long way round: the short way
 # meets a wrist limit). The 0.35 kg fan creeps along the pads meanwhile (14 mm; seeds 0-15: 1-26 mm,
@@ -131,7 +132,7 @@ LONG_TURN_SEED, FAN_CREEP = 1, 0.02
     "task, seed", [(task, 0) for task in sorted(CARRIED)] + [("place_fan_rotate_view", LONG_TURN_SEED)]
 )
 def test_the_expert_carries_without_slip(task, seed):
-    """The pick-and-place routine's grasp is physical too (no welds): while a gripper alone holds
+    """The experts' grasps are physical too (no welds): while a gripper alone holds
     the object up, it stays put in the gripper's frame (within 5 mm)."""
     from lerobot_activearena.sim.embodiment import TCP_SITES
     from lerobot_activearena.tasks.predicates import held_by_gripper

@@ -111,3 +111,10 @@ def colored_mat(draft, colors=RELEASE_MAT_COLORS, half: float = 0.05) -> dict:
     color = str(draft.rng.choice(colors))
     draft.params["mat_color"] = color
     return {"color_name": color, "half": (half, half)}
+
+
+def carried(sim, monitor, body: str) -> bool:
+    """Latched: a gripper has held ``body`` up off everything else (carried, not pushed there)."""
+    key = f"{body}_carried"
+    monitor.state[key] = monitor.state.get(key, False) or predicates.held_by_gripper(sim, body) is not None
+    return monitor.state[key]
