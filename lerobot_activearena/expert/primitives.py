@@ -396,11 +396,14 @@ def place(
     yaw_free: bool = True,
     obj_yaw: float | None = None,
     hover: float = 0.10,
+    slow_last: float | None = None,
 ) -> Actions:
     """Carry object ``i`` over ``target_xy``, lower its bottom to ``surface_z + clearance``, release, rise.
     ``obj_yaw``: the world yaw (rad) the object's body x axis must end at (the wrist turns the object
     there); None: any yaw (with ``yaw_free`` the wrist may turn it by quarter turns to reach).
-    ``hover``: how high above the set-down pose it comes in and the gripper rises after."""
+    ``hover``: how high above the set-down pose it comes in and the gripper rises after.
+    ``slow_last``: lower at carrying speed down to this many m above the set-down pose, then slowly
+    (None: slowly all the way)."""
     p, rot = tcp_pose(ctx, side)
     if obj_yaw is not None:
         _, obj_rot = ctx.pose(i)
@@ -422,6 +425,8 @@ def place(
         yield from arm_line(ctx, side, tcp_for(grip_rot, z_above), grip_rot, 0.0, speed=0.25)
     else:
         yield from follow(ctx, side, _turning_carry(ctx, side, tcp_for(grip_rot, z_above), grip_rot), 0.0)
+    if slow_last is not None and z_above - z_down > slow_last:
+        yield from arm_line(ctx, side, tcp_for(grip_rot, z_down + slow_last), grip_rot, 0.0, speed=0.25)
     yield from arm_line(ctx, side, tcp_for(grip_rot, z_down), grip_rot, 0.0, speed=0.12)
     yield from set_gripper(ctx, side, 1.0, 6)
     ctx.intent.carried = set()
@@ -468,6 +473,60 @@ def press(
     yield from arm_line(ctx, side, stroke[1], rot, 0.0, speed=0.06)
     yield from hold(ctx, 4)
     yield from arm_line(ctx, side, stroke[0], rot, 0.0, speed=0.1)
+
+
+def pull_in(ctx: ExpertContext, side: str, radius: float) -> Actions:
+    """Pull the TCP (and what it holds) in along the line to the robot's base, to ``radius`` m from
+    it, at its height: a long held object swings wide when the torso turns."""
+    p, rot = tcp_pose(ctx, side)
+    xy = p[:2] * (radius / np.linalg.norm(p[:2]))
+    yield from arm_line(ctx, side, [xy[0], xy[1], p[2]], rot, 0.0, speed=0.25)
+
+
+def hold_aside(
+    ctx: ExpertContext, side: str, radius: float = 0.32, off_heading: float = 50.0, speed: float = 0.4
+) -> Actions:
+    """Move the TCP (and what it holds) to ``radius`` m from the base, ``off_heading`` deg to the
+    arm's own side of the torso's heading, at its height: out of the head camera's view while it
+    searches (the torso carries the arm along)."""
+    p, rot = tcp_pose(ctx, side)
+    a = math.radians(90.0 + math.degrees(ctx.yaw) + (off_heading if side == "left" else -off_heading))
+    yield from arm_line(ctx, side, [radius * math.cos(a), radius * math.sin(a), p[2]], rot, 0.0, speed=speed)
+
+
+def strike(
+    ctx: ExpertContext, side: str, tool: int, target, above: float = 0.05, depth: float = 0.004
+) -> Actions:
+    """Bring held tool ``tool``'s head (``functional.tool_head``) down onto the world point ``target``
+    (a top surface) from ``above`` m, ``depth`` m past first touch, then back up. The wrist turns the
+    tool about the vertical so its head points away from the robot's base (the handle behind it),
+    or the nearest turn IK reaches along the stroke."""
+    head = ctx.obj(tool).functional.tool_head
+    p, rot = tcp_pose(ctx, side)
+    pos, obj_rot = ctx.pose(tool)
+    bottom = pos + obj_rot @ (np.asarray(head.point) - [0.0, 0.0, head.half[2]])
+    to_tcp = p - bottom  # head bottom -> TCP, world
+    target = np.asarray(target, float)
+    out = math.atan2(target[1], target[0])
+    now = math.atan2(-to_tcp[1], -to_tcp[0])  # the direction the head points from the TCP
+    base_turn = math.atan2(math.sin(out - now), math.cos(out - now))
+    for extra in np.radians([0.0, 20.0, -20.0, 40.0, -40.0, 60.0, -60.0]):
+        turn = rot_z(base_turn + extra)
+        contact = target + turn @ to_tcp - [0.0, 0.0, depth]
+        stroke = (contact + [0.0, 0.0, above], contact)
+        try:
+            for q_pos in stroke:
+                solve_ik(ctx, side, arm_of(ctx.action, side), q_pos, turn @ rot)
+        except ExpertError:
+            continue
+        yield from arm_line(ctx, side, stroke[0], turn @ rot, 0.0, speed=0.25)
+        yield from arm_line(ctx, side, stroke[1], turn @ rot, 0.0, speed=0.15)
+        yield from hold(ctx, 2)
+        yield from arm_line(ctx, side, stroke[0], turn @ rot, 0.0, speed=0.15)
+        return
+    raise ExpertError(
+        f"{side} arm cannot bring the {ctx.objects[tool]}'s head onto {np.round(target, 3).tolist()}"
+    )
 
 
 def carry_and_turn(

@@ -115,9 +115,7 @@ def pick_and_place(
         )
     with ctx.subtask(subtasks[1]):
         if carry_in is not None:
-            p, rot = primitives.tcp_pose(ctx, side)
-            xy = p[:2] * (carry_in / np.linalg.norm(p[:2]))
-            yield from primitives.arm_line(ctx, side, [xy[0], xy[1], p[2]], rot, 0.0, speed=0.25)
+            yield from primitives.pull_in(ctx, side, carry_in)
         if dest is not None:
             yield from find_and_face(ctx, dest, side)
             primitives.start_action(ctx, {obj, dest})

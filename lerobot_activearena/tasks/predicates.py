@@ -112,6 +112,19 @@ def held_by_gripper(sim: ActiveArenaSim, body: str) -> str | None:
     return arm
 
 
+def grasped_by(sim: ActiveArenaSim, body: str, arm: str) -> bool:
+    """Both finger pads of ``arm``'s gripper touch ``body`` (or a part attached to it): in that hand,
+    even while it also touches something else (a tool striking)."""
+    m, d = sim.model, sim.data
+    root, prefix = m.body_rootid[m.body(body).id], f"{embodiment.PREFIX}gripper_{arm}_pad_"
+    pads = set()
+    for c in d.contact[: d.ncon]:
+        for pad, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
+            if m.body_rootid[m.geom_bodyid[other]] == root and m.geom(pad).name.startswith(prefix):
+                pads.add(m.geom(pad).name[-1])
+    return pads == {"L", "R"}
+
+
 def gripper_closed(sim: ActiveArenaSim, arm: str) -> bool:
     g = LEFT_GRIPPER if arm == "left" else RIGHT_GRIPPER
     return bool(sim.state()[g] < GRIPPER_CLOSED_BELOW)

@@ -62,9 +62,13 @@ def add_hammer(spec, name, pos, yaw=0.0, handle=(0.6, 0.4, 0.2)):
             ("box", (0.1, 0.012, 0.012), (0.0, 0, 0.012), _rgba(handle)),
             ("box", (0.018, 0.05, 0.018), (0.11, 0, 0.018), (0.3, 0.3, 0.33, 1)),
         ],
-        0.35,
+        0.3,
+        # Held across the handle near the head (the centre of mass: no lever to pitch it in the
+        # pads), the TCP above the handle so the open pads stay off the table.
         functional=Functional(
-            grasp=((-0.03, 0.0, 0.012),), tool_head=ToolHead((0.11, 0.0, 0.018), (0.018, 0.05, 0.018))
+            grasp=((0.055, 0.0, 0.033),),
+            grasp_axis=(0.0, 1.0, 0.0),
+            tool_head=ToolHead((0.11, 0.0, 0.018), (0.018, 0.05, 0.018)),
         ),
     )
 
