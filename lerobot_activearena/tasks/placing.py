@@ -89,12 +89,16 @@ class PickPlaceTask(Task):
     def extra_checks(self, sim, scene, monitor) -> dict[str, bool]:
         return {}
 
+    def grasp_across_for(self, scene) -> str:
+        """``grasp_across`` for this episode's object (a task drawing round and boxy ones differs)."""
+        return self.grasp_across
+
     def expert(self, ctx, scene):
         yield from routines.pick_and_place(
             ctx,
             ctx.idx(self.obj),
             ctx.idx(self.dest),
-            grasp_across=self.grasp_across,
+            grasp_across=self.grasp_across_for(scene),
             face_robot=self.face_robot,
             lift=self.lift,
             approach=self.approach,

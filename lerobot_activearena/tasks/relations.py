@@ -1,7 +1,8 @@
 """Shared shape of the A-beside-B tasks (SL): find object A, pick it up, find object B and set A down
 on B's instructed side. A and B are drawn per episode and named in the instruction.
 
-A subclass states its row and ``side`` ('left' / 'right', as the robot sees them). One of A / B (at
+A subclass states its row, ``side`` ('left' / 'right', as the robot sees them) and may widen
+``movable`` (A's categories: the right-hand task adds the paper's bell, carried 8 cm wide). One of A / B (at
 random) starts out of the home view on a random side, the other anywhere in the arms' band, at least
 20 cm apart; the spot on B's instructed side is kept free. Success, held 8 frames after both were
 seen: ``predicates.beside`` (8-20 cm apart, less than 8 cm apart in distance from the base, in
@@ -29,6 +30,11 @@ MOVABLE = {
     "toy_car": "toy car",
 }
 REFERENCES = {**MOVABLE, "bell": "bell", "bread_loaf": "bread"}
+# draft.place options of A by category: a carried bell is 8 cm wide (the default 10 cm base does not
+# fit the open gripper) and starts at least 37 cm out (held high around its dome, nearer it cannot
+# be lifted over B).
+CARRIED_OPTIONS = {"bell": {"radius": 0.04, "r": (0.37, 0.45)}}
+ROUND = {"bell"}  # carried with the fingers across the line from the robot's base
 GAP = 0.14  # m between centres where the expert sets A down (the check allows 8-20 cm)
 START_APART = 0.20  # m: A starts at least this far from B (the release: 19 cm)
 SPOT_RADIUS = 0.06  # m kept free around the set-down spot
@@ -44,14 +50,15 @@ def beside_spot(center_b, side: str, gap: float = GAP) -> np.ndarray:
 
 class PlaceBesideTask(PickPlaceTask):
     side: str
+    movable: dict[str, str] = MOVABLE  # A's categories -> their names in the instruction
     obj, dest = "object_a", "object_b"
     lift, hover = 0.15, 0.14  # A is carried over B (up to 12 cm tall: the coffee box)
     instruction_values = {"object": tuple(MOVABLE.values()), "reference": tuple(REFERENCES.values())}
 
     def layout(self, draft):
-        a_cat = str(draft.rng.choice(list(MOVABLE)))
+        a_cat = str(draft.rng.choice(list(self.movable)))
         b_cat = str(draft.rng.choice([c for c in REFERENCES if c != a_cat]))
-        draft.params["object"], draft.params["reference"] = MOVABLE[a_cat], REFERENCES[b_cat]
+        draft.params["object"], draft.params["reference"] = self.movable[a_cat], REFERENCES[b_cat]
         a_region, b_region = self.regions(draft)
         b_region = b_region.on(b_region.side or draft.side())
         # B leaves room for the spot on its instructed side, inside the fan's span.
@@ -66,7 +73,15 @@ class PlaceBesideTask(PickPlaceTask):
             raise SamplingError(f"no angle leaves room {self.side} of the {self.dest}")
 
         def place_a():
-            return draft.place(a_cat, self.obj, MOVABLE[a_cat], a_region, yaw="random", arms=ARMS)
+            return draft.place(
+                a_cat,
+                self.obj,
+                self.movable[a_cat],
+                a_region,
+                yaw="random",
+                arms=ARMS,
+                **CARRIED_OPTIONS.get(a_cat, {}),
+            )
 
         if a_region.hidden:
             _, ra, aa = place_a()
@@ -82,6 +97,9 @@ class PlaceBesideTask(PickPlaceTask):
             _, ra, aa = place_a()
         if np.linalg.norm(draft.workspace.place(ra, aa)[:2] - b_xy) < START_APART:
             raise SamplingError(f"the {self.obj} starts within {START_APART} m of the {self.dest}")
+
+    def grasp_across_for(self, scene):
+        return "radial" if scene.obj(self.obj).category in ROUND else self.grasp_across
 
     def set_down(self, center_b):
         return beside_spot(center_b, self.side)

@@ -44,10 +44,19 @@ def _spring_slide(body, name: str, travel: float, stiffness: float, damping: flo
 def add_bell(
     spec, name, pos, yaw=0.0, radius=0.05, rgba=(0.85, 0.72, 0.25, 1), base_rgba=(0.15, 0.15, 0.16, 1)
 ):
-    """Desk bell: heavy base, dome, spring-loaded plunger on top (``functional.press``)."""
+    """Desk bell: heavy base, dome, spring-loaded plunger on top (``functional.press``). A gripper
+    holds it around the dome, above the base (only a bell narrower than the default fits the open
+    gripper: ``radius`` <= 0.045)."""
     b = free_body(spec, name, pos, yaw)
+    base_mass = 0.45 * (radius / 0.05) ** 2
     add_geom(
-        b, mujoco.mjtGeom.mjGEOM_CYLINDER, (radius, 0.008, 0), (0, 0, 0.008), base_rgba, 0.45, f"{name}_body"
+        b,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        (radius, 0.008, 0),
+        (0, 0, 0.008),
+        base_rgba,
+        base_mass,
+        f"{name}_body",
     )
     add_geom(
         b,
@@ -96,8 +105,10 @@ def add_bell(
         name,
         (radius, radius, top / 2),
         (0, 0, top / 2),
-        0.51,
-        functional=Functional(press=Press((0.0, 0.0, top), f"{name}_plunger_joint", BELL_PRESSED)),
+        base_mass + 0.06,
+        functional=Functional(
+            press=Press((0.0, 0.0, top), f"{name}_plunger_joint", BELL_PRESSED), grasp=((0.0, 0.0, 0.047),)
+        ),
     )
 
 
