@@ -1,7 +1,8 @@
 """ActiveArena for LeRobot: active-perception manipulation benchmark on MuJoCo.
 
-Importing the package only selects MuJoCo's GL backend (it reads ``MUJOCO_GL`` once, at its first
-import), so sim-only workers pay for neither torch nor LeRobot. The LeRobot types (the
+Importing the package selects MuJoCo's GL backend (it reads ``MUJOCO_GL`` once, at its first
+import) and registers the gymnasium IDs ``ActiveArena/<task>-v0`` (``envs/gym_ids.py``); sim-only
+workers pay for neither torch nor LeRobot. The LeRobot types (the
 ``activearena`` env and the project's policies) are registered by the discovery shim
 ``lerobot_env_activearena``, which LeRobot's CLIs import (``register_third_party_plugins``).
 """
@@ -9,5 +10,8 @@ import), so sim-only workers pay for neither torch nor LeRobot. The LeRobot type
 from .sim.gl_backend import select_gl_backend
 
 select_gl_backend()
-
 __version__ = "0.1.0"
+
+from .envs.gym_ids import register_gym_envs  # noqa: E402  (after the GL backend is chosen)
+
+register_gym_envs()

@@ -17,6 +17,7 @@ from ..sim.action import ACTION_DIM, HEAD_PITCH, TORSO_YAW, validate_action
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..tasks import get_task
+from ..tasks.base import SPLITS
 from ..tasks.episode import Episode
 from ..tasks.rollout import ExpertDriver
 from ..tasks.sampling import sample_scene
@@ -50,6 +51,8 @@ class ActiveArenaEnv(gym.Env):
         ``render_pixels=False``: observations carry a black image (for policies that look at nothing,
         e.g. the validity suite's adversaries); visibility and failure states are still computed.
         ``max_episode_steps``: the step limit (default: the task's own, the protocol's)."""
+        if split not in SPLITS:
+            raise ValueError(f"split must be one of {SPLITS}, got {split!r}")
         self.spec_task = get_task(task)
         self.task = task
         self.task_description = self.spec_task.instruction

@@ -1,0 +1,68 @@
+"""Plain gymnasium: every task is ``gym.make("ActiveArena/<task>-v0", ...)`` after importing the
+package (or through gymnasium's ``module:ID`` syntax), with its step limit, and passes gymnasium's
+own ``check_env``."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import warnings
+
+import gymnasium as gym
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import lerobot_activearena  # noqa: F401  (registers the IDs)
+from lerobot_activearena.envs.gym_ids import gym_id
+from lerobot_activearena.tasks import get_task, task_names
+
+
+def test_every_task_has_an_id_with_its_step_limit():
+    ids = {s for s in gym.registry if s.startswith("ActiveArena/")}
+    assert ids == {gym_id(t) for t in task_names("all")}
+    for task in task_names("all"):
+        assert gym.spec(gym_id(task)).max_episode_steps == get_task(task).max_episode_steps
+
+
+@pytest.mark.parametrize("task", task_names("all"))
+def test_check_env_passes_through_gym_make(task):
+    env = gym.make(gym_id(task), split="ood", render_mode="rgb_array")
+    try:
+        with warnings.catch_warnings():
+            # gymnasium's advice, not API errors: our actions are joint targets in radians and the
+            # state is unbounded joint positions (LeRobot's convention), kept as they are.
+            warnings.filterwarnings("error", module="gymnasium")
+            warnings.filterwarnings("ignore", message=".*(symmetric and normalized|infinity)")
+            check_env(env.unwrapped)
+        obs, info = env.reset(seed=3)
+        assert env.unwrapped.split == "ood" and info["scene_seed"] == 3
+        assert obs["pixels"]["head"].shape == (*env.unwrapped.render().shape[:2], 3)
+    finally:
+        env.close()
+
+
+def test_the_step_limit_truncates_through_gym_make():
+    env = gym.make(gym_id("click_bell_rotate_view"), max_episode_steps=3)
+    env.reset(seed=0)
+    home = env.unwrapped.sim.home_action()
+    results = [env.step(home) for _ in range(3)]
+    assert [r[3] for r in results] == [False, False, True]  # truncated on the limit's step
+    assert not any(r[2] for r in results)
+    env.close()
+
+
+def test_bad_arguments_name_the_problem():
+    with pytest.raises(ValueError, match="split"):
+        gym.make(gym_id("click_bell_rotate_view"), split="test")
+    with pytest.raises(gym.error.NameNotFound):
+        gym.make("ActiveArena/no_such_task-v0")
+
+
+def test_module_id_syntax_imports_the_package():
+    code = (
+        "import gymnasium as gym, sys; "
+        "env = gym.make('lerobot_activearena:ActiveArena/click_bell_rotate_view-v0'); "
+        "obs, _ = env.reset(seed=1); print(env.spec.max_episode_steps, obs['agent_pos'].shape)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split()[-2:] == ["137", "(18,)"], out.stderr[-2000:]
