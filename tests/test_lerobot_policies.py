@@ -1,12 +1,13 @@
-"""LeRobot's own policy types on the benchmark: ACT and diffusion trained for 2 steps by LeRobot's
-training loop on a builder dataset (no pretrained backbone), then evaluated by ``activearena-eval``
+"""LeRobot's own policy types on the benchmark: the baseline presets (``configs/policy/baselines``)
+parse as lerobot-train configs with the paper's settings; ACT and diffusion, from their presets,
+trained for 2 steps by LeRobot's training loop on a builder dataset (no pretrained backbone), then
+evaluated by ``activearena-eval``
 (``--policy.path``) and by lerobot-eval on the same seeds, with the same episode records; and
 ``activearena-eval --policy.type`` of a built-in type."""
 
 import json
 from pathlib import Path
 
-import draccus
 import pytest
 from conftest import BELL, DATASET_REPO
 from lerobot.configs.default import EvalConfig
@@ -19,6 +20,7 @@ from lerobot.scripts.lerobot_train import train as lerobot_train
 from lerobot_activearena.cli.eval import main as activearena_eval, parse_policy
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 
+BASELINES = Path(__file__).resolve().parents[1] / "configs" / "policy" / "baselines"
 EPISODE_LENGTH = 12  # steps per evaluation episode: enough to compare trajectories
 POLICY_OPTIONS = {  # small networks: the test is about the plumbing, not the policy
     "act": [
@@ -41,22 +43,20 @@ POLICY_OPTIONS = {  # small networks: the test is about the plumbing, not the po
 
 
 def _train(policy_type: str, dataset: Path, out: Path) -> Path:
+    """The preset ``configs/policy/baselines/<type>.json`` through LeRobot's training loop (as
+    ``lerobot-train --config_path``), shrunk by command-line overrides."""
     args = [
-        f"--policy.type={policy_type}",
         *POLICY_OPTIONS[policy_type],
         "--policy.device=cpu",
-        "--policy.push_to_hub=false",
         f"--dataset.repo_id={DATASET_REPO}",
         f"--dataset.root={dataset}",
-        "--dataset.video_backend=pyav",
         "--steps=2",
         "--batch_size=2",
         "--num_workers=0",
         "--save_freq=2",
-        "--wandb.enable=false",
         f"--output_dir={out}",
     ]
-    lerobot_train(draccus.parse(TrainPipelineConfig, args=args))
+    lerobot_train(TrainPipelineConfig.from_pretrained(BASELINES / f"{policy_type}.json", cli_args=args))
     return out / "checkpoints" / "last" / "pretrained_model"
 
 
@@ -111,3 +111,29 @@ def test_built_in_policy_types_parse_by_type():
     for policy_type in ("act", "diffusion", "smolvla", "pi05"):
         cfg, path = parse_policy([f"--policy.type={policy_type}", "--policy.device=cpu"])
         assert cfg.type == policy_type and path is None
+
+
+def test_baseline_presets_parse_with_the_papers_settings():
+    import lerobot.policies  # noqa: F401  (registers LeRobot's policy configs, as lerobot-train does)
+
+    presets = {p.stem: p for p in BASELINES.glob("*.json")}
+    assert sorted(presets) == ["act", "diffusion", "fastwam", "pi05", "smolvla"]
+    cfgs = {
+        name: TrainPipelineConfig.from_pretrained(path, cli_args=["--dataset.root=/nonexistent"]).policy
+        for name, path in presets.items()
+    }
+    assert all(cfg.type == name for name, cfg in cfgs.items())
+    # pi0.5: head image + 18-D state, the two wrist slots masked, 5 flow-matching steps, from pi05_base
+    pi05 = cfgs["pi05"]
+    assert (pi05.empty_cameras, pi05.num_inference_steps, str(pi05.pretrained_path)) == (
+        2,
+        5,
+        "lerobot/pi05_base",
+    )
+    # Fast-WAM: 32-step chunks of 18-D actions, 10 flow-matching steps at inference
+    wam = cfgs["fastwam"]
+    assert (wam.action_dim, wam.proprio_dim, wam.action_horizon, wam.num_inference_steps) == (18, 18, 32, 10)
+    assert str(cfgs["smolvla"].pretrained_path) == "lerobot/smolvla_base"
+    readme = (BASELINES.parents[1] / "README.md").read_text()
+    for hub_id in ("lerobot/pi05_base", "lerobot/fastwam_base", "lerobot/smolvla_base"):
+        assert hub_id in readme, f"configs/README.md should name {hub_id}"
