@@ -130,6 +130,7 @@ BELL_SEED = 1  # place_a2b_right, ID seed 1: A is the bell (0.35 kg, held around
 # meets a wrist limit). The 0.35 kg fan creeps along the pads meanwhile (14 mm; seeds 0-15: 1-26 mm,
 # the largest while the torso turns) but stays held: the bound for it is looser.
 LONG_TURN_SEED, FAN_CREEP = 1, 0.02
+SEATED = 8  # held frames after lift-off in which the object seats itself in the pads
 
 
 @pytest.mark.parametrize(
@@ -138,8 +139,9 @@ LONG_TURN_SEED, FAN_CREEP = 1, 0.02
     + [("place_fan_rotate_view", LONG_TURN_SEED), ("place_a2b_right_rotate_view", BELL_SEED)],
 )
 def test_the_expert_carries_without_slip(task, seed):
-    """The experts' grasps are physical too (no welds): while a gripper alone holds
-    the object up, it stays put in the gripper's frame (within 5 mm)."""
+    """The experts' grasps are physical too (no welds): while a gripper alone holds the object up,
+    it stays put in the gripper's frame (within 5 mm) once seated: in the first frames off the
+    table a rounded object (a mouse's shell) settles in the pads (up to 8 mm)."""
     from lerobot_activearena.sim.embodiment import TCP_SITES
     from lerobot_activearena.tasks.predicates import held_by_gripper
     from lerobot_activearena.tasks.rollout import run_expert_episode
@@ -158,7 +160,11 @@ def test_the_expert_carries_without_slip(task, seed):
     r = run_expert_episode(task, seed, "id", on_frame=on_frame)
     assert r.success and welds == [0] and len(offsets) > 20, (r.failure, len(offsets))
     offsets = np.array(offsets)
-    drift = np.linalg.norm(offsets - offsets[0], axis=1).max()
-    print(f"{task}: {obj} moved {drift * 1000:.1f} mm over {len(offsets)} held frames")
+    settle = np.linalg.norm(offsets[:SEATED] - offsets[0], axis=1).max()
+    drift = np.linalg.norm(offsets[SEATED:] - offsets[SEATED], axis=1).max()
+    print(
+        f"{task}: {obj} settled {settle * 1000:.1f} mm, then moved {drift * 1000:.1f} mm over {len(offsets)} held frames"
+    )
+    assert settle < 0.008, f"the {obj} shifted {settle * 1000:.1f} mm in the gripper as it came up"
     bound = FAN_CREEP if (task, seed) == ("place_fan_rotate_view", LONG_TURN_SEED) else 0.005
     assert drift < bound, f"the {obj} moved {drift * 1000:.1f} mm in the gripper while carried"
