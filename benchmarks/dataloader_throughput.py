@@ -4,8 +4,10 @@ frames + the current one) and 13 states per sample, through a PyTorch DataLoader
     python benchmarks/dataloader_throughput.py --root outputs/datasets/bench_id --repo-id local/bench_id
     python benchmarks/dataloader_throughput.py   # builds a small dataset first (2 tasks x 2 episodes)
 
-Prints samples/s for the given worker counts (default 2) and batch size, with LeRobot's own
-``LeRobotDataset`` and ``delta_timestamps`` (PyAV decoding: torchcodec needs FFmpeg's shared libraries).
+Prints samples/s for each video decoder (LeRobot's default torchcodec, which needs FFmpeg's shared
+libraries: ``scripts/bootstrap.sh`` installs them, and PyAV) and worker count (default: 0 = in the
+process, and 2), with LeRobot's own ``LeRobotDataset`` and ``delta_timestamps``, then torchcodec's
+speed as a ratio of PyAV's (the machine's noise cancels out of the ratio).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import time
 from pathlib import Path
 
 import torch
+from lerobot.datasets import video_utils
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 
 from lerobot_activearena.datasets_build.features import FPS, IMAGE_KEY
@@ -26,6 +29,11 @@ HISTORY = [-16 * k / FPS for k in range(12, -1, -1)]
 
 
 def measure(ds: LeRobotDataset, workers: int, batch: int, batches: int) -> float:
+    if workers:
+        # LeRobot keeps torchcodec decoders (with their open files) in a module-level cache; forked
+        # workers that inherit decoders the parent used read corrupt packets. lerobot-train's parent
+        # decodes nothing before its workers start: start them from an empty cache, as it does.
+        video_utils._default_decoder_cache.clear()
     loader = torch.utils.data.DataLoader(
         ds,
         batch_size=batch,
@@ -49,7 +57,8 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--root", type=Path, help="a built dataset (default: build a small one in a temp dir)")
     p.add_argument("--repo-id", default="local/bench_id")
-    p.add_argument("--workers", default="2", help="comma list of DataLoader worker counts")
+    p.add_argument("--workers", default="0,2", help="comma list of DataLoader worker counts (0: in-process)")
+    p.add_argument("--backends", default="torchcodec,pyav", help="comma list of LeRobot video backends")
     p.add_argument("--batch-size", type=int, default=8)
     p.add_argument("--batches", type=int, default=20)
     args = p.parse_args()
@@ -64,20 +73,27 @@ def main() -> None:
             episodes_per_shard=2,
         )
         build_dataset(plan, root, workers=2, progress=False)
-    ds = LeRobotDataset(
-        args.repo_id,
-        root=root,
-        video_backend="pyav",
-        delta_timestamps={IMAGE_KEY: HISTORY, "observation.state": HISTORY},
-    )
-    item = ds[len(ds) // 2]
-    print(
-        f"dataset {root}: {ds.num_episodes} episodes, {len(ds)} frames; sample {IMAGE_KEY} "
-        f"{tuple(item[IMAGE_KEY].shape)}, observation.state {tuple(item['observation.state'].shape)}"
-    )
+    rates: dict[tuple[str, int], float] = {}
+    for backend in args.backends.split(","):
+        ds = LeRobotDataset(
+            args.repo_id,
+            root=root,
+            video_backend=backend,
+            delta_timestamps={IMAGE_KEY: HISTORY, "observation.state": HISTORY},
+        )
+        item = ds[len(ds) // 2]
+        print(
+            f"{backend}: dataset {root}: {ds.num_episodes} episodes, {len(ds)} frames; sample {IMAGE_KEY} "
+            f"{tuple(item[IMAGE_KEY].shape)}, observation.state {tuple(item['observation.state'].shape)}"
+        )
+        for w in [int(x) for x in args.workers.split(",")]:
+            sps = rates[backend, w] = measure(ds, w, args.batch_size, args.batches)
+            print(
+                f"{backend}, workers {w}, batch {args.batch_size}: {sps:.1f} samples/s ({13 * sps:.0f} frames/s)"
+            )
     for w in [int(x) for x in args.workers.split(",")]:
-        sps = measure(ds, w, args.batch_size, args.batches)
-        print(f"workers {w}, batch {args.batch_size}: {sps:.1f} samples/s ({13 * sps:.0f} decoded frames/s)")
+        if ("torchcodec", w) in rates and ("pyav", w) in rates:
+            print(f"workers {w}: torchcodec / pyav = {rates['torchcodec', w] / rates['pyav', w]:.2f}x")
 
 
 if __name__ == "__main__":

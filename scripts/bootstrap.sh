@@ -18,15 +18,21 @@ find_python312() {
 }
 
 ensure_system_libs() {
-  # Headless rendering needs EGL (Mesa llvmpipe on CPU) or OSMesa.
+  # Headless rendering needs EGL (Mesa llvmpipe on CPU) or OSMesa; LeRobot's default video decoder
+  # (torchcodec) needs FFmpeg's shared libraries.
+  local pkgs=()
   if ! ldconfig -p | grep -q 'libEGL.so.1' || ! ldconfig -p | grep -q 'libOSMesa'; then
-    if [ "$(id -u)" = "0" ] && command -v apt-get >/dev/null 2>&1; then
-      echo "[bootstrap] installing Mesa EGL/OSMesa libraries with apt-get" >&2
-      apt-get update -qq >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
-        libegl1 libgl1-mesa-dri libosmesa6 >/dev/null
-    else
-      echo "[bootstrap] warning: libEGL/libOSMesa missing; install libegl1 libgl1-mesa-dri libosmesa6" >&2
-    fi
+    pkgs+=(libegl1 libgl1-mesa-dri libosmesa6)
+  fi
+  if ! ldconfig -p | grep -q 'libavcodec.so' || ! ldconfig -p | grep -q 'libavdevice.so'; then
+    pkgs+=(libavcodec59 libavformat59 libavutil57 libswscale6 libswresample4 libavdevice59 libavfilter8)
+  fi
+  [ "${#pkgs[@]}" -eq 0 ] && return
+  if [ "$(id -u)" = "0" ] && command -v apt-get >/dev/null 2>&1; then
+    echo "[bootstrap] installing ${pkgs[*]} with apt-get" >&2
+    apt-get update -qq >/dev/null && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${pkgs[@]}" >/dev/null
+  else
+    echo "[bootstrap] warning: missing system libraries; install ${pkgs[*]}" >&2
   fi
 }
 

@@ -113,6 +113,20 @@ def test_video_frames_are_the_head_camera_images(built):
         assert err < 6.0, f"frame {t}: mean abs error {err:.1f} (lossy AV1 should stay well below 6)"
 
 
+def test_lerobots_default_decoder_reads_the_history(built):
+    """The set-up installs FFmpeg's shared libraries, so LeRobot's default decoder (torchcodec)
+    loads, and it reads the same 13-frame history as PyAV."""
+    from lerobot.utils.import_utils import get_safe_default_video_backend
+
+    assert get_safe_default_video_backend() == "torchcodec", "torchcodec could not load FFmpeg's libraries"
+    delta = {IMAGE_KEY: HISTORY, "observation.state": HISTORY}
+    default = LeRobotDataset("local/bench_id", root=built, delta_timestamps=delta)
+    pyav = LeRobotDataset("local/bench_id", root=built, video_backend="pyav", delta_timestamps=delta)
+    a, b = default[60][IMAGE_KEY].numpy(), pyav[60][IMAGE_KEY].numpy()
+    assert a.shape == b.shape == (13, 3, 384, 512)
+    assert np.abs(a - b).mean() * 255 < 1.0
+
+
 def test_meta_folder_records_seeds_sidecars_and_plan(built):
     build = json.loads((built / "meta/activearena/build.json").read_text())
     assert build["episodes"] == 2 and build["skipped"] == 0 and build["plan"]["split"] == "id"
