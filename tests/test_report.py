@@ -1,6 +1,7 @@
 """`activearena-report` on hand-made lerobot-eval outputs with known answers."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -17,6 +18,9 @@ def _run(root, split, results, failures):
         for (c, t), s in results.items()
     ]
     (root / "eval_info.json").write_text(json.dumps({"per_task": per_task, "overall": {}}))
+    (root / "videos").mkdir()
+    for _, t in results:
+        (root / "videos" / f"{t}_0.mp4").write_bytes(b"")
     (root / "episodes").mkdir()
     fails = iter(failures)
     lines = []
@@ -96,6 +100,10 @@ def test_report_tables_match_hand_computed_values(tmp_path):
     )
     md = (tmp_path / "rep" / "report.md").read_text()
     assert "| oracle |" in md and "leaderboard.png" in md and "click_bell_rotate_view_0.mp4" in md
+    # video links are relative to the report folder (it can be moved or published with the runs)
+    links = re.findall(r"\]\(([^)]+\.mp4)\)", md)
+    assert len(links) == 4 and all(not link.startswith("/") for link in links)
+    assert all((tmp_path / "rep" / link).is_file() for link in links)
     assert (tmp_path / "rep" / "leaderboard.png").stat().st_size > 1000
     assert (tmp_path / "rep" / "per_task.png").stat().st_size > 1000
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
 from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -66,6 +67,15 @@ def expand_specs(specs: list[str]) -> list[str]:
     return out
 
 
+def _locate(video: str, run_dir: Path) -> str:
+    """A video path as lerobot-eval recorded it (absolute, relative to where it ran, or to the run
+    folder), made absolute where the file is found."""
+    for candidate in (Path(video), run_dir / video, run_dir / "videos" / Path(video).name):
+        if candidate.is_file():
+            return str(candidate.resolve())
+    return video
+
+
 def load_run(spec: str) -> Run:
     """``spec``: ``[label[:split]=]path``; the split defaults to the one in the episode logs."""
     label, split, path = None, None, spec
@@ -101,7 +111,7 @@ def load_run(spec: str) -> Run:
         task = entry["task_id"]
         run.task_success[task] = [bool(s) for s in entry["metrics"]["successes"]]
         run.task_category[task] = entry["task_group"]
-        run.videos[task] = list(entry["metrics"].get("video_paths", []))
+        run.videos[task] = [_locate(v, run_dir) for v in entry["metrics"].get("video_paths", [])]
     if not run.task_success:
         raise ValueError(f"{info_path} has no per_task results (is it an activearena lerobot-eval run?)")
     return run
@@ -216,6 +226,12 @@ def bar_chart(path: Path, header, rows, title: str = "ActiveArena success by cat
     plt.close(fig)
 
 
+def _relative(path: str, out: Path) -> str:
+    """A link from the report folder: relative, so the folder (with the runs beside it) can move."""
+    p = Path(path)
+    return os.path.relpath(p, out.resolve()) if p.is_absolute() else path
+
+
 def build_report(run_specs: list[str], out: Path) -> dict:
     runs = [load_run(s) for s in expand_specs(run_specs)]
     out.mkdir(parents=True, exist_ok=True)
@@ -231,7 +247,8 @@ def build_report(run_specs: list[str], out: Path) -> dict:
     for r in runs:
         for t, paths in sorted(r.videos.items()):
             videos += [
-                f"- {r.label} {r.split.upper()} `{t}`: " + ", ".join(f"[{Path(p).name}]({p})" for p in paths)
+                f"- {r.label} {r.split.upper()} `{t}`: "
+                + ", ".join(f"[{Path(p).name}]({_relative(p, out)})" for p in paths)
             ]
     md = [
         "# ActiveArena leaderboard",
