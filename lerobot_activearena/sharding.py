@@ -11,6 +11,7 @@ from pathlib import Path
 
 from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
 from datatrove.pipeline.base import PipelineStep
+from loguru import logger
 
 SLURM_ONLY_FOR_SHARDS = ("workers", "gpus_per_task")  # the merge job needs neither a GPU nor an array limit
 
@@ -48,16 +49,43 @@ class ProgressBars(threading.Thread):
         pass
 
 
+def _console(level: str = "WARNING", logfile: Path | None = None) -> None:
+    """datatrove's (loguru) output: warnings and errors on the terminal, everything else in ``logfile``."""
+    logger.remove()
+    logger.add(sys.stderr, level=level)
+    if logfile is not None:
+        logger.add(logfile, level="INFO")
+
+
+class QuietLocalExecutor(LocalPipelineExecutor):
+    """datatrove's local executor with its logs in the run folder only (``logs/task_*.log``,
+    ``executor.log``): by default it echoes one worker's task logs and every task's stats block to
+    the terminal, where our progress bars and summary are. Errors still reach the terminal."""
+
+    def _run_for_rank(self, rank: int, local_rank: int = 0, node_rank: int = -1):
+        # local_rank only picks which worker echoes its task log (rank 0 does): none of them
+        stats = super()._run_for_rank(rank, local_rank + 1, node_rank)
+        _console()  # datatrove re-adds a verbose terminal logger after each task
+        return stats
+
+    def run(self):
+        _console(logfile=Path(self.logging_dir.path) / "executor.log")
+        try:
+            return super().run()
+        finally:
+            logger.remove()
+            logger.add(sys.stderr)  # loguru's default, as datatrove leaves it
+
+
 def run_local(
     step: PipelineStep, tasks: int, workers: int, logging_dir: Path, progress: ProgressBars | None = None
 ) -> None:
-    """Run ``tasks`` ranks of ``step`` in ``workers`` processes (datatrove skips completed ranks)."""
+    """Run ``tasks`` ranks of ``step`` in ``workers`` processes (datatrove skips completed ranks);
+    datatrove's logs go to ``logging_dir``, not the terminal."""
     if progress is not None:
         progress.start()
     try:
-        LocalPipelineExecutor(
-            pipeline=[step], tasks=tasks, workers=workers, logging_dir=str(logging_dir)
-        ).run()
+        QuietLocalExecutor(pipeline=[step], tasks=tasks, workers=workers, logging_dir=str(logging_dir)).run()
     finally:
         if progress is not None:
             progress.stop.set()

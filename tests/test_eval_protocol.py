@@ -156,7 +156,13 @@ def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
     before = read_records(out / "records")
     assert 3 <= len(before) < 6, "the run should be killed half way"
     assert not (out / "id" / "eval_info.json").exists()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=600)
+    resumed = subprocess.run(cmd, check=True, capture_output=True, text=True, timeout=600)
+    # a clean terminal: progress bars and a summary; datatrove's logs and stats go to the run folder,
+    # and no warning about normalisation statistics for the expert, which normalises nothing
+    console = resumed.stdout + resumed.stderr
+    assert "success over 6 episodes" in console
+    assert "Stats" not in console and "PIPELINE" not in console and "infinite values" not in console
+    assert (out / "logs" / "executor.log").is_file() and list((out / "logs" / "logs").glob("task_*.log"))
     lines = [
         json.loads(line) for f in (out / "records").rglob("*.jsonl") for line in f.read_text().splitlines()
     ]

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import json
 import logging
-from contextlib import nullcontext
+from contextlib import contextmanager, nullcontext
 from pathlib import Path
 
 import numpy as np
@@ -95,7 +95,8 @@ def run_shard(
     # as lerobot-eval seeds its run: a shard that plays a whole task and split samples what lerobot-eval samples
     set_seed(plan.seed_base)
     device = get_safe_torch_device(cfg.device)
-    policy = make_policy(cfg=cfg, env_cfg=env_cfg)
+    with _quiet_stats_warning(cfg):
+        policy = make_policy(cfg=cfg, env_cfg=env_cfg)
     policy.eval()
     preprocessor, postprocessor = make_pre_post_processors(
         policy_cfg=cfg,
@@ -146,3 +147,24 @@ def run_shard(
             "%s: %d/%d episodes", shard.name, len(shard.episodes) - len(pending) + ran, len(shard.episodes)
         )
     return {"episodes": len(shard.episodes), "ran": ran}
+
+
+class _DropStatsWarning(logging.Filter):
+    def filter(self, record: logging.LogRecord) -> bool:
+        return "instantiating a policy from scratch" not in record.getMessage()
+
+
+@contextmanager
+def _quiet_stats_warning(cfg):
+    """LeRobot warns that a policy built from scratch normalises with infinite values until it has a
+    dataset's statistics; a policy that normalises nothing (every mode IDENTITY: the scripted expert)
+    needs none, so the warning would only mislead."""
+    modes = getattr(cfg, "normalization_mapping", {}) or {}
+    silent = bool(modes) and all(str(getattr(m, "value", m)) == "IDENTITY" for m in modes.values())
+    root, drop = logging.getLogger(), _DropStatsWarning()
+    if silent:
+        root.addFilter(drop)
+    try:
+        yield
+    finally:
+        root.removeFilter(drop)
