@@ -1,12 +1,12 @@
 """The contract every registered task keeps, parametrised over the whole registry (a new task module
 is tested here with no list to edit): deterministic sampling that satisfies the design principles,
-a valid shipped seed manifest, no success at reset, an expert that succeeds within the step limit,
-and gymnasium's env checker. The adversaries' side of validity is in test_validity.py."""
+a valid shipped seed manifest, no success at reset, an expert that succeeds within the step limit.
+gymnasium's env checker runs through gym.make in test_gym_ids.py; the adversaries' side of validity
+is in test_validity.py."""
 
 import numpy as np
 import pytest
 from conftest import expert_task_params
-from gymnasium.utils.env_checker import check_env
 
 from lerobot_activearena.cli.make_manifests import main as make_manifests_main
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
@@ -90,10 +90,3 @@ def test_regenerated_manifest_equals_the_shipped_one(name):
     a refactor that changes a task's behaviour shows here (minutes per task; the fast suite
     compares expert episodes through ``expert_episode`` and the IA tests)."""
     make_manifests_main(["--tasks", name, "--check", "--workers", "2"])
-
-
-@pytest.mark.parametrize("name", TASKS)
-def test_gymnasium_env_checker(name):
-    env = ActiveArenaEnv(name, use_manifest=False)
-    check_env(env, skip_render_check=True)
-    env.close()
