@@ -3,6 +3,7 @@ CLIs do. Expensive artefacts are built once per test session: the expert episode
 and a small builder dataset (``bell_count_dataset``)."""
 
 import os
+from pathlib import Path
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 if os.environ.get("PYTEST_XDIST_WORKER"):  # one core per worker: torch, BLAS and Mesa's rasteriser
@@ -20,6 +21,7 @@ import lerobot_env_activearena  # noqa: E402,F401  (registers the env and policy
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 DATASET_REPO = "local/bench_id"
+PREVIEW_RECIPE = Path(__file__).parents[1] / "datasets_build" / "preview.json"
 
 
 def expert_task_params(selector: str = "all"):
@@ -49,9 +51,10 @@ def expert_episode():
 
 @pytest.fixture(scope="session")
 def bell_count_dataset(tmp_path_factory, worker_id):
-    """The bell and count tasks, one episode each, two shards built by two datatrove worker processes
-    through ``activearena-build-dataset`` (repo id ``DATASET_REPO``); built once for all xdist
-    workers. Read-only for the tests."""
+    """The preview release recipe (``datasets_build/preview.json``) on a small scale: the bell and
+    count tasks, one episode each, two shards built by two datatrove worker processes through
+    ``activearena-build-dataset`` (repo id ``DATASET_REPO``); built once for all xdist workers.
+    Read-only for the tests."""
     from filelock import FileLock
 
     from lerobot_activearena.cli.build_dataset import main as build_main
@@ -63,7 +66,8 @@ def bell_count_dataset(tmp_path_factory, worker_id):
     with FileLock(str(shared / "bell_count_dataset.lock")):
         if not (root / "meta" / "activearena" / "build.json").exists():
             build_main(
-                ["--repo-id", DATASET_REPO, "--root", str(root), "--tasks", f"{BELL},{COUNT}"]
+                ["--recipe", str(PREVIEW_RECIPE), "--repo-id", DATASET_REPO, "--root", str(root)]
+                + ["--tasks", f"{BELL},{COUNT}"]
                 + ["--episodes", "1", "--episodes-per-shard", "1", "--workers", "2"]
             )
     return root

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import torch
 from fake_slurm import install_fake_slurm, submitted_jobs
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
@@ -19,7 +20,7 @@ from lerobot.scripts.lerobot_dataset_viz import main as dataset_viz_main
 from lerobot.scripts.lerobot_edit_dataset import main as edit_dataset_main
 
 from lerobot_activearena.annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
-from lerobot_activearena.cli.build_dataset import main as build_main
+from lerobot_activearena.cli.build_dataset import main as build_main, make_plan, parser
 from lerobot_activearena.datasets_build import shard as shard_mod
 from lerobot_activearena.datasets_build.features import (
     IMAGE_KEY,
@@ -31,8 +32,12 @@ from lerobot_activearena.datasets_build.features import (
 from lerobot_activearena.datasets_build.pipeline import build_dataset, push
 from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.datasets_build.record import record_episode
+from lerobot_activearena.envs.manifests import EVAL_SEED_START, load_manifest
+from lerobot_activearena.tasks import get_task, task_names
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
+DATASET_REPO = "local/bench_id"
+RECIPES = Path(__file__).parents[1] / "datasets_build"
 HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one
 
 
@@ -44,6 +49,10 @@ def _exe(name):
 def built(bell_count_dataset):
     """Two tasks, one episode each, two shards built by two datatrove worker processes."""
     return bell_count_dataset
+
+
+def _parse_build_args(argv):
+    return parser().parse_args(argv)
 
 
 def _episodes(root):
@@ -136,6 +145,67 @@ def test_meta_folder_records_seeds_sidecars_and_plan(built):
     assert {"instruction", "objects", "subtasks", "transitions", "final_discovered"} <= set(side)
     assert (built / "meta/activearena/skipped.jsonl").read_text() == ""
     assert not built.with_name(built.name + ".work").exists()  # shards are removed after the merge
+
+
+def test_release_recipes_are_the_papers_training_set_and_a_preview_of_it():
+    train = make_plan(_parse_build_args(["--recipe", str(RECIPES / "train_id.json"), "--root", "/tmp/x"]))
+    assert train.tasks == task_names("all") and train.split == "id" and train.repo_id.endswith("_train_id")
+    for task in train.tasks:  # 100 solved ID episodes per task, seeds 0-99, failures replaced from 100-199
+        shards = [s for s in train.shards if s.task == task]
+        assert sum(s.quota for s in shards) == 100
+        assert sorted(x for s in shards for x in s.seeds) == list(range(100))
+        assert sorted(x for s in shards for x in s.reserve) == list(range(100, 200))
+        # no training scene is an evaluation scene
+        assert all(min(load_manifest(task, split)) >= EVAL_SEED_START for split in ("id", "ood"))
+    preview = make_plan(_parse_build_args(["--recipe", str(RECIPES / "preview.json"), "--root", "/tmp/x"]))
+    assert preview.tasks == train.tasks and all(s.seeds == (0, 1) for s in preview.shards)
+    # a flag on the command line wins over the recipe
+    small = make_plan(
+        _parse_build_args(["--recipe", str(RECIPES / "preview.json"), "--root", "/x", "--tasks", BELL])
+    )
+    assert small.tasks == [BELL] and small.repo_id == preview.repo_id
+
+
+def test_dataset_card_describes_the_build(built):
+    from huggingface_hub import DatasetCard
+
+    card = DatasetCard.load(built / "README.md")
+    info = json.loads((built / "meta/info.json").read_text())
+    build = json.loads((built / "meta/activearena/build.json").read_text())
+    eps = _episodes(built)
+    assert card.data.license == "apache-2.0" and {"LeRobot", "activearena"} <= set(card.data.tags)
+    assert card.data.configs[0]["data_files"] == "data/*/*.parquet"
+    text = card.text
+    # tasks by category, each row from the episodes it holds
+    assert "### SS: single-object search (1 of the paper's 5 tasks)" in text
+    assert "### MD: multi-object decision (1 of the paper's 3 tasks)" in text
+    for e in eps:
+        sidecar = json.loads(
+            (built / f"meta/activearena/sidecars/episode_{e['episode_index']:06d}.json").read_text()
+        )
+        row = f"| `{e['task']}` | {get_task(e['task']).max_episode_steps} | 1 | {e['length']} | {e['seed']} | 0 |"
+        assert row + f" {sidecar['instruction']} |" in text
+    for name, ft in info["features"].items():  # every feature, with its dtype and shape
+        assert f"| `{name}` | {ft['dtype']} | {tuple(ft['shape'])} |" in text
+    assert "`motion_keyframe`: frame 0 plus causally confirmed motion events" in text
+    assert "Evaluation manifests draw seeds from 100000 up" in text
+    # the command that made it, the recipe it came from and what the command line changed
+    assert build["command"].startswith("activearena-build-dataset --recipe") and build["command"] in text
+    assert "datasets_build/preview.json" in text and "overrode `--repo-id`, `--tasks`, `--episodes`" in text
+    assert f"LeRobot {build['lerobot_version']}" in text and f"MuJoCo {build['versions']['mujoco']}" in text
+    assert "title  = {ActiveArena: Benchmarking and Understanding Active Perception" in text
+
+
+def test_lerobots_streaming_dataset_reads_the_build(built):
+    from lerobot.datasets.streaming_dataset import StreamingLeRobotDataset
+
+    stream = StreamingLeRobotDataset(DATASET_REPO, root=built, shuffle=False)
+    first = next(iter(stream))
+    ds = LeRobotDataset(DATASET_REPO, root=built, video_backend="pyav")
+    assert stream.num_episodes == 2 and stream.num_frames == ds.num_frames
+    ref = ds[int(first["index"])]
+    assert torch.equal(first["action"], ref["action"]) and first["task"] == ref["task"]
+    assert first[IMAGE_KEY].shape == ref[IMAGE_KEY].shape == (3, 384, 512)
 
 
 def test_failed_expert_episodes_are_skipped_recorded_and_replaced(tmp_path, monkeypatch):
@@ -254,6 +324,22 @@ def test_bad_arguments_get_clear_errors():
     ]
 
 
+def test_bad_recipes_get_clear_errors(tmp_path, capsys):
+    def error_of(recipe: dict | None, *argv):
+        path = tmp_path / "r.json"
+        if recipe is not None:
+            path.write_text(json.dumps(recipe))
+        with pytest.raises(SystemExit):
+            build_main(["--recipe", str(path), "--root", str(tmp_path / "ds"), *argv])
+        return capsys.readouterr().err
+
+    assert "no recipe at" in error_of(None)
+    assert "unknown key(s) ['episode']" in error_of({"repo_id": "a/b", "episode": 3})
+    assert "both 'episodes' and 'seeds'" in error_of({"repo_id": "a/b", "episodes": 3, "seeds": [1]})
+    assert "--repo-id is required" in error_of({"tasks": BELL, "episodes": 1})
+    assert not (tmp_path / "ds").exists()
+
+
 def test_push_to_hub_uses_lerobots_upload_path(built, monkeypatch, tmp_path):
     from huggingface_hub import HfApi
     from huggingface_hub.repocard import RepoCard
@@ -291,7 +377,10 @@ def test_push_to_hub_uses_lerobots_upload_path(built, monkeypatch, tmp_path):
         tmp_path / "hub/meta/info.json"
     ).exists()
     assert any((tmp_path / "hub/videos").rglob("*.mp4"))
-    assert "activearena" in calls["card"][0]  # LeRobot's dataset card, with our tags
+    # LeRobot's card template with the build's card: our tags, tasks table and citation
+    pushed = calls["card"][0]
+    assert "activearena" in pushed and "| `click_bell_rotate_view` | 137 | 1 |" in pushed
+    assert pushed == (built / "README.md").read_text()
 
 
 def _run_cli(monkeypatch, main, *argv):

@@ -8,24 +8,33 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+import shlex
+import sys
 from pathlib import Path
 
 from ..datasets_build.features import MAX_OBJECTS
 from ..datasets_build.pipeline import build_dataset
 from ..datasets_build.plan import BuildPlan
+from ..datasets_build.recipe import RECIPE_KEYS, load_recipe
 from .args import int_ranges
 
 
-def main(argv: list[str] | None = None) -> None:
+def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--repo-id", required=True, help="e.g. your-hf-user/activearena_bench_id")
+    p.add_argument(
+        "--recipe",
+        type=Path,
+        default=None,
+        help="a build recipe (datasets_build/train_id.json, datasets_build/preview.json); flags override it",
+    )
+    p.add_argument("--repo-id", default=None, help="e.g. your-hf-user/activearena_train_id (or the recipe's)")
     p.add_argument(
         "--root", type=Path, required=True, help="local dataset folder (written when the build completes)"
     )
     p.add_argument(
-        "--tasks", default="all", help="task name, category (SS/SL/ML/MD/IA), 'all', or a comma list"
+        "--tasks", default=None, help="task name, category (SS/SL/ML/MD/IA), 'all' (default), or a comma list"
     )
-    p.add_argument("--split", default="id", choices=["id", "ood"])
+    p.add_argument("--split", default=None, choices=["id", "ood"], help="scene sampling (default id)")
     g = p.add_mutually_exclusive_group()
     g.add_argument(
         "--episodes", type=int, help="kept (solved) episodes per task (default 100, the paper's ID set)"
@@ -35,9 +44,12 @@ def main(argv: list[str] | None = None) -> None:
         type=int_ranges,
         help="explicit scene seeds, e.g. 0-9,42 (failures are skipped and recorded)",
     )
-    p.add_argument("--seed-start", type=int, default=0, help="first seed with --episodes (default 0)")
+    p.add_argument("--seed-start", type=int, default=None, help="first seed with --episodes (default 0)")
     p.add_argument(
-        "--episodes-per-shard", type=int, default=10, help="episodes per shard (the unit of resume)"
+        "--episodes-per-shard",
+        type=int,
+        default=None,
+        help="episodes per shard, the unit of resume (default 10)",
     )
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
     p.add_argument("--executor", default="local", choices=["local", "slurm"])
@@ -54,22 +66,19 @@ def main(argv: list[str] | None = None) -> None:
         "--push-to-hub", action="store_true", help="upload with LeRobotDataset.push_to_hub when done"
     )
     p.add_argument("--private", action="store_true")
+    return p
+
+
+def main(argv: list[str] | None = None) -> None:
+    p = parser()
     args = p.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     if args.executor == "slurm" and not args.slurm:
         p.error('--executor slurm needs --slurm \'{"partition": ..., "time": ...}\'')
     try:
-        plan = BuildPlan(
-            repo_id=args.repo_id,
-            split=args.split,
-            tasks=[args.tasks],
-            episodes=(100 if args.episodes is None else args.episodes) if args.seeds is None else None,
-            seeds=args.seeds,
-            seed_start=args.seed_start,
-            episodes_per_shard=args.episodes_per_shard,
-            max_objects=MAX_OBJECTS,
-        )
-    except ValueError as exc:
+        plan = make_plan(args)
+        recipe = recipe_release(args)
+    except (ValueError, FileNotFoundError) as exc:
         p.error(str(exc))
     summary = build_dataset(
         plan,
@@ -82,6 +91,8 @@ def main(argv: list[str] | None = None) -> None:
         keep_shards=args.keep_shards,
         push_to_hub=args.push_to_hub,
         private=args.private,
+        recipe=recipe,
+        command=shlex.join(["activearena-build-dataset", *(sys.argv[1:] if argv is None else argv)]),
     )
     if summary is None:
         print(f"submitted to Slurm; the merge job writes {args.root}")
@@ -89,6 +100,49 @@ def main(argv: list[str] | None = None) -> None:
     print(
         f"{args.root}: {summary['episodes']} episodes, {summary['frames']} frames, {summary['skipped']} skipped seeds"
         + (f", shortfall {summary['shortfall']}" if summary["shortfall"] else "")
+    )
+
+
+def recipe_release(args: argparse.Namespace) -> dict | None:
+    """The recipe's file name and description, and which of its values the command line replaced
+    (the dataset card says so)."""
+    if not args.recipe:
+        return None
+    overrides = [f"--{k.replace('_', '-')}" for k in RECIPE_KEYS if getattr(args, k, None) is not None]
+    return {
+        "file": args.recipe.name,
+        "description": load_recipe(args.recipe)["description"],
+        "overrides": overrides,
+    }
+
+
+def make_plan(args: argparse.Namespace) -> BuildPlan:
+    """The build plan from the recipe (if any) with the command line's flags on top."""
+    recipe = load_recipe(args.recipe) if args.recipe else dict(RECIPE_KEYS)
+
+    def pick(name):
+        value = getattr(args, name)
+        return recipe[name] if value is None else value
+
+    repo_id = pick("repo_id")
+    if not repo_id:
+        raise ValueError("--repo-id is required (or a --recipe that names one)")
+    seeds, episodes = args.seeds, args.episodes
+    if seeds is None and episodes is None:  # neither flag: the recipe's choice, else 100 episodes
+        seeds, episodes = recipe["seeds"], recipe["episodes"]
+        if isinstance(seeds, str):
+            seeds = int_ranges(seeds)
+        if seeds is None and episodes is None:
+            episodes = 100
+    return BuildPlan(
+        repo_id=repo_id,
+        split=pick("split"),
+        tasks=[pick("tasks")],
+        episodes=episodes,
+        seeds=seeds,
+        seed_start=pick("seed_start"),
+        episodes_per_shard=pick("episodes_per_shard"),
+        max_objects=MAX_OBJECTS,
     )
 
 

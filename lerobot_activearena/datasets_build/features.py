@@ -20,6 +20,36 @@ COLUMN_OF_FIELD = {name: name for name in FRAME_FIELDS} | {"subtask": "subtask_i
 # NaN ("inactive") cannot go through LeRobot's aggregation (pandas turns it into a null the reader
 # cannot load): such a field is stored as 0 with a 0/1 validity column beside it.
 NAN_AS_FLAG = {"camera_target_theta": "camera_target_active"}
+# What each column means (the dataset card's feature table); LeRobot's own columns are not listed.
+COLUMN_DOCS = {
+    IMAGE_KEY: "head-camera RGB, the observation before action t",
+    "observation.state": "joint state, names as `action`",
+    "action": "commanded absolute targets: left arm 7 + gripper, right arm 7 + gripper, torso yaw, head pitch",
+    "subtask_index": "the paper's `subtask` (semantic subtask id)",
+    "stage": "1 search, 2 anchor, 3 action",
+    "subtask_instruction_idx": "index into the sidecar's subtask texts",
+    "focus_object_idx": "object the expert attends to (-1 none)",
+    "focus_object_visible": "1 when the focus object is visible",
+    "info_complete": "1 once every fact the task needs has been seen",
+    "camera_mode": "0 hold, 1 search, 2 center, 3 inspect",
+    "camera_target_theta": "planned heading (deg) while the camera moves; 0 when inactive",
+    "camera_target_active": "1 when `camera_target_theta` is meaningful (the paper's NaN = 0)",
+    "waist_heading_deg": "90 + torso yaw (deg)",
+    "visible_object_mask": "per task object: visible in this frame",
+    "discovered_object_mask": "per task object: seen at some earlier or current frame",
+    "search_target_mask": "per task object: the object being searched for",
+    "action_target_mask": "per task object: the object being manipulated or used",
+    "carried_object_mask": "per task object: held by a gripper",
+    "target_uv_norm": "focus object's normalised image point, (-1, -1) when not visible",
+    "intrinsic_cv": "3x3 camera intrinsics, row-major",
+    "extrinsic_cv": "4x4 world-to-camera (OpenCV), row-major",
+    "cam2world_gl": "4x4 camera-to-world (OpenGL), row-major",
+    "left_endpose": "left TCP xyz + quaternion wxyz",
+    "right_endpose": "right TCP xyz + quaternion wxyz",
+    "subtask_keyframe": "1 at a subtask keyframe",
+    "motion_keyframe": "1 at a motion keyframe",
+    "chunk_keyframe": "1 at a chunk keyframe (t mod 16 == 0)",
+}
 # Matrices are stored flattened row-major (3x3 -> 9, 4x4 -> 16): LeRobot's aggregation, stats and
 # viewers handle 1-D columns only. ``matrix(row, name)`` restores them.
 

@@ -5,19 +5,22 @@ one sidecar per episode) under ``meta/activearena/``."""
 from __future__ import annotations
 
 import json
+import platform
 import shutil
 from importlib.metadata import version
 from pathlib import Path
 
+from .card import write_card
 from .plan import BuildPlan
 from .shard import SHARD_DONE, is_complete, shard_dir
 
 META_DIR = "meta/activearena"
 
 
-def merge_shards(plan: BuildPlan, work_dir: Path, root: Path) -> dict:
-    """Aggregate into ``<root>.merging`` and rename to ``root`` at the end: ``root`` only ever holds a
-    complete dataset."""
+def merge_shards(plan: BuildPlan, work_dir: Path, root: Path, release: dict | None = None) -> dict:
+    """Aggregate into ``<root>.merging``, write ``meta/activearena/`` and the dataset card
+    (``README.md``; ``release`` holds the recipe's description and the build command), and rename
+    to ``root`` at the end: ``root`` only ever holds a complete dataset."""
     from lerobot.datasets.aggregate import aggregate_datasets  # only when merging: a finished build skips it
 
     missing = [s.name for s in plan.shards if not is_complete(shard_dir(work_dir, s))]
@@ -62,8 +65,11 @@ def merge_shards(plan: BuildPlan, work_dir: Path, root: Path) -> dict:
         "shortfall": shortfall,
         "package_version": version("lerobot_env_activearena"),
         "lerobot_version": version("lerobot"),
+        "versions": {"mujoco": version("mujoco"), "python": platform.python_version()},
+        **(release or {}),
     }
     (meta / "build.json").write_text(json.dumps(build, indent=1))
+    write_card(tmp)
     if root.exists():
         shutil.rmtree(root)
     tmp.rename(root)

@@ -14,6 +14,7 @@ from datatrove.pipeline.base import PipelineStep
 from tqdm import tqdm
 
 from ..sharding import ProgressBars, one_core, run_local, submit_slurm
+from .card import card_kwargs
 from .merge import merge_shards, read_build
 from .plan import BuildPlan
 from .shard import build_shard, is_complete, shard_dir
@@ -57,12 +58,12 @@ class MergeStep(PipelineStep):
     name = "ActiveArena merge"
     type = "MERGE"
 
-    def __init__(self, plan: BuildPlan, work_dir: str, root: str):
+    def __init__(self, plan: BuildPlan, work_dir: str, root: str, release: dict | None = None):
         super().__init__()
-        self.plan, self.work_dir, self.root = plan, work_dir, root
+        self.plan, self.work_dir, self.root, self.release = plan, work_dir, root, release
 
     def run(self, data=None, rank: int = 0, world_size: int = 1):
-        merge_shards(self.plan, Path(self.work_dir), Path(self.root))
+        merge_shards(self.plan, Path(self.work_dir), Path(self.root), self.release)
         return iter(())
 
 
@@ -125,9 +126,13 @@ def build_dataset(
     push_to_hub: bool = False,
     private: bool = False,
     progress: bool = True,
+    recipe: dict | None = None,
+    command: str | None = None,
 ) -> dict | None:
     """Build (or resume) the dataset at ``root``. Returns the build summary; with the Slurm executor
-    the jobs are submitted and None is returned (the merge job writes ``root``)."""
+    the jobs are submitted and None is returned (the merge job writes ``root``). ``recipe`` (file,
+    description, overridden flags) and ``command`` go into ``build.json`` and the dataset card."""
+    release = {"recipe": recipe, "command": command}
     root = Path(root).resolve()
     work_dir = Path(work_dir).resolve() if work_dir else root.with_name(root.name + ".work")
     if _prepare(plan, root, work_dir, overwrite):
@@ -141,7 +146,7 @@ def build_dataset(
             submit_slurm(
                 step,
                 len(plan.shards),
-                MergeStep(plan, str(work_dir), str(root)),
+                MergeStep(plan, str(work_dir), str(root), release),
                 work_dir,
                 "activearena-build",
                 slurm,
@@ -156,7 +161,7 @@ def build_dataset(
             work_dir / "logs",
             _Progress(plan, work_dir) if progress else None,
         )
-        summary = merge_shards(plan, work_dir, root)
+        summary = merge_shards(plan, work_dir, root, release)
         if not keep_shards:
             shutil.rmtree(work_dir, ignore_errors=True)
     if push_to_hub:
@@ -165,8 +170,11 @@ def build_dataset(
 
 
 def push(repo_id: str, root: Path, private: bool = False) -> None:
-    """Upload with LeRobot's own path (``LeRobotDataset.push_to_hub``), metadata folder included."""
+    """Upload with LeRobot's own path (``LeRobotDataset.push_to_hub``), metadata folder included,
+    with the build's dataset card (``card.py``) in LeRobot's card template."""
     from lerobot.datasets.lerobot_dataset import LeRobotDataset
 
+    card = card_kwargs(root)
+    card.pop("repo_id")
     ds = LeRobotDataset(repo_id, root=root, video_backend="pyav")
-    ds.push_to_hub(private=private, tags=["activearena", "active-perception", "mujoco"])
+    ds.push_to_hub(private=private, **card)

@@ -1,0 +1,41 @@
+"""Build recipes: JSON files (``datasets_build/*.json`` at the repository's top level) that name a
+release's repo id, tasks, split and seeds. ``activearena-build-dataset --recipe FILE`` reads one;
+flags given on the command line override its values."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+# recipe key -> default when neither the recipe nor the command line sets it
+RECIPE_KEYS = {
+    "description": None,
+    "repo_id": None,
+    "tasks": "all",
+    "split": "id",
+    "episodes": None,
+    "seeds": None,
+    "seed_start": 0,
+    "episodes_per_shard": 10,
+}
+
+
+def load_recipe(path: Path | str) -> dict:
+    """The recipe at ``path`` with every key of ``RECIPE_KEYS`` present (defaults filled in)."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(
+            f"no recipe at {path}; the released ones are in the repository's datasets_build/"
+        )
+    try:
+        data = json.loads(path.read_text())
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"recipe {path} is not valid JSON: {exc}") from exc
+    if not isinstance(data, dict):
+        raise ValueError(f"recipe {path} must be a JSON object with keys {sorted(RECIPE_KEYS)}")
+    unknown = sorted(set(data) - set(RECIPE_KEYS))
+    if unknown:
+        raise ValueError(f"recipe {path}: unknown key(s) {unknown}; allowed: {sorted(RECIPE_KEYS)}")
+    if data.get("episodes") is not None and data.get("seeds") is not None:
+        raise ValueError(f"recipe {path} sets both 'episodes' and 'seeds'; keep one")
+    return {**RECIPE_KEYS, **data}
