@@ -27,6 +27,10 @@ ensure_system_libs() {
   if ! ldconfig -p | grep -q 'libavcodec.so' || ! ldconfig -p | grep -q 'libavdevice.so'; then
     pkgs+=(libavcodec59 libavformat59 libavutil57 libswscale6 libswresample4 libavdevice59 libavfilter8)
   fi
+  # The tests open report.html in headless Chromium (scripts/test.sh sets ACTIVEARENA_TEST_BROWSER=1).
+  if [ "${ACTIVEARENA_TEST_BROWSER:-0}" = "1" ] && ! { command -v chromium && command -v chromedriver; } >/dev/null 2>&1; then
+    pkgs+=(chromium chromium-driver)
+  fi
   [ "${#pkgs[@]}" -eq 0 ] && return
   if [ "$(id -u)" = "0" ] && command -v apt-get >/dev/null 2>&1; then
     echo "[bootstrap] installing ${pkgs[*]} with apt-get" >&2

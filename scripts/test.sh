@@ -3,6 +3,7 @@
 # then runs the fast test suite on two workers with the 25 slowest tests listed. The slow ones:
 # python -m pytest -m slow -n 0
 set -euo pipefail
+export ACTIVEARENA_TEST_BROWSER=1  # bootstrap installs headless Chromium for the report test
 source "$(dirname "${BASH_SOURCE[0]}")/bootstrap.sh"
 cd "$ROOT"
 ruff check .

@@ -1,6 +1,7 @@
 """`activearena-report` on hand-made lerobot-eval outputs with known answers."""
 
 import json
+import os
 import re
 
 import numpy as np
@@ -116,3 +117,60 @@ def test_report_needs_a_split_it_can_tell(tmp_path):
         main([str(a), "--out", str(tmp_path / "rep")])
     main([f"oracle:id={a}", "--out", str(tmp_path / "rep")])
     assert "oracle" in (tmp_path / "rep" / "leaderboard.csv").read_text()
+
+
+def _write_video(path, colour, n=20):
+    """A real H.264 clip (LeRobot's writer, as lerobot-eval uses): grey frames, the last one ``colour``."""
+    from lerobot.utils.io_utils import write_video
+
+    frames = [np.full((48, 64, 3), 90, np.uint8) for _ in range(n - 1)] + [
+        np.full((48, 64, 3), colour, np.uint8)
+    ]
+    write_video(path, frames, fps=15)
+
+
+def test_report_html_is_self_contained_and_renders_in_a_headless_browser(tmp_path):
+    import base64
+    import io
+    import shutil
+
+    from headless_browser import open_page
+    from PIL import Image
+
+    res = {
+        ("SS", "click_bell_rotate_view"): [True, False],
+        ("MD", "count_target_press_button"): [False, True],
+    }
+    a = _run(tmp_path / "a", "id", res, ["DM", "CO"])
+    b = _run(tmp_path / "b", "ood", res, ["CR", "DM"])
+    clips = sorted([*(a / "videos").glob("*.mp4"), *(b / "videos").glob("*.mp4")])
+    for k, clip in enumerate(clips):
+        _write_video(clip, (200, 30, 30) if k < 2 else (30, 30, 200))
+    # a budget for the first three clips in the report's order (run a, then b): the fourth is linked
+    order = sorted((a / "videos").glob("*.mp4")) + sorted((b / "videos").glob("*.mp4"))
+    budget_mb = (sum(c.stat().st_size for c in order[:3]) + 1) / 2**20
+    rep = tmp_path / "rep"
+    main([f"oracle={a}", f"oracle={b}", "--out", str(rep), "--inline-video-mb", str(budget_mb)])
+    page = (rep / "report.html").read_text()
+    assert page.count('src="data:video/mp4;base64,') == 3 and page.count('src="data:image/png;base64,') == 2
+    assert "3 videos embedded, 1 linked" in page
+    # the poster is the clip's last frame (where the episode ended)
+    poster = re.search(r'poster="data:image/jpeg;base64,([^"]+)"', page).group(1)
+    rgb = np.asarray(Image.open(io.BytesIO(base64.b64decode(poster))).convert("RGB"), float).mean((0, 1))
+    assert rgb[0] > 150 and rgb[2] < 80
+
+    state = open_page(rep / "report.html", screenshot=tmp_path / "shot.png")
+    assert state["title"] == "ActiveArena leaderboard" and state["table_rows"] == [1, 2, 2]
+    assert len(state["images"]) == 2 and all(ok and w > 500 for ok, w, _ in state["images"])
+    assert len(state["videos"]) == 4 and all(r >= 2 and w == 64 and h == 48 for r, w, h, _ in state["videos"])
+    assert state["external"] == [os.path.relpath(order[3], rep)]  # the linked clip, relative to the report
+    shot = np.asarray(Image.open(tmp_path / "shot.png").convert("RGB"), float)
+    assert shot.shape[1] == 1280 and shot.std() > 10  # something was drawn
+
+    # self-contained: the page alone, away from its PNGs and runs, still shows tables, charts, videos
+    alone = tmp_path / "elsewhere" / "deeper" / "report.html"
+    alone.parent.mkdir(parents=True)
+    shutil.copy(rep / "report.html", alone)
+    state = open_page(alone)
+    assert all(ok and w > 500 for ok, w, _ in state["images"])
+    assert sum(r >= 2 and w == 64 for r, w, _, _ in state["videos"]) == 3  # the linked one is not here

@@ -1,5 +1,5 @@
 """`activearena-report`: leaderboard, failure-state decomposition, per-task tables, chunk-boundary
-metric (Markdown, CSV, PNG) from one or more lerobot-eval output folders.
+metric (a self-contained report.html, Markdown, CSV, PNG) from one or more lerobot-eval output folders.
 
     activearena-report outputs/protocol/expert outputs/protocol/oft --out outputs/report   # activearena-eval runs
     activearena-report expert:id=outputs/eval/expert_id expert:ood=outputs/eval/expert_ood --out outputs/report
@@ -21,10 +21,19 @@ def main(argv: list[str] | None = None) -> None:
         help="an activearena-eval run folder, or [label[:split]=]path of a lerobot-eval output folder",
     )
     p.add_argument("--out", type=Path, default=Path("outputs/report"))
+    p.add_argument(
+        "--inline-video-mb",
+        type=float,
+        default=64.0,
+        help="embed rollout videos in report.html up to this many MB in total, link the rest (default 64)",
+    )
     args = p.parse_args(argv)
-    build_report(args.runs, args.out)
+    if args.inline_video_mb < 0:
+        p.error(f"--inline-video-mb must be >= 0, got {args.inline_video_mb}")
+    info = build_report(args.runs, args.out, args.inline_video_mb)["html"]
     print(
-        f"wrote {args.out}/report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png, per_task.png"
+        f"wrote {args.out}/report.html ({info['embedded']} videos embedded, {info['linked']} linked), "
+        "report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png, per_task.png"
     )
 
 

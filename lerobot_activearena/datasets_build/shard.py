@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import logging
+import os
 import shutil
 from pathlib import Path
 
@@ -43,6 +44,9 @@ def build_shard(
     final = shard_dir(work_dir, spec)
     datasets.disable_progress_bars()  # the shard's own per-episode bookkeeping; the build shows its own bars
     logging.getLogger("lerobot.utils.import_utils").setLevel(logging.ERROR)  # decoder probe: we only encode
+    # The AV1 encoder (SVT-AV1) prints ~19 info lines per episode straight to stderr; errors only
+    # (SVT_LOG=3 brings them back).
+    os.environ.setdefault("SVT_LOG", "1")
     if is_complete(final):
         return json.loads((final / SHARD_DONE).read_text())
     tmp = final.with_name(final.name + ".partial")

@@ -20,6 +20,7 @@ import numpy as np
 
 from ..annotations.keyframes import CHUNK
 from ..tasks.base import CATEGORIES
+from .report_html import write_html
 
 
 @dataclass
@@ -232,7 +233,7 @@ def _relative(path: str, out: Path) -> str:
     return os.path.relpath(p, out.resolve()) if p.is_absolute() else path
 
 
-def build_report(run_specs: list[str], out: Path) -> dict:
+def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0) -> dict:
     runs = [load_run(s) for s in expand_specs(run_specs)]
     out.mkdir(parents=True, exist_ok=True)
     lb, fl, pt = leaderboard(runs), failure_table(runs), per_task_table(runs)
@@ -243,41 +244,43 @@ def build_report(run_specs: list[str], out: Path) -> dict:
     tasks = [row[1] for row in pt[1]]  # the chart's groups are tasks, its bars the policy / split columns
     bars = [[col] + [row[2 + k] for row in pt[1]] for k, col in enumerate(pt[0][2:])]
     bar_chart(out / "per_task.png", ["", *tasks], bars, title="ActiveArena success by task")
-    videos = []
-    for r in runs:
-        for t, paths in sorted(r.videos.items()):
-            videos += [
-                f"- {r.label} {r.split.upper()} `{t}`: "
-                + ", ".join(f"[{Path(p).name}]({_relative(p, out)})" for p in paths)
-            ]
-    md = [
-        "# ActiveArena leaderboard",
+    sections = [
+        (
+            "Success by category",
+            "Success rate (%) per category, ID and OOD; Avg = task-macro mean over tasks.",
+            lb,
+            "leaderboard.png",
+        ),
+        (
+            "Failure states among failed episodes",
+            "DM: a task-relevant object was never observed; CO: all observed, the final view misses some; "
+            "CR: the final view covers all, the task still failed. Chunk jump (the paper's action-continuity "
+            f"metric): per episode the median jump of the commanded target at the {CHUNK}-step chunk "
+            "boundaries, then the mean over episodes; torso yaw and head pitch separately.",
+            fl,
+            None,
+        ),
+        ("Per task (success %)", "One column per policy and split.", pt, "per_task.png"),
+    ]
+    videos = [  # (task, caption, file, link relative to the report)
+        (t, f"{r.label} {r.split.upper()}", Path(p), _relative(p, out))
+        for r in runs
+        for t, paths in sorted(r.videos.items())
+        for p in paths
+    ]
+    md = ["# ActiveArena leaderboard", ""]
+    for k, (title, text, table, png) in enumerate(sections):
+        md += ([] if k == 0 else [f"## {title}", ""]) + [text, "", markdown(*table), ""]
+        md += [f"![{title}]({png})", ""] if png else []
+    md += ["## Rollout videos", ""]
+    md += [f"- {cap} `{t}`: [{path.name}]({link})" for t, cap, path, link in videos] or ["(none saved)"]
+    md += [
         "",
-        "Success rate (%) per category, ID and OOD; Avg = task-macro mean over tasks.",
-        "",
-        markdown(*lb),
-        "",
-        "![leaderboard](leaderboard.png)",
-        "",
-        "## Failure states among failed episodes",
-        "",
-        "DM: a task-relevant object was never observed; CO: all observed, the final view misses some; "
-        "CR: the final view covers all, the task still failed. Chunk jump (the paper's action-continuity "
-        f"metric): per episode the median jump of the commanded target at the {CHUNK}-step chunk boundaries, "
-        "then the mean over episodes; torso yaw and head pitch separately.",
-        "",
-        markdown(*fl),
-        "",
-        "## Per task (success %)",
-        "",
-        markdown(*pt),
-        "",
-        "![per task](per_task.png)",
-        "",
-        "## Rollout videos",
-        "",
-        *(videos or ["(none saved)"]),
+        "The same report as one self-contained page (tables, charts and videos inline): report.html",
         "",
     ]
     (out / "report.md").write_text("\n".join(md))
-    return {"leaderboard": lb, "failures": fl, "per_task": pt}
+    html_info = write_html(
+        out, sections, videos, lambda x, h: _fmt(x, 2 if "(deg)" in h else 1), inline_video_mb
+    )
+    return {"leaderboard": lb, "failures": fl, "per_task": pt, "html": html_info}
