@@ -33,7 +33,7 @@ def test_placement_errors_name_the_problem(args, msg):
 def test_two_level_geometry():
     ws = two_level_workspace(shift_deg=20.0)
     up = ws.level(1)
-    assert (up.inner_radius, up.outer_radius, up.top_z, up.center_deg) == (0.60, 0.90, 1.09, 110.0)
+    assert (up.inner_radius, up.outer_radius, up.top_z, up.center_deg) == (0.60, 0.80, 1.09, 110.0)
     assert up.top_z - ws.level(0).top_z == pytest.approx(0.35)
     with pytest.raises(ValueError, match="shift"):
         two_level_workspace(shift_deg=10.0)
@@ -43,7 +43,7 @@ def test_objects_rest_on_both_levels_and_the_column_stands():
     b = SceneBuilder(workspace=two_level_workspace())
     b.add_object("block", "low", 0.5, 60.0)
     b.add_object("block", "low_edge", 1.05, 100.0)
-    b.add_object("block", "high", 0.75, 60.0, level=1)
+    b.add_object("block", "high", 0.70, 60.0, level=1)
     model, info = b.compile()
     sim = ActiveArenaSim(model, info)
     for _ in range(20):
@@ -52,4 +52,6 @@ def test_objects_rest_on_both_levels_and_the_column_stands():
     assert d.body("low").xpos[2] == pytest.approx(0.74, abs=0.003)
     assert d.body("low_edge").xpos[2] == pytest.approx(0.74, abs=0.003)
     assert d.body("high").xpos[2] == pytest.approx(1.09, abs=0.003)
-    assert model.geom("fan_support_column").contype == 1
+    column = model.geom("fan_support_column")
+    assert column.contype == 1 and np.allclose(column.size[:2], 0.025)
+    assert np.allclose(d.geom("fan_support_column").xpos[:2], [0.0, 0.775], atol=1e-9)

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..annotations.writer import Intent
 from ..sim.action import HEAD_PITCH, TORSO_YAW
+from ..sim.head_camera import search_views
 from ..sim.perception import PerceptionMemory
 from ..sim.simulator import ActiveArenaSim
 from .gaze import Gaze
@@ -38,7 +39,8 @@ class ExpertContext:
         self.action = sim.home_action()
         self.intent = Intent()
         self.memory: dict[int, np.ndarray] = {}  # object index -> centre when last seen
-        self.explored: set[int] = set()  # sector ids swept so far
+        self.views = search_views(sim.info.workspace)  # (torso yaw, head pitch) per search sector
+        self.explored: set[int] = set()  # sector ids (indices into ``views``) swept so far
         self.notes: dict = {}  # what the expert inferred (colours, counts), for the sidecar
         self.frame = 0  # index of the next emitted action (= the episode frame it is applied at)
 

@@ -49,3 +49,18 @@ def top_down_reachable(point, side: str, heights=(0.0, 0.10)) -> bool:
         except IKError:
             continue
     return False
+
+
+def side_reachable(point, side: str, height: float = 0.06) -> bool:
+    """Whether ``side``'s gripper reaches ``point`` (raised ``height`` m) with the horizontal, radial
+    side grasp (fingers closing horizontally) that upper-band placements use, the torso turned as
+    the expert turns it."""
+    ik, _ = shared_kinematics()
+    p = np.asarray(point, float) + [0, 0, height]
+    radial = np.array([p[0], p[1], 0.0]) / np.linalg.norm(p[:2])
+    rot = grasp_rotation(radial, np.array([-radial[1], radial[0], 0.0]))
+    try:
+        ik.solve(side, embodiment.HOME_ARM[side], torso_yaw_for_arm(p, side), p, rot, max_iters=400)
+    except IKError:
+        return False
+    return True

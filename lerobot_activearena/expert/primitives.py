@@ -26,7 +26,7 @@ from ..annotations.schema import (
 )
 from ..sim import embodiment
 from ..sim.action import HEAD_PITCH, TORSO_YAW
-from ..sim.head_camera import SEARCH_PITCH, SEARCH_VIEWS
+from ..sim.head_camera import SEARCH_PITCH
 from .context import ExpertContext, ExpertError
 from .gaze import heading_deg
 from .ik import IKError, grasp_rotation, interpolate_pose, rot_z
@@ -35,7 +35,6 @@ from .motion import CONTROL_DT, arm_of, gripper_index, interpolate_joints, trape
 
 Actions = Iterator[np.ndarray]
 
-SECTOR_YAWS = tuple(yaw for yaw, _ in SEARCH_VIEWS)  # torso yaw of each search sector
 TORSO_VMAX, TORSO_AMAX = embodiment.TORSO_LIMITS  # the paper's 2.5 rad/s, 10 rad/s^2
 HEAD_VMAX, HEAD_AMAX = embodiment.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^2
 FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
@@ -126,14 +125,15 @@ def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
     it.focus, it.stage, it.info_complete = i, STAGE_SEARCH, False
     it.search_targets = it.search_targets | {i}
     if i not in ctx.memory:
+        views = ctx.views  # lower sectors first, then (two-level) the upper ones
         order = sorted(
-            range(len(SECTOR_YAWS)), key=lambda s: (s in ctx.explored, abs(SECTOR_YAWS[s] - ctx.yaw))
+            range(len(views)),
+            key=lambda s: (s in ctx.explored, views[s][1] != SEARCH_PITCH, abs(views[s][0] - ctx.yaw)),
         )
         for s in order:
             yield from move_head_torso_to(
                 ctx,
-                SECTOR_YAWS[s],
-                SEARCH_PITCH,
+                *views[s],
                 CAMERA_SEARCH,
                 stop_when=lambda: bool(ctx.perception.visible[i]),
             )
@@ -156,14 +156,18 @@ def sweep_all(ctx: ExpertContext, targets: list[int]) -> Actions:
     it = ctx.intent
     it.stage, it.info_complete = STAGE_SEARCH, False
     it.search_targets = it.search_targets | set(targets)
-    order = sorted(range(len(SECTOR_YAWS)), key=lambda s: abs(SECTOR_YAWS[s] - ctx.yaw))
-    # Sweep to the nearer end first, then across to the other end.
-    ends = sorted([s for s in order if SECTOR_YAWS[s] != 0.0], key=lambda s: abs(SECTOR_YAWS[s] - ctx.yaw))
-    for s in [*ends, 0] if ctx.yaw != 0.0 else ends:
-        yield from move_head_torso_to(ctx, SECTOR_YAWS[s], SEARCH_PITCH, CAMERA_SEARCH)
-        yield from hold(ctx, 3)
-        ctx.explored.add(s)
-    ctx.explored.add(0)
+    lower = [s for s, (_, pitch) in enumerate(ctx.views) if pitch == SEARCH_PITCH]
+    upper = [s for s in range(len(ctx.views)) if s not in lower]
+    # Each row of sectors: to its nearer end first, then across to the other end.
+    for row in (lower, upper) if upper else (lower,):
+        centre = next(s for s in row if ctx.views[s][0] == 0.0)
+        ends = sorted([s for s in row if s != centre], key=lambda s: abs(ctx.views[s][0] - ctx.yaw))
+        at_centre = ctx.yaw == 0.0 and (row is lower or ctx.pitch == ctx.views[centre][1])
+        for s in ends if at_centre else [*ends, centre]:
+            yield from move_head_torso_to(ctx, *ctx.views[s], CAMERA_SEARCH)
+            yield from hold(ctx, 3)
+            ctx.explored.add(s)
+        ctx.explored.add(centre)
     it.info_complete = True
 
 

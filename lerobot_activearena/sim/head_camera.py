@@ -16,6 +16,14 @@ HEAD_BODY = f"{embodiment.PREFIX}head_link_2"  # the camera's own body: never an
 SEARCH_PITCH = 1.0  # rad: the home pitch
 # (torso yaw, head pitch) of the three search sectors: headings 90, 36 and 144 deg
 SEARCH_VIEWS = ((0.0, SEARCH_PITCH), (-0.95, SEARCH_PITCH), (0.95, SEARCH_PITCH))
+UPPER_SEARCH_PITCH = 0.47  # rad: the head pitched up to the upper band (the release's ID value)
+UPPER_SEARCH_VIEWS = tuple((yaw, UPPER_SEARCH_PITCH) for yaw, _ in SEARCH_VIEWS)
+
+
+def search_views(workspace) -> tuple[tuple[float, float], ...]:
+    """The search views of a workspace: the lower sectors at the home pitch, then (two-level) the
+    same headings with the head pitched up to the upper band."""
+    return SEARCH_VIEWS + (UPPER_SEARCH_VIEWS if workspace.two_level else ())
 
 
 def head_visibility_checker(model: mujoco.MjModel, objects: list[ObjectInfo]) -> VisibilityChecker:

@@ -40,11 +40,14 @@ class FanLevel:
 
 @dataclass(frozen=True)
 class Workspace:
-    """A lower fan plus an optional upper band; ``margin_deg`` keeps placements off the ends."""
+    """A lower fan plus an optional upper band; ``margin_deg`` keeps placements off the ends. The
+    upper band stands on one square column (``column_half`` m half-width) at ``column_r`` m
+    straight ahead of the upper band's centre."""
 
     levels: tuple[FanLevel, ...]
     margin_deg: float = 20.0
-    column_radius: float = 0.035
+    column_half: float = 0.025
+    column_r: float = 0.775
 
     @property
     def two_level(self) -> bool:
@@ -83,13 +86,22 @@ def fan_workspace() -> Workspace:
     return Workspace(levels=(FanLevel(0.30, 1.08, 180.0, 90.0, TABLE_TOP),))
 
 
+UPPER_TOP = 1.09  # m: height of the upper band's top (0.35 m over the lower fan)
+
+
 def two_level_workspace(shift_deg: float = 0.0) -> Workspace:
-    """Lower fan plus an upper band 0.60-0.90 m at 1.09 m (0.35 m gap); optional angular shift."""
+    """Lower fan plus the release's upper band, 0.60-0.80 m at 1.09 m (the paper says 0.90; the
+    authors' release and our arms' reach use 0.80), on a 5 x 5 cm column at r 0.775 m straight
+    ahead. ``shift_deg``: the paper's optional +/-20 deg turn of the upper band (the release's
+    tasks use 0)."""
     if shift_deg not in (0.0, 20.0, -20.0):
         raise ValueError(f"shift_deg must be 0 or +/-20 (paper's two-level variant), got {shift_deg}")
     lower = FanLevel(0.30, 1.08, 180.0, 90.0, TABLE_TOP)
-    upper = FanLevel(0.60, 0.90, 180.0, 90.0 + shift_deg, 1.09)
+    upper = FanLevel(0.60, 0.80, 180.0, 90.0 + shift_deg, UPPER_TOP)
     return Workspace(levels=(lower, upper))
+
+
+WORKSPACES = {"fan": fan_workspace, "two_level": two_level_workspace}  # a task's ``workspace`` name
 
 
 def _sector_prism(r0: float, r1: float, a0: float, a1: float, z0: float, z1: float) -> np.ndarray:
@@ -153,14 +165,14 @@ def add_workspace(
     if ws.two_level:
         upper = ws.levels[1]
         a = math.radians(upper.center_deg)
-        r = 0.5 * (upper.inner_radius + upper.outer_radius)
         z0, z1 = lower.top_z, upper.top_z - upper.thickness
         col = spec.worldbody.add_body()
         col.name = "fan_support_column"
+        col.pos = (ws.column_r * math.cos(a), ws.column_r * math.sin(a), (z0 + z1) / 2)
+        col.quat = (math.cos(a / 2), 0.0, 0.0, math.sin(a / 2))  # faces the robot
         g = col.add_geom()
         g.name = "fan_support_column"
-        g.type = mujoco.mjtGeom.mjGEOM_CYLINDER
-        g.size = (ws.column_radius, (z1 - z0) / 2, 0)
-        g.pos = (r * math.cos(a), r * math.sin(a), (z0 + z1) / 2)
+        g.type = mujoco.mjtGeom.mjGEOM_BOX
+        g.size = (ws.column_half, ws.column_half, (z1 - z0) / 2)
         g.rgba = (0.35, 0.35, 0.38, 1)
         g.contype, g.conaffinity = WORLD_CONTYPE, WORLD_CONAFFINITY

@@ -15,6 +15,8 @@ from typing import TYPE_CHECKING, ClassVar
 import mujoco
 import numpy as np
 
+from ..sim.workspace import WORKSPACES
+
 if TYPE_CHECKING:
     from ..expert.context import ExpertContext
     from ..sim.scene import SceneInfo
@@ -72,6 +74,9 @@ class Task:
     instruction_values: ClassVar[dict[str, tuple[str, ...]]] = {}
     subtasks: ClassVar[tuple[Subtask, ...]]
     max_episode_steps: ClassVar[int]  # the protocol's evaluation step limit (paper's release)
+    # "fan" (one level) or "two_level" (the lower fan plus the upper band on its column): the
+    # sampler builds it, and placement, clutter, the search views and the checks follow it.
+    workspace: ClassVar[str] = "fan"
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -155,6 +160,10 @@ def register_task(cls: type[Task]) -> type[Task]:
     if cls.category not in CATEGORIES:
         raise ValueError(
             f"task {cls.name!r}: unknown category {cls.category!r}; use one of {sorted(CATEGORIES)}"
+        )
+    if cls.workspace not in WORKSPACES:
+        raise ValueError(
+            f"task {cls.name!r}: unknown workspace {cls.workspace!r}; use one of {sorted(WORKSPACES)}"
         )
     ids = [s.id for s in cls.subtasks]
     if ids != list(range(1, len(ids) + 1)):

@@ -18,10 +18,17 @@ import numpy as np
 from ..sim.appearance import random_appearance
 from ..sim.assets import ASSETS, categories
 from ..sim.scene import SceneBuilder
-from ..sim.workspace import TABLE_TOP
+from ..sim.workspace import TABLE_TOP, WORKSPACES
 
 REACH_R = (0.34, 0.45)  # top-down grasps and presses reach here at every angle (benchmarks/initial_view.py)
+# The upper band (0.60-0.80 m) where both arms reach a side-grasp pose 6 cm over it at every heading
+# of the placement span (benchmarks/reach_band.py --level upper); its outer 5 cm are out of reach.
+UPPER_REACH_R = (0.62, 0.72)
+LEVEL_REACH_R = (REACH_R, UPPER_REACH_R)  # a region's default distances per level
 CLUTTER_R = (0.55, 1.0)  # beyond the arms' working band
+UPPER_CLUTTER_R = (0.64, 0.76)  # the upper band, its edges kept clear
+# Clutter per level of a two-level scene (ID; OOD adds two below, one above).
+TWO_LEVEL_CLUTTER = (5, 3)
 FAN_ANGLES = (20.0, 160.0)  # the lower fan's placement span (20 deg margin at each end)
 SIDE_ANGLES = {"right": (20.0, 90.0), "left": (90.0, 160.0)}
 # Out of the home view candidates (paper's release: |theta - 90| in [38.5, 70] deg); each placement
@@ -36,13 +43,20 @@ class SamplingError(RuntimeError):
 @dataclass(frozen=True)
 class Region:
     """Where an object may go. ``hidden``: True = out of the home view, False = in it, None = either;
-    ``side``: 'left' / 'right' / None (any; a hidden region then picks a side at random)."""
+    ``side``: 'left' / 'right' / None (any; a hidden region then picks a side at random); ``level``:
+    0 the lower fan, 1 the upper band (two-level tasks); ``r`` defaults to the level's reach band."""
 
-    r: tuple[float, float] = REACH_R
+    r: tuple[float, float] | None = None
     angle: tuple[float, float] = FAN_ANGLES
     hidden: bool | None = None
     side: str | None = None
     level: int = 0
+
+    def __post_init__(self):
+        if self.level not in (0, 1):
+            raise ValueError(f"region level must be 0 (lower fan) or 1 (upper band), got {self.level}")
+        if self.r is None:
+            object.__setattr__(self, "r", LEVEL_REACH_R[self.level])
 
     def on(self, side: str) -> Region:
         return replace(self, side=side)
@@ -83,20 +97,18 @@ def _home_camera() -> tuple[np.ndarray, np.ndarray]:
     return intrinsics(float(model.cam_fovy[cam]), HEAD_WIDTH, HEAD_HEIGHT), extrinsic_cv(data, cam)
 
 
-def in_home_view(xy, radius: float, heights=(0.005, 0.08)) -> bool:
-    """Whether any point of the disc (``xy``, ``radius``) at the given heights above the table
-    projects into the home image."""
+def in_home_view(xy, radius: float, heights=(0.005, 0.08), top_z: float = TABLE_TOP) -> bool:
+    """Whether any point of the disc (``xy``, ``radius``) at the given heights above a tabletop at
+    ``top_z`` projects into the home image (occlusion is left to the sampler's visibility check)."""
     from ..sim.camera import project
     from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
     intrinsic_matrix, world_to_cam = _home_camera()
     ring = np.linspace(0, 2 * np.pi, 12, endpoint=False)
     pts = [
-        [xy[0] + radius * math.cos(a), xy[1] + radius * math.sin(a), TABLE_TOP + h]
-        for a in ring
-        for h in heights
+        [xy[0] + radius * math.cos(a), xy[1] + radius * math.sin(a), top_z + h] for a in ring for h in heights
     ]
-    pts += [[xy[0], xy[1], TABLE_TOP + h] for h in heights]
+    pts += [[xy[0], xy[1], top_z + h] for h in heights]
     uv, z = project(np.asarray(pts), intrinsic_matrix, world_to_cam)
     inside = (
         (z > 0) & (uv[:, 0] >= 0) & (uv[:, 0] <= HEAD_WIDTH) & (uv[:, 1] >= 0) & (uv[:, 1] <= HEAD_HEIGHT)
@@ -105,14 +117,15 @@ def in_home_view(xy, radius: float, heights=(0.005, 0.08)) -> bool:
 
 
 class SceneDraft:
-    """Non-overlapping placement on the fan, registered object labels, episode parameters."""
+    """Non-overlapping placement on the task's workspace (per level), registered object labels,
+    episode parameters."""
 
-    def __init__(self, split: str, rng: np.random.Generator):
+    def __init__(self, split: str, rng: np.random.Generator, workspace: str = "fan"):
         self.split, self.rng = split, rng
         appearance = random_appearance(rng) if split == "ood" else None
-        self.builder = SceneBuilder(appearance=appearance)
+        self.builder = SceneBuilder(workspace=WORKSPACES[workspace](), appearance=appearance)
         self.workspace = self.builder.workspace
-        self.discs: list[tuple[np.ndarray, float]] = []
+        self.discs: list[tuple[np.ndarray, float, int]] = []  # (xy, radius, level) kept clear
         self.labels: list[str] = []
         self.params: dict = {}
         self.hidden: list[str] = []  # objects placed out of the home view (checked after compiling)
@@ -120,16 +133,29 @@ class SceneDraft:
         self.placements: list[dict] = []  # (name, role, r, angle) of every registered object
         self.clutter_excluded: set[str] = set()  # asset families the clutter must not use
 
-    def is_free(self, xy, radius: float, margin: float) -> bool:
-        return all(np.linalg.norm(np.asarray(xy) - p) >= radius + r + margin for p, r in self.discs)
+        if self.workspace.two_level:  # the upper band's column stands on the lower fan
+            a = math.radians(self.workspace.level(1).center_deg)
+            column = self.workspace.column_r * np.array([math.cos(a), math.sin(a)])
+            self.discs.append((column, self.workspace.column_half * math.sqrt(2), 0))
 
-    def reserve(self, distance: float, angle_deg: float, radius: float) -> None:
+    def is_free(self, xy, radius: float, margin: float, level: int = 0) -> bool:
+        return all(
+            np.linalg.norm(np.asarray(xy) - p) >= radius + r + margin
+            for p, r, lv in self.discs
+            if lv == level
+        )
+
+    def keep_clear(self, xy, radius: float, level: int = 0) -> None:
+        """Keep the disc (``xy``, ``radius``) on ``level`` free of later placements."""
+        self.discs.append((np.asarray(xy, float), radius, level))
+
+    def reserve(self, distance: float, angle_deg: float, radius: float, level: int = 0) -> None:
         """Keep a disc empty (e.g. where an object will be placed later)."""
         try:
-            xy = self.workspace.place(distance, angle_deg)[:2]
+            xy = self.workspace.place(distance, angle_deg, level)[:2]
         except ValueError as exc:  # off the fan: this draft cannot hold the layout
             raise SamplingError(str(exc)) from exc
-        self.discs.append((xy, radius))
+        self.keep_clear(xy, radius, level)
 
     def side(self) -> str:
         return "left" if self.rng.integers(0, 2) else "right"
@@ -163,6 +189,7 @@ class SceneDraft:
         side = region.side if region.side is not None or not region.hidden else self.side()
         r = region.r if r is None else r
         angle = region.angles(side) if angle is None else angle
+        level = self.workspace.level(region.level)
         for _ in range(tries):
             rr = float(self.rng.uniform(*r)) if np.ndim(r) else float(r)
             aa = float(self.rng.uniform(*angle)) if np.ndim(angle) else float(angle)
@@ -170,9 +197,12 @@ class SceneDraft:
                 xy = self.workspace.place(rr, aa, region.level)[:2]
             except ValueError as exc:  # an explicit spot off the fan
                 raise SamplingError(f"{name}: {exc}") from exc
-            if not self.is_free(xy, foot, margin):
+            # the upper band is 20 cm deep: the whole footprint must stand on it
+            if region.level > 0 and not level.inner_radius + foot <= rr <= level.outer_radius - foot:
                 continue
-            if region.hidden is not None and in_home_view(xy, foot) == region.hidden:
+            if not self.is_free(xy, foot, margin, region.level):
+                continue
+            if region.hidden is not None and in_home_view(xy, foot, top_z=level.top_z) == region.hidden:
                 continue
             break
         else:
@@ -188,18 +218,26 @@ class SceneDraft:
             name,
             rr,
             aa,
+            level=region.level,
             yaw=yaw,
             rng=self.rng,
             register=register,
             static=static or ASSETS[category].static,
             **params,
         )
-        self.discs.append((xy, foot))
+        self.keep_clear(xy, foot, region.level)
         if register:
             self.labels.append(label)
-            self.placements.append(
-                {"name": name, "category": category, "r": rr, "angle": aa, "hidden": bool(region.hidden)}
-            )
+            placement = {
+                "name": name,
+                "category": category,
+                "r": rr,
+                "angle": aa,
+                "hidden": bool(region.hidden),
+            }
+            if self.workspace.two_level:
+                placement["level"] = region.level
+            self.placements.append(placement)
             if region.hidden:
                 self.hidden.append(name)
             if arms:
@@ -207,31 +245,39 @@ class SceneDraft:
         return info, rr, aa
 
     def add_clutter(self) -> int:
-        """Static distractors beyond the arms' band; returns how many fitted."""
+        """Static distractors beyond the arms' band (two-level: on both levels); returns how many
+        fitted."""
         ood = self.split == "ood"
         present = {ASSETS[o.category].family for o in self.builder.info.objects} | self.clutter_excluded
         pool = [c for c in categories(None if ood else "distractor") if ASSETS[c].family not in present]
-        n = int(self.rng.integers(9, 14) if ood else self.rng.integers(4, 8))
-        placed = 0
-        for k in range(n):
-            if not pool:
-                break
-            cat = pool[int(self.rng.integers(0, len(pool)))]
-            try:
-                self.place(
-                    cat,
-                    f"clutter_{k}_{cat}",
-                    cat,
-                    CLUTTER,
-                    margin=0.02,
-                    register=False,
-                    static=True,
-                    tries=40,
-                )
-            except SamplingError:
-                continue
-            placed += 1
-            if ood:  # no near-duplicates in one scene
-                fam = ASSETS[cat].family
-                pool = [c for c in pool if ASSETS[c].family != fam]
+        if self.workspace.two_level:
+            lower, upper = TWO_LEVEL_CLUTTER
+            plan = [(CLUTTER, lower + 2 * ood), (Region(r=UPPER_CLUTTER_R, level=1), upper + ood)]
+        else:
+            plan = [(CLUTTER, int(self.rng.integers(9, 14) if ood else self.rng.integers(4, 8)))]
+        placed = k = 0
+        for region, n in plan:
+            for _ in range(n):
+                if not pool:
+                    break
+                cat = pool[int(self.rng.integers(0, len(pool)))]
+                try:
+                    self.place(
+                        cat,
+                        f"clutter_{k}_{cat}",
+                        cat,
+                        region,
+                        margin=0.02 if region.level == 0 else 0.06,  # upper: room for a side entry
+                        register=False,
+                        static=True,
+                        tries=40,
+                    )
+                except SamplingError:
+                    continue
+                finally:
+                    k += 1
+                placed += 1
+                if ood:  # no near-duplicates in one scene
+                    fam = ASSETS[cat].family
+                    pool = [c for c in pool if ASSETS[c].family != fam]
         return placed

@@ -92,7 +92,7 @@ class PlaceBesideTask(PickPlaceTask):
         spot = beside_spot(b_xy, self.side)
         if not draft.is_free(spot, SPOT_RADIUS, 0.0):
             raise SamplingError(f"the spot {self.side} of the {self.dest} is taken")
-        draft.discs.append((spot, SPOT_RADIUS))
+        draft.keep_clear(spot, SPOT_RADIUS)
         if not a_region.hidden:
             _, ra, aa = place_a()
         if np.linalg.norm(draft.workspace.place(ra, aa)[:2] - b_xy) < START_APART:

@@ -12,9 +12,9 @@ import zlib
 import mujoco
 import numpy as np
 
-from ..expert.kinematics import top_down_reachable
+from ..expert.kinematics import side_reachable, top_down_reachable
 from ..sim import embodiment
-from ..sim.head_camera import SEARCH_VIEWS, head_visibility_checker
+from ..sim.head_camera import head_visibility_checker, search_views
 from ..sim.simulator import ActiveArenaSim
 from .base import SPLITS, Task, TaskScene
 from .draft import SamplingError, SceneDraft
@@ -28,9 +28,11 @@ def derived_rng(task: str, seed: int, split: str, attempt: int) -> np.random.Gen
     return np.random.default_rng(np.random.SeedSequence(key))
 
 
-def sector_visibility(model: mujoco.MjModel, info, views=SEARCH_VIEWS) -> np.ndarray:
+def sector_visibility(model: mujoco.MjModel, info, views=None) -> np.ndarray:
     """(n_views, n_objects) visibility of the registered objects from each (torso yaw, head pitch)
-    with the robot at home (no physics step: spawn poses)."""
+    (default: the workspace's search views; row 0 is home) with the robot at home (no physics step:
+    spawn poses)."""
+    views = search_views(info.workspace) if views is None else views
     data = mujoco.MjData(model)
     checker = head_visibility_checker(model, info.objects)
     qy = model.joint(embodiment.TORSO_YAW_JOINT).qposadr[0]
@@ -71,13 +73,16 @@ def principle_violations(task: Task, scene: TaskScene) -> list[str]:
         problems.append(f"placed out of the home view but visible there: {shown}")
     data = mujoco.MjData(scene.model)
     mujoco.mj_kinematics(scene.model, data)
+    ws = scene.info.workspace
     for name, arms in scene.reach.items():
         obj = scene.obj(name)
         body = data.body(obj.body)
-        top = (
-            body.xpos + body.xmat.reshape(3, 3) @ np.asarray(obj.center_offset) + [0, 0, obj.half_extents[2]]
-        )
-        if not any(top_down_reachable(top, side) for side in arms):
+        center = body.xpos + body.xmat.reshape(3, 3) @ np.asarray(obj.center_offset)
+        if ws.two_level and center[2] > ws.level(1).top_z:  # on the upper band: the side grasp
+            ok = any(side_reachable(center, side, height=0.0) for side in arms)
+        else:
+            ok = any(top_down_reachable(center + [0, 0, obj.half_extents[2]], side) for side in arms)
+        if not ok:
             problems.append(f"{name} is out of reach of the {'/'.join(arms)} arm")
     return problems
 
@@ -99,7 +104,7 @@ def sample_scene(task: Task, seed: int, split: str = "id") -> TaskScene:
         raise ValueError(f"split must be one of {SPLITS}, got {split!r}")
     reasons = []
     for attempt in range(MAX_ATTEMPTS):
-        draft = SceneDraft(split, derived_rng(task.name, seed, split, attempt))
+        draft = SceneDraft(split, derived_rng(task.name, seed, split, attempt), task.workspace)
         try:
             task.layout(draft)
         except SamplingError as exc:
