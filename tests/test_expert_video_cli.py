@@ -15,6 +15,9 @@ def test_expert_video_cli_writes_video_annotations_and_sidecar(tmp_path):
     side = json.loads((ep / "episode.json").read_text())
     assert side["success"] and side["task"] == "click_bell_rotate_view"
     assert {"instruction", "objects", "subtasks", "transitions", "final_discovered"} <= set(side)
+    # one-level task: the three lower search sectors at the home pitch (headings 90, 36, 144 deg)
+    assert [v["heading_deg"] for v in side["search_views"]] == [90.0, 35.57, 144.43]
+    assert {v["head_pitch"] for v in side["search_views"]} == {1.0}
     lines = (ep / "annotations.jsonl").read_text().splitlines()
     assert len(lines) == side["frames"]
     first = json.loads(lines[0])

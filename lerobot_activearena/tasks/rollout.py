@@ -8,6 +8,7 @@ shallower than ``PENETRATION_LIMIT``.
 from __future__ import annotations
 
 import logging
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -72,6 +73,11 @@ def make_sidecar(
             for s in task.subtasks
         ],
         "search_targets": list(scene.search_targets),
+        # the expert's search sectors: lower at the home pitch, then (two-level) pitched up
+        "search_views": [
+            {"torso_yaw": yaw, "head_pitch": pitch, "heading_deg": round(90.0 + math.degrees(yaw), 2)}
+            for yaw, pitch in ctx.views
+        ],
         "params": {k: v for k, v in scene.params.items() if k not in ("rejected_attempts", "placements")},
         "placements": scene.params.get("placements", []),
         "transitions": writer.transitions,
