@@ -437,6 +437,52 @@ def place(
     yield from arm_line(ctx, side, tcp_for(grip_rot, z_down + hover), grip_rot, 1.0, speed=0.2)
 
 
+def place_on_upper(
+    ctx: ExpertContext,
+    side: str,
+    i: int,
+    target_xy,
+    surface_z: float,
+    clearance: float = 0.006,
+    entry_r: float = 0.50,
+    over: float = 0.03,
+) -> Actions:
+    """Set held object ``i`` down on the upper band, where no top-down pose reaches: the wrist turns
+    horizontal (approach along the line from the robot's base, fingers closing across it), the
+    object comes in at ``entry_r`` m from the base, ``over`` m above its set-down height (below the
+    gripper nothing but the slab's edge), slides out over ``target_xy``, is lowered to
+    ``surface_z + clearance`` and released; the gripper backs out the way it came."""
+    p, rot = tcp_pose(ctx, side)
+    _, obj_rot = ctx.pose(i)
+    centre = ctx.center(i)
+    u = np.array([target_xy[0], target_xy[1], 0.0]) / np.linalg.norm(target_xy[:2])
+    tangent = np.array([-u[1], u[0], 0.0])
+    # the fingers keep closing along (+/-) the tangent: the sign nearest the current closing axis
+    grip = grasp_rotation(u, tangent if rot[:, 0] @ tangent >= 0 else -tangent)
+    turn = grip @ rot.T  # the held object turns rigidly with the wrist
+    off = rot.T @ (centre - p)  # object centre in the gripper frame
+    half = np.asarray(ctx.obj(i).half_extents, float)
+    half_h = float(np.abs((turn @ obj_rot)[2]) @ half)  # its vertical half-extent once turned
+
+    def tcp_at(xy, z_bottom):
+        c = np.array([xy[0], xy[1], z_bottom + half_h])
+        return c - grip @ off
+
+    z_down = surface_z + clearance
+    entry = tcp_at(entry_r * u[:2], z_down + over)
+    above = tcp_at(target_xy, z_down + over)
+    down = tcp_at(target_xy, z_down)
+    for pose in (entry, above, down):
+        solve_ik(ctx, side, arm_of(ctx.action, side), pose, grip)
+    yield from arm_goto(ctx, side, entry, grip, gripper=0.0, max_vel=1.0)
+    yield from arm_line(ctx, side, above, grip, 0.0, speed=0.15)
+    yield from arm_line(ctx, side, down, grip, 0.0, speed=0.08)
+    yield from set_gripper(ctx, side, 1.0, 6)
+    ctx.intent.carried = set()
+    yield from arm_line(ctx, side, down + [0, 0, 0.01], grip, 1.0, speed=0.1)
+    yield from arm_line(ctx, side, entry + [0, 0, 0.01], grip, 1.0, speed=0.2)
+
+
 def _turning_carry(ctx: ExpertContext, side: str, pos, rot) -> list[np.ndarray]:
     """Joint path that carries the held object to ``pos`` while the wrist turns it about the vertical
     to ``rot``: along a straight line turning the short way, else the long way (where the short way
@@ -555,7 +601,8 @@ def carry_and_turn(
 def retreat(ctx: ExpertContext, side: str) -> Actions:
     """Lift clear and return the arm to its home configuration, gripper open."""
     ctx.intent.camera_mode = CAMERA_HOLD
-    yield from move_arm_joint(ctx, side, embodiment.HOME_ARM[side], gripper=1.0, max_vel=1.6)
+    home = embodiment.home_arm(ctx.sim.info.workspace.two_level)[side]
+    yield from move_arm_joint(ctx, side, home, gripper=1.0, max_vel=1.6)
 
 
 def arm_for(point, then=None) -> str:

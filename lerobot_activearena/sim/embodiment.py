@@ -52,6 +52,20 @@ HOME_ARM = {
     "left": np.array([-0.4, -0.7, -1.0, 1.4, -0.9, 0.0, 0.0]),
     "right": np.array([0.4, -0.7, 1.0, 1.4, 0.9, 0.0, 0.0]),
 }
+# On the two-level workspace HOME_ARM puts the grippers inside the upper band's slab (TCP at r 0.62 m,
+# z 1.06 m); as the authors' release does for its two-level tasks, arm joint 1 goes to -/+0.11
+# instead (TCP at r 0.57 m, z 0.93 m: under the slab, inside its inner edge).
+TWO_LEVEL_HOME_ARM = {
+    "left": np.array([-0.11, -0.7, -1.0, 1.4, -0.9, 0.0, 0.0]),
+    "right": np.array([0.11, -0.7, 1.0, 1.4, 0.9, 0.0, 0.0]),
+}
+
+
+def home_arm(two_level: bool) -> dict[str, np.ndarray]:
+    """The arms' home on the one- or two-level workspace."""
+    return TWO_LEVEL_HOME_ARM if two_level else HOME_ARM
+
+
 HOME_TORSO_YAW = 0.0
 HOME_HEAD_PITCH = 1.0
 TORSO_YAW_RANGE = (-1.2, 1.2)

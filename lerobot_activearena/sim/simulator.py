@@ -86,7 +86,8 @@ class ActiveArenaSim:
     # ---- state -------------------------------------------------------------------------------
     def home_action(self) -> np.ndarray:
         a = np.zeros(ACTION_DIM)
-        a[LEFT_ARM], a[RIGHT_ARM] = embodiment.HOME_ARM["left"], embodiment.HOME_ARM["right"]
+        home = embodiment.home_arm(self.info.workspace.two_level)
+        a[LEFT_ARM], a[RIGHT_ARM] = home["left"], home["right"]
         a[LEFT_GRIPPER] = a[RIGHT_GRIPPER] = 1.0
         a[TORSO_YAW], a[HEAD_PITCH] = embodiment.HOME_TORSO_YAW, embodiment.HOME_HEAD_PITCH
         return a

@@ -275,14 +275,23 @@ def _local(sim: ActiveArenaSim, frame: ObjectInfo, points) -> np.ndarray:
     return (np.atleast_2d(points) - pos) @ rot
 
 
-def footprint_points(sim: ActiveArenaSim, obj: ObjectInfo, n: int = FOOTPRINT_GRID) -> np.ndarray:
-    """World points on an n x n grid over the base of ``obj``'s bounding box."""
+def footprint_points(
+    sim: ActiveArenaSim, obj: ObjectInfo, n: int = FOOTPRINT_GRID, lowest_face: bool = False
+) -> np.ndarray:
+    """World points on an n x n grid over the base of ``obj``'s bounding box; with ``lowest_face``,
+    over whichever face of the box points down now (a cube set down on its side)."""
     half, centre = np.asarray(obj.half_extents, float), np.asarray(obj.center_offset, float)
-    u = np.linspace(-1.0, 1.0, n)
-    gx, gy = np.meshgrid(centre[0] + u * half[0], centre[1] + u * half[1])
-    base = centre[2] - half[2]
-    local = np.stack([gx.ravel(), gy.ravel(), np.full(gx.size, base)], axis=1)
     pos, rot = _pose(sim, obj)
+    axis, sign = 2, -1.0  # the body's -z face
+    if lowest_face:
+        axis = int(np.argmax(np.abs(rot[2])))
+        sign = -float(np.sign(rot[2, axis]))
+    a, b = [k for k in range(3) if k != axis]
+    u = np.linspace(-1.0, 1.0, n)
+    ga, gb = np.meshgrid(centre[a] + u * half[a], centre[b] + u * half[b])
+    local = np.empty((ga.size, 3))
+    local[:, a], local[:, b] = ga.ravel(), gb.ravel()
+    local[:, axis] = centre[axis] + sign * half[axis]
     return pos + local @ rot.T
 
 
@@ -311,15 +320,16 @@ def on_support(
     min_overlap: float = 0.5,
     margin: float = 0.0,
     z_tol: float = 0.012,
+    any_face: bool = False,
 ) -> bool:
     """``obj`` rests on ``support``'s top surface (``functional.support``, box or disc): its base at
     the top's height (+/- ``z_tol``), its centre over the top and at least ``min_overlap`` of its
     footprint over it (the top shrunk by ``margin``). Not a fixed radius: a large object half off
-    a small mat does not count."""
+    a small mat does not count. ``any_face``: the base is whichever face points down (a block)."""
     top = support.functional.support
     if top is None:
         raise ValueError(f"{support.name} ({support.category}) declares no support surface")
-    base = _local(sim, support, footprint_points(sim, obj))
+    base = _local(sim, support, footprint_points(sim, obj, lowest_face=any_face))
     centre = _local(sim, support, centre_point(sim, obj))
     if abs(base[:, 2].mean() - top.top) > z_tol:
         return False
