@@ -9,12 +9,14 @@ import numpy as np
 import pytest
 
 from lerobot_activearena.expert.kinematics import side_reachable
+from lerobot_activearena.sim.action import TORSO_YAW
 from lerobot_activearena.sim.head_camera import SEARCH_PITCH, UPPER_SEARCH_PITCH, search_views
 from lerobot_activearena.sim.workspace import UPPER_TOP, fan_workspace, two_level_workspace
 from lerobot_activearena.tasks.base import Subtask, Task
 from lerobot_activearena.tasks.draft import (
     HIDDEN,
     TWO_LEVEL_CLUTTER,
+    TWO_LEVEL_LOWER_CLUTTER_R,
     UPPER_REACH_R,
     Region,
     SamplingError,
@@ -72,6 +74,35 @@ def test_clutter_fills_both_levels(split):
     lower_n, upper_n = TWO_LEVEL_CLUTTER
     extra = split == "ood"
     assert n == len(heights) and upper == upper_n + extra and len(heights) - upper == lower_n + 2 * extra
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    lower_r = [
+        np.hypot(*data.body(c.body).xpos[:2]) for c in info.clutter if _z(model, c.body) < UPPER_TOP - 0.01
+    ]
+    assert min(lower_r) >= TWO_LEVEL_LOWER_CLUTTER_R[0]  # beyond the sweep of the arms' two-level home
+
+
+def test_the_arms_home_is_clear_of_the_upper_band():
+    """HOME_ARM would put the grippers inside the slab; the two-level home holds them under it."""
+    from lerobot_activearena.sim.simulator import ActiveArenaSim
+
+    d = _draft()
+    model, info = d.builder.compile()
+    sim = ActiveArenaSim(model, info)
+    for yaw in (0.0, -1.0, 1.0):  # the torso sweeps the arms round at home
+        action = sim.home_action()
+        action[TORSO_YAW] = yaw
+        for _ in range(25):
+            sim.step(action)
+        slab = model.body("fan_level_1").id
+        touching = [
+            k
+            for k in range(sim.data.ncon)
+            if slab
+            in (model.geom_bodyid[sim.data.contact[k].geom1], model.geom_bodyid[sim.data.contact[k].geom2])
+        ]
+        assert touching == [], yaw
+    sim.close()
 
 
 def test_search_views_pitch_up_to_the_upper_band():

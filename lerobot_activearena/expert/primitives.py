@@ -474,13 +474,19 @@ def place_on_upper(
     down = tcp_at(target_xy, z_down)
     for pose in (entry, above, down):
         solve_ik(ctx, side, arm_of(ctx.action, side), pose, grip)
-    yield from arm_goto(ctx, side, entry, grip, gripper=0.0, max_vel=1.0)
-    yield from arm_line(ctx, side, above, grip, 0.0, speed=0.15)
+    yield from arm_goto(ctx, side, entry, grip, gripper=0.0, max_vel=1.6)
+    yield from arm_line(ctx, side, above, grip, 0.0, speed=0.3)
     yield from arm_line(ctx, side, down, grip, 0.0, speed=0.08)
     yield from set_gripper(ctx, side, 1.0, 6)
     ctx.intent.carried = set()
-    yield from arm_line(ctx, side, down + [0, 0, 0.01], grip, 1.0, speed=0.1)
-    yield from arm_line(ctx, side, entry + [0, 0, 0.01], grip, 1.0, speed=0.2)
+    # back out level, the open fingers either side of the object, to inside the band's inner edge,
+    # then drop below the slab: the joint path home must not sweep the fingers through its edge
+    back = entry + [0, 0, down[2] + 0.01 - entry[2]] - 0.05 * u
+    yield from arm_line(ctx, side, back, grip, 1.0, speed=0.35)
+    upper = ctx.sim.info.workspace.level(1)
+    yield from arm_line(
+        ctx, side, [back[0], back[1], upper.top_z - upper.thickness - 0.08], grip, 1.0, speed=0.35
+    )
 
 
 def _turning_carry(ctx: ExpertContext, side: str, pos, rot) -> list[np.ndarray]:

@@ -27,6 +27,9 @@ UPPER_REACH_R = (0.62, 0.72)
 LEVEL_REACH_R = (REACH_R, UPPER_REACH_R)  # a region's default distances per level
 CLUTTER_R = (0.55, 1.0)  # beyond the arms' working band
 UPPER_CLUTTER_R = (0.64, 0.76)  # the upper band, its edges kept clear
+# Lower-fan clutter of a two-level scene starts further out: the arms' two-level home holds the
+# grippers at r 0.57 m, 0.19 m over the table, and the torso sweeps them round at that radius.
+TWO_LEVEL_LOWER_CLUTTER_R = (0.66, 1.0)
 # Clutter per level of a two-level scene (ID; OOD adds two below, one above).
 TWO_LEVEL_CLUTTER = (5, 3)
 FAN_ANGLES = (20.0, 160.0)  # the lower fan's placement span (20 deg margin at each end)
@@ -252,7 +255,10 @@ class SceneDraft:
         pool = [c for c in categories(None if ood else "distractor") if ASSETS[c].family not in present]
         if self.workspace.two_level:
             lower, upper = TWO_LEVEL_CLUTTER
-            plan = [(CLUTTER, lower + 2 * ood), (Region(r=UPPER_CLUTTER_R, level=1), upper + ood)]
+            plan = [
+                (Region(r=TWO_LEVEL_LOWER_CLUTTER_R), lower + 2 * ood),
+                (Region(r=UPPER_CLUTTER_R, level=1), upper + ood),
+            ]
         else:
             plan = [(CLUTTER, int(self.rng.integers(9, 14) if ood else self.rng.integers(4, 8)))]
         placed = k = 0
