@@ -41,6 +41,12 @@ def upright(sim: ActiveArenaSim, body: str, max_tilt_deg: float = 15.0) -> bool:
     return bool(z[2] >= math.cos(math.radians(max_tilt_deg)))
 
 
+def on_a_face(sim: ActiveArenaSim, body: str, max_tilt_deg: float = 15.0) -> bool:
+    """Resting on one of its box faces (any of the body's axes vertical): a block set down on its side."""
+    rot = sim.data.body(body).xmat.reshape(3, 3)
+    return bool(np.abs(rot[2]).max() >= math.cos(math.radians(max_tilt_deg)))
+
+
 def knocked_over(sim: ActiveArenaSim, body: str, tilt_deg: float = 45.0) -> bool:
     return not upright(sim, body, tilt_deg)
 
@@ -298,6 +304,12 @@ def footprint_points(
 def centre_point(sim: ActiveArenaSim, obj: ObjectInfo) -> np.ndarray:
     """World centre of ``obj``'s bounding box."""
     return body_point(sim, obj.body, obj.center_offset)
+
+
+def bottom_z(sim: ActiveArenaSim, obj: ObjectInfo) -> float:
+    """Height of the lowest point of ``obj``'s bounding box, whichever way it lies."""
+    _, rot = _pose(sim, obj)
+    return float(centre_point(sim, obj)[2] - np.abs(rot[2]) @ np.asarray(obj.half_extents, float))
 
 
 def top_point(sim: ActiveArenaSim, obj: ObjectInfo) -> np.ndarray:

@@ -25,6 +25,9 @@ from .draft import HIDDEN, REACH, Region
 
 SPACING = 0.085  # m between neighbouring block centres in the final row
 ANCHOR = Region(angle=(50.0, 150.0))
+# Two-level variants: the anchor on the upper band (the release's row is at 0.68 m), where the
+# expert sets blocks down with the horizontal side entry (``primitives.place_on_upper``).
+UPPER_ANCHOR = Region(r=(0.66, 0.70), angle=(50.0, 150.0), level=1)
 
 
 def right_of(point, spacing: float = SPACING) -> np.ndarray:
@@ -34,16 +37,18 @@ def right_of(point, spacing: float = SPACING) -> np.ndarray:
     return np.array([r * math.cos(b), r * math.sin(b)])
 
 
-def neighbours(sim, a: str, b: str) -> bool:
-    """``b`` is ``a``'s right-hand neighbour in a row."""
+def neighbours(sim, scene, a: str, b: str) -> bool:
+    """``b`` is ``a``'s right-hand neighbour in a row: on the same surface (their lowest points
+    within 1 cm in height, whichever face each rests on)."""
     pa, pb = predicates.position(sim, a), predicates.position(sim, b)
     ra, rb = predicates.polar(pa)[0], predicates.polar(pb)[0]
     gap = float(np.linalg.norm(pa[:2] - pb[:2]))
+    za, zb = (predicates.bottom_z(sim, scene.obj(x)) for x in (a, b))
     return (
         predicates.right_of(sim, b, a)
         and 0.05 <= gap <= 0.15
         and abs(ra - rb) <= 0.06
-        and abs(pa[2] - pb[2]) < 0.01
+        and abs(za - zb) < 0.01
     )
 
 
@@ -55,6 +60,7 @@ class RankBlocksTask(Task):
     blocks: tuple[str, str, str]  # the anchor first, then left to right
     lift, hover = 0.10, 0.10  # m: how high the expert lifts a block, and comes in above its set-down
     approach = 0.12  # m above the grasp point the gripper comes in from
+    upper_share = 0.0  # two-level variants: the share of episodes with the row on the upper band
 
     def block_options(self, draft) -> list[dict]:
         raise NotImplementedError
@@ -63,18 +69,22 @@ class RankBlocksTask(Task):
         rng = draft.rng
         anchor, second, third = self.blocks
         options = self.block_options(draft)
+        level = 0
+        if self.upper_share:  # two-level: the row is on the upper band or the lower fan
+            level = int(rng.random() < self.upper_share)
+            draft.params["row_level"] = level
         _, r0, a0 = draft.place(
             "block",
             anchor,
             anchor.replace("_", " "),
-            ANCHOR,
+            UPPER_ANCHOR if level else ANCHOR,
             yaw=float(rng.uniform(-0.4, 0.4)),
             arms=ARMS,
             **options[0],
         )
         step = math.degrees(SPACING / r0)
         for k in (1, 2):
-            draft.reserve(r0, a0 - k * step, 0.05)
+            draft.reserve(r0, a0 - k * step, 0.05, level)
         hidden_first = bool(rng.integers(0, 2))
         for name, hidden, opts in ((second, hidden_first, options[1]), (third, not hidden_first, options[2])):
             draft.place(
@@ -91,9 +101,14 @@ class RankBlocksTask(Task):
     def evaluate(self, sim, scene, monitor):
         a, b, c = self.blocks
         return {
-            f"{short(b)}_right_of_{short(a)}": neighbours(sim, a, b),
-            f"{short(c)}_right_of_{short(b)}": neighbours(sim, b, c),
-            "all_upright": all(predicates.upright(sim, x, 20.0) for x in self.blocks),
+            f"{short(b)}_right_of_{short(a)}": neighbours(sim, scene, a, b),
+            f"{short(c)}_right_of_{short(b)}": neighbours(sim, scene, b, c),
+            # a block set down with the side entry lies on a side face
+            **(
+                {"all_on_a_face": all(predicates.on_a_face(sim, x, 20.0) for x in self.blocks)}
+                if self.upper_share
+                else {"all_upright": all(predicates.upright(sim, x, 20.0) for x in self.blocks)}
+            ),
             "all_released": all(predicates.released(sim, x) for x in self.blocks),
         }
 
@@ -111,7 +126,10 @@ class RankBlocksTask(Task):
                 target = right_of(ctx.memory[ref])
                 yield from primitives.face_for_arm(ctx, np.array([*target, ctx.memory[ref][2]]), side)
                 primitives.start_action(ctx, {block, ref})
-                yield from primitives.place(ctx, side, block, target, ctx.bottom_z(ref), hover=self.hover)
+                if scene.params.get("row_level"):
+                    yield from primitives.place_on_upper(ctx, side, block, target, ctx.bottom_z(ref))
+                else:
+                    yield from primitives.place(ctx, side, block, target, ctx.bottom_z(ref), hover=self.hover)
                 ctx.memory[block] = ctx.center(block)  # the expert knows where it put it
                 yield from primitives.retreat(ctx, side)
         yield from primitives.hold(ctx, 3)
