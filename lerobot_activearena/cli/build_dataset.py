@@ -76,8 +76,9 @@ def main(argv: list[str] | None = None) -> None:
     if args.executor == "slurm" and not args.slurm:
         p.error('--executor slurm needs --slurm \'{"partition": ..., "time": ...}\'')
     try:
-        plan = make_plan(args)
-        recipe = recipe_release(args)
+        recipe = load_recipe(args.recipe) if args.recipe else None
+        plan = make_plan(args, recipe)
+        release = recipe_release(args, recipe)
     except (ValueError, FileNotFoundError) as exc:
         p.error(str(exc))
     summary = build_dataset(
@@ -91,7 +92,7 @@ def main(argv: list[str] | None = None) -> None:
         keep_shards=args.keep_shards,
         push_to_hub=args.push_to_hub,
         private=args.private,
-        recipe=recipe,
+        recipe=release,
         command=shlex.join(["activearena-build-dataset", *(sys.argv[1:] if argv is None else argv)]),
     )
     if summary is None:
@@ -103,22 +104,24 @@ def main(argv: list[str] | None = None) -> None:
     )
 
 
-def recipe_release(args: argparse.Namespace) -> dict | None:
+def recipe_release(args: argparse.Namespace, recipe: dict | None) -> dict | None:
     """The recipe's file name and description, and which of its values the command line replaced
     (the dataset card says so)."""
-    if not args.recipe:
+    if recipe is None:
         return None
     overrides = [f"--{k.replace('_', '-')}" for k in RECIPE_KEYS if getattr(args, k, None) is not None]
     return {
         "file": args.recipe.name,
-        "description": load_recipe(args.recipe)["description"],
+        "description": recipe["description"],
         "overrides": overrides,
     }
 
 
-def make_plan(args: argparse.Namespace) -> BuildPlan:
-    """The build plan from the recipe (if any) with the command line's flags on top."""
-    recipe = load_recipe(args.recipe) if args.recipe else dict(RECIPE_KEYS)
+def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan:
+    """The build plan from the recipe (``load_recipe``'s; default: ``args.recipe`` if given) with the
+    command line's flags on top."""
+    if recipe is None:
+        recipe = load_recipe(args.recipe) if args.recipe else dict(RECIPE_KEYS)
 
     def pick(name):
         value = getattr(args, name)

@@ -9,9 +9,8 @@ from collections import Counter, defaultdict
 from pathlib import Path
 
 from ..tasks import CATEGORIES, get_task
-from .features import COLUMN_DOCS, IMAGE_KEY
+from .features import COLUMN_DOCS, IMAGE_KEY, META_DIR
 
-META_DIR = "meta/activearena"
 LICENSE = "apache-2.0"
 TAGS = ["activearena", "active-perception", "mujoco", "simulation", "bimanual"]
 PAPER_TITLE = "ActiveArena: Benchmarking and Understanding Active Perception in Robotic Manipulation"

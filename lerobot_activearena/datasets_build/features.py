@@ -13,6 +13,7 @@ FPS = CONTROL_HZ
 MAX_OBJECTS = 16  # object-mask width; slots past a task's object count hold MASK_PAD
 MASK_PAD = -1
 IMAGE_KEY = "observation.images.head"
+META_DIR = "meta/activearena"  # the build's own metadata inside the dataset root
 KEYFRAME_COLUMNS = ("subtask_keyframe", "motion_keyframe", "chunk_keyframe")
 
 # Paper field -> column name. Only ``subtask`` is renamed: LeRobot reserves ``subtask`` for text.

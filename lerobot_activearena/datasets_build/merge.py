@@ -11,10 +11,9 @@ from importlib.metadata import version
 from pathlib import Path
 
 from .card import write_card
+from .features import META_DIR
 from .plan import BuildPlan
 from .shard import SHARD_DONE, is_complete, shard_dir
-
-META_DIR = "meta/activearena"
 
 
 def merge_shards(plan: BuildPlan, work_dir: Path, root: Path, release: dict | None = None) -> dict:

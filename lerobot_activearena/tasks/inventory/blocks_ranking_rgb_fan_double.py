@@ -18,31 +18,13 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...sim.assets.task_props import BLOCK_COLORS
-from ..base import Subtask
-from ..ranking import RankBlocksTask
-
-HALF = 0.025
+from .blocks_ranking_rgb_rotate_view import BlocksRankingRgbRotateView
 
 
-class BlocksRankingRgbFanDouble(RankBlocksTask):
+class BlocksRankingRgbFanDouble(BlocksRankingRgbRotateView):
+    """The single-level row's instruction, subtasks and blocks on the two-level workspace."""
+
     name = "blocks_ranking_rgb_fan_double"
-    category = "ML"
-    instruction = "Arrange the red, green, and blue blocks from left to right."
-    subtasks = (
-        Subtask(1, "pick_green_block", "locate and grasp the green block", 0),
-        Subtask(
-            2, "place_green_block_right_of_red", "place the green block to the right of the red block", 1
-        ),
-        Subtask(3, "pick_blue_block", "locate and grasp the blue block", 2),
-        Subtask(
-            4, "place_blue_block_right_of_green", "place the blue block to the right of the green block", 3
-        ),
-    )
     max_episode_steps = 480
     workspace = "two_level"
     upper_share = 0.7
-    blocks = ("red_block", "green_block", "blue_block")
-
-    def block_options(self, draft):
-        return [{"rgba": BLOCK_COLORS[b.split("_")[0]], "half": (HALF,) * 3} for b in self.blocks]

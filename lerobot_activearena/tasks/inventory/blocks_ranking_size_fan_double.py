@@ -20,33 +20,16 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ..base import Subtask
 from ..ranking import RankBlocksTask
 from .blocks_ranking_size_rotate_view import BlocksRankingSizeRotateView
 
 
-class BlocksRankingSizeFanDouble(RankBlocksTask):
+class BlocksRankingSizeFanDouble(BlocksRankingSizeRotateView):
+    """The single-level row's instruction, subtasks, blocks and sizes on the two-level workspace."""
+
     name = "blocks_ranking_size_fan_double"
-    category = "ML"
-    instruction = "Arrange the large, medium, and small blocks from left to right."
-    subtasks = (
-        Subtask(1, "pick_medium_block", "locate and grasp the medium block", 0),
-        Subtask(
-            2,
-            "place_medium_block_right_of_large",
-            "place the medium block to the right of the large block",
-            1,
-        ),
-        Subtask(3, "pick_small_block", "locate and grasp the small block", 2),
-        Subtask(
-            4,
-            "place_small_block_right_of_medium",
-            "place the small block to the right of the medium block",
-            3,
-        ),
-    )
     max_episode_steps = 463
     workspace = "two_level"
     upper_share = 0.7
-    blocks = BlocksRankingSizeRotateView.blocks
-    block_options = BlocksRankingSizeRotateView.block_options
+    # the default carrying heights (the single-level row lowers them for its 303-step limit)
+    lift, hover, approach = RankBlocksTask.lift, RankBlocksTask.hover, RankBlocksTask.approach
