@@ -1,8 +1,8 @@
 """The contract every registered task keeps, parametrised over the whole registry (a new task module
 is tested here with no list to edit): deterministic sampling that satisfies the design principles,
 a valid shipped seed manifest, no success at reset, an expert that succeeds within the step limit.
-gymnasium's env checker runs through gym.make in test_gym_ids.py; the adversaries' side of validity
-is in test_validity.py."""
+gymnasium's env checker runs through gym.make in test_gym_ids.py (once per workspace); the
+adversaries' side of validity is in test_validity.py."""
 
 import numpy as np
 import pytest
