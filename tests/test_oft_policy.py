@@ -463,13 +463,15 @@ def test_presets_match_the_papers_run_names():
             "oft_subtask_motion_6_ws",
             "oft_subtask_subtask_12_ws",
             "oft_subtask_subtask_6_ws",
+            "oft_subtask_action_12_ws_fixed",  # ActiveArena-Fixed
         ]
     )
     memory_of = {"action": "chunk", "no": "none", "motion": "motion", "subtask": "subtask"}
     for name in names:
-        _, think, history, k, state = name.split("_")
+        _, think, history, k, state, *fixed = name.split("_")
         policy = json.loads((CONFIGS / f"{name}.json").read_text())["policy"]
         cfg = ActiveArenaOFTConfig(**{k2: v for k2, v in policy.items() if k2 != "type"}, device="cpu")
+        assert cfg.fixed_view == (fixed == ["fixed"])
         assert cfg.think == {"no": "none"}.get(think, think) and cfg.memory == memory_of[history]
         assert cfg.history == int(k) and cfg.use_state == (state == "ws")
         expected = [-16 * i for i in range(int(k), 0, -1)] + [0] if history == "action" else None
@@ -537,6 +539,59 @@ def test_lerobot_train_then_lerobot_eval(vlm, root, tmp_path):
     mine = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
     for key in ("scene_seed", "steps", "success", "failure_state", "view_targets"):
         assert mine[key] == theirs[key], key
+
+
+def test_the_fixed_preset_learns_the_arms_and_holds_the_view_at_home(vlm, root, tmp_path):
+    """ActiveArena-Fixed: the OFT head regresses the 16 arm and gripper dimensions only; every action
+    the checkpoint's postprocessor returns has the torso yaw and head pitch at home, and it plays
+    through activearena-eval with the fixed-view env config."""
+    from lerobot_activearena.sim.embodiment import HOME_HEAD_PITCH, HOME_TORSO_YAW
+
+    train_dir = tmp_path / "train"
+    cfg = TrainPipelineConfig.from_pretrained(
+        CONFIGS / "oft_subtask_action_12_ws_fixed.json",
+        cli_args=[
+            f"--dataset.repo_id={REPO}",
+            f"--dataset.root={root}",
+            f"--policy.vlm_path={vlm}",
+            "--policy.device=cpu",
+            "--policy.state_hidden=32",
+            "--policy.history=2",
+            "--steps=2",
+            "--batch_size=2",
+            "--num_workers=0",
+            "--save_freq=2",
+            "--log_freq=1",
+            f"--output_dir={train_dir}",
+        ],
+    )
+    lerobot_train(cfg)
+    ckpt = train_dir / "checkpoints" / "last" / "pretrained_model"
+    policy_cfg = PreTrainedConfig.from_pretrained(ckpt)
+    assert policy_cfg.fixed_view and policy_cfg.predicted_action_dim == 16
+    policy = ActiveArenaOFTPolicy.from_pretrained(ckpt, config=policy_cfg)
+    assert policy.head.out[-1].out_features == 16
+    _, post = make_pre_post_processors(policy_cfg, pretrained_path=str(ckpt))
+    actions = post(torch.randn(3, 18))
+    assert actions.shape == (3, 18) and not torch.equal(actions[:, :16], torch.zeros(3, 16))
+    assert (actions[:, 16] == HOME_TORSO_YAW).all() and (actions[:, 17] == HOME_HEAD_PITCH).all()
+
+    run = tmp_path / "protocol"
+    activearena_eval(
+        [
+            f"--config_path={CONFIGS.parent / 'env' / 'activearena_fixed_id.json'}",
+            f"--policy.path={ckpt}",
+            "--policy.device=cpu",
+            "--tasks=click_bell_rotate_view",
+            "--env.episode_length=16",
+            "--episodes=1",
+            "--videos=0",
+            f"--out={run}",
+        ]
+    )
+    record = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
+    assert record["steps"] == 16
+    np.testing.assert_allclose(np.asarray(record["view_targets"], float).reshape(-1, 2), [[0.0, 1.0]] * 16)
 
 
 def _changed_fraction(vlm, root, **precision):

@@ -14,7 +14,7 @@ from lerobot.optim.schedulers import CosineDecayWithWarmupSchedulerConfig
 from lerobot.utils.constants import ACTION, OBS_STATE
 
 from ...annotations.keyframes import STRIDE, WRITE_POLICIES
-from ...sim.action import ACTION_DIM
+from ...sim.action import ACTION_DIM, HEAD_PITCH, TORSO_YAW
 from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
 IMAGE_KEY = "observation.images.head"
@@ -22,6 +22,7 @@ THINK_TARGETS = ("none", "instruction", "subtask")
 DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
 WEIGHT_DTYPES = ("float32", "bfloat16")
+VIEW_DIMS = slice(TORSO_YAW, HEAD_PITCH + 1)  # the active-viewpoint dimensions: the action's last two
 
 
 @PreTrainedConfig.register_subclass("activearena_oft")
@@ -33,6 +34,9 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
     memory: str = "chunk"
     history: int = 12
     use_state: bool = True
+    # ActiveArena-Fixed: learn only the 16 arm and gripper dimensions; every output chunk holds the
+    # torso yaw and head pitch at home (evaluate with configs/env/activearena_fixed_*.json)
+    fixed_view: bool = False
     think: str = "subtask"  # auxiliary <think> target: none | instruction | subtask
     lm_loss_weight: float = 0.1
     subtask_max_tokens: int = 32  # memory=subtask at evaluation: greedy <think> decoding budget per chunk
@@ -160,8 +164,18 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
         act = self.output_features.get(ACTION)
         if act is None:
             raise ValueError("activearena_oft needs an 'action' output feature")
+        if self.fixed_view and self.action_dim != ACTION_DIM:
+            raise ValueError(
+                f"fixed_view=true drops the torso and head dimensions of the {ACTION_DIM}-D ActiveArena action; "
+                f"this dataset's action is {self.action_dim}-D"
+            )
 
     @property
     def action_dim(self) -> int:
         act = self.output_features.get(ACTION)
         return int(act.shape[0]) if act is not None else ACTION_DIM
+
+    @property
+    def predicted_action_dim(self) -> int:
+        """The dimensions the head predicts: all, or (fixed_view) the arms' and grippers' 16."""
+        return VIEW_DIMS.start if self.fixed_view else self.action_dim

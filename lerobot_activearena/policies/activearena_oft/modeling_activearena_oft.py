@@ -89,7 +89,9 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         width = vc.text_config.hidden_size
         self.max_frames = config.history + 1
         self.action_queries = nn.Parameter(torch.randn(config.chunk_size, width) * 0.02)
-        self.head = MLPResNet(width, config.head_hidden_mult * width, config.action_dim, config.head_blocks)
+        self.head = MLPResNet(
+            width, config.head_hidden_mult * width, config.predicted_action_dim, config.head_blocks
+        )
         state_ft = config.input_features.get(OBS_STATE)
         self.state_encoder = (
             StateEncoder(int(state_ft.shape[0]), config.state_hidden, width, self.max_frames)
@@ -270,7 +272,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             think,
             batch.get(THINK_MASK),
         )
-        pred, target = pred.float(), batch[ACTION]
+        pred, target = pred.float(), batch[ACTION][..., : self.config.predicted_action_dim]
         keep = (
             ~batch["action_is_pad"]
             if "action_is_pad" in batch
@@ -364,6 +366,8 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                 self._subtask[b] = sub
         else:
             pred = self._encode(*args, vision_cache=cache)[0]
+        if self.config.fixed_view:  # placeholders: the postprocessor sets torso and head to home
+            pred = nn.functional.pad(pred, (0, self.config.action_dim - pred.shape[-1]))
         if cache is not None:  # the current frames' features, for a memory write at this step
             self._current_vision = {
                 b: entry.get("vision") for (b, slot), entry in cache.items() if slot == valid.shape[1] - 1

@@ -11,10 +11,18 @@ from typing import Any
 import torch
 from lerobot.configs.types import PipelineFeatureType, PolicyFeature
 from lerobot.lerobot_types import TransitionKey
-from lerobot.processor import PolicyAction, PolicyProcessorPipeline, ProcessorStep, ProcessorStepRegistry
+from lerobot.processor import (
+    PolicyAction,
+    PolicyActionProcessorStep,
+    PolicyProcessorPipeline,
+    ProcessorStep,
+    ProcessorStepRegistry,
+)
 from lerobot.processor.factory import make_default_policy_processor_steps, make_policy_processor_pipelines
 from lerobot.utils.constants import OBS_STATE
 
+from ...sim.action import HEAD_PITCH, TORSO_YAW
+from ...sim.embodiment import HOME_HEAD_PITCH, HOME_TORSO_YAW
 from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from .configuration_activearena_oft import IMAGE_KEY, ActiveArenaOFTConfig
 from .vlm_loading import load_from_vlm_path
@@ -202,6 +210,22 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         return features
 
 
+@ProcessorStepRegistry.register(name="activearena_hold_view_at_home")
+@dataclass
+class HoldViewAtHomeStep(PolicyActionProcessorStep):
+    """ActiveArena-Fixed's output: the torso yaw and head pitch of every action are the home pose
+    (the policy learns the arms and grippers only)."""
+
+    def action(self, action: PolicyAction) -> PolicyAction:
+        action = action.clone()
+        action[..., TORSO_YAW] = HOME_TORSO_YAW
+        action[..., HEAD_PITCH] = HOME_HEAD_PITCH
+        return action
+
+    def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
+        return features
+
+
 def make_activearena_oft_pre_post_processors(
     config: ActiveArenaOFTConfig,
     dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
@@ -230,5 +254,5 @@ def make_activearena_oft_pre_post_processors(
     )
     return make_policy_processor_pipelines(
         input_steps=[s.rename_observations, s.add_batch_dim, annotations, inputs, s.normalize, s.to_device],
-        output_steps=[s.unnormalize, s.to_cpu],
+        output_steps=[s.unnormalize, *([HoldViewAtHomeStep()] if config.fixed_view else []), s.to_cpu],
     )
