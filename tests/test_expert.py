@@ -212,3 +212,51 @@ def test_pick_and_place_carries_to_a_spot_and_names_bad_arguments(monkeypatch):
     ):
         with pytest.raises(ValueError, match=match):
             next(routines.pick_and_place(None, 0, **bad))
+
+
+def test_a_trailing_retreat_runs_alongside_and_guards_its_arm():
+    """``retreat(trailing=True)``: the arm goes home over the frames the script spends on the other
+    arm; commanding it meanwhile is an error; ``halt`` stops it where it is; ``await_trailing``
+    waits for the rest."""
+    from lerobot_activearena.expert import primitives
+    from lerobot_activearena.expert.context import ExpertContext, ExpertError
+    from lerobot_activearena.expert.kinematics import shared_kinematics
+    from lerobot_activearena.expert.motion import arm_of
+    from lerobot_activearena.sim.embodiment import HOME_ARM
+    from lerobot_activearena.sim.perception import PerceptionMemory
+    from lerobot_activearena.sim.scene import SceneBuilder
+    from lerobot_activearena.sim.simulator import ActiveArenaSim
+
+    model, info = SceneBuilder().compile()
+    sim = ActiveArenaSim(model, info)
+    ik, gaze = shared_kinematics()
+
+    def context_with_left_arm_out():
+        ctx = ExpertContext(sim, [], PerceptionMemory(sim, 0), ik, gaze)
+        out = HOME_ARM["left"] + 0.4
+        acts = list(primitives.move_arm_joint(ctx, "left", out, max_vel=2.0))
+        np.testing.assert_allclose(arm_of(acts[-1], "left"), out)
+        return ctx, out
+
+    ctx, out = context_with_left_arm_out()
+    assert list(primitives.retreat(ctx, "left", trailing=True)) == []  # no frame of its own
+    with pytest.raises(ExpertError, match="trailing motion"):
+        next(primitives.move_arm_joint(ctx, "left", out))
+    right_goal = HOME_ARM["right"] - 0.3
+    acts = np.array(list(primitives.move_arm_joint(ctx, "right", right_goal, max_vel=1.0)))
+    left = np.array([arm_of(a, "left") for a in acts])
+    assert np.abs(np.diff(left, axis=0)).max() > 0, "the left arm moves while the right one does"
+    np.testing.assert_allclose(arm_of(acts[-1], "right"), right_goal)
+    list(primitives.await_trailing(ctx))
+    np.testing.assert_allclose(arm_of(ctx.action, "left"), HOME_ARM["left"])
+    assert not ctx.trailing
+
+    ctx, out = context_with_left_arm_out()
+    list(primitives.retreat(ctx, "left", trailing=True))
+    list(primitives.hold(ctx, 3))
+    primitives.halt(ctx, "left")
+    stopped = arm_of(ctx.action, "left")
+    assert 0 < np.abs(stopped - out).max() < np.abs(HOME_ARM["left"] - out).max()
+    list(primitives.hold(ctx, 3))
+    np.testing.assert_allclose(arm_of(ctx.action, "left"), stopped)  # halted: it stays
+    list(primitives.move_arm_joint(ctx, "left", out))  # and is free to command again

@@ -2,6 +2,7 @@
 and where it must not (poses as placed, contacts from ``mj_forward``), and the metadata's own
 validation: every registered asset declares what it refers to, and a wrong declaration is named."""
 
+import mujoco
 import numpy as np
 import pytest
 
@@ -91,6 +92,40 @@ def test_in_container_means_over_the_floor_and_below_the_rim():
     assert predicates.in_container(sim, o["inside"], o["box"])
     assert not predicates.in_container(sim, o["on_rim"], o["box2"])
     assert not predicates.in_container(sim, o["beside"], o["box2"])
+
+
+def _lay_down(sim, body: str, centre, roll: float):
+    """Put a free body's axis horizontal (along world x), rolled ``roll`` rad about it, its centre at
+    ``centre``."""
+    jnt = sim.model.body(body).jntadr[0]
+    adr = sim.model.jnt_qposadr[jnt]
+    lie, spin = np.zeros(4), np.zeros(4)
+    mujoco.mju_axisAngle2Quat(lie, [0.0, 1.0, 0.0], np.pi / 2)  # body z -> world x
+    mujoco.mju_axisAngle2Quat(spin, [0.0, 0.0, 1.0], roll)  # about the can's own axis
+    quat = np.zeros(4)
+    mujoco.mju_mulQuat(quat, lie, spin)
+    sim.data.qpos[adr : adr + 3] = centre
+    sim.data.qpos[adr + 3 : adr + 7] = quat
+    mujoco.mj_forward(sim.model, sim.data)
+
+
+@pytest.mark.parametrize("roll", [0.0, np.pi / 4])
+def test_in_container_reads_the_lowest_point_of_a_can_on_its_side(roll):
+    """A can lying in the bread basket, rolled any way about its axis: its lowest point is its
+    cylinder's, not the corner of its bounding box (which hangs below the floor at 45 deg)."""
+    sim, o = _scene(("bread_basket", "basket", _at(), 0.0, {}), ("can", "can", _at(dx=0.3), 0.0, {}))
+    can, basket = o["can"], o["basket"]
+    radius = 0.033
+    floor = sim.data.body("basket").xpos[2] + basket.functional.container.floor
+    body_centre = np.array([AHEAD[0], AHEAD[1], floor + radius + 0.0005])
+    # the can's body origin is its bottom; its centre is half its length further along the axis
+    _lay_down(sim, "can", body_centre - [can.center_offset[2], 0.0, 0.0], roll)
+    assert predicates.lowest_z(sim, can) == pytest.approx(floor + 0.0005, abs=1e-6)
+    assert predicates.in_container(sim, can, basket, any_face=True)
+    overshoot = predicates.footprint_points(sim, can, lowest_face=True)[:, 2].min() - floor
+    assert (overshoot < -0.01) == (roll > 0)  # the box's estimate, the reason for any_face
+    _lay_down(sim, "can", body_centre + [-can.center_offset[2], 0.0, 0.06], roll)  # lying on the rim
+    assert not predicates.in_container(sim, can, basket, any_face=True)
 
 
 def test_stacked_on_needs_the_top_block_centred_on_the_lower_one():

@@ -63,6 +63,19 @@ def test_the_column_and_the_band_edges_are_kept_clear():
         SceneDraft("id", np.random.default_rng(0)).place("block", "b", "block", UPPER)
 
 
+def test_an_oblong_object_fits_the_band_by_its_radial_reach():
+    """The bread basket's footprint circle (11 cm) does not fit the 20 cm band at 0.70 m; along the
+    radius its long side reaches 9.9 cm either way (give or take its yaw), which does."""
+    from lerobot_activearena.tasks.inventory.place_object_basket_fan_double import BASKET_HALF_DEPTH
+
+    d = _draft()
+    with pytest.raises(SamplingError):
+        d.place("bread_basket", "b", "bread basket", UPPER, r=0.70, angle=60.0, tries=3)
+    d.place("bread_basket", "b", "bread basket", UPPER, r=0.70, angle=60.0, half_depth=BASKET_HALF_DEPTH)
+    with pytest.raises(ValueError, match="half_depth"):
+        d.place("bread_basket", "c", "bread basket", UPPER, r=0.70, angle=120.0, half_depth=0.2)
+
+
 @pytest.mark.parametrize("split", ["id", "ood"])
 def test_clutter_fills_both_levels(split):
     d = _draft(split, seed=3)

@@ -13,6 +13,7 @@ from ..sim.perception import PerceptionMemory
 from ..sim.simulator import ActiveArenaSim
 from .gaze import Gaze
 from .ik import ArmIK
+from .motion import with_arm
 
 
 class ExpertError(RuntimeError):
@@ -43,6 +44,9 @@ class ExpertContext:
         self.explored: set[int] = set()  # sector ids (indices into ``views``) swept so far
         self.notes: dict = {}  # what the expert inferred (colours, counts), for the sidecar
         self.frame = 0  # index of the next emitted action (= the episode frame it is applied at)
+        # arm side -> (joint waypoints left, gripper) of a motion it makes while the script commands
+        # something else (an arm going home while the other one works)
+        self.trailing: dict[str, tuple[list[np.ndarray], float | None]] = {}
 
     @contextmanager
     def subtask(self, k: int):
@@ -92,5 +96,16 @@ class ExpertContext:
         return float(self.action[HEAD_PITCH])
 
     def emit(self) -> np.ndarray:
+        for side, (path, gripper) in list(self.trailing.items()):
+            self.action = with_arm(self.action, side, path.pop(0), gripper)
+            if not path:
+                del self.trailing[side]
         self.frame += 1
         return self.action.copy()
+
+    def require_idle(self, side: str) -> None:
+        """Raise if the ``side`` arm is still making a trailing motion (``primitives.await_trailing``)."""
+        if side in self.trailing:
+            raise ExpertError(
+                f"the {side} arm is commanded while its trailing motion runs: await or halt it first"
+            )

@@ -108,6 +108,13 @@ class ArmIK:
         site = self.configuration.data.site(embodiment.TCP_SITES[side])
         return site.xpos.copy(), site.xmat.reshape(3, 3).copy()
 
+    def shoulder(self, side: str, torso_yaw: float) -> np.ndarray:
+        """World position of the ``side`` arm's first joint at torso yaw ``torso_yaw``."""
+        q = self.model.qpos0.copy()
+        q[self._other_qadr["torso"]] = torso_yaw
+        self.configuration.update(q)
+        return self.configuration.data.body(f"{embodiment.PREFIX}arm_{side}_link_1").xpos.copy()
+
 
 def rot_z(angle: float) -> np.ndarray:
     """Rotation by ``angle`` rad about the world vertical."""

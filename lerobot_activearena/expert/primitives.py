@@ -118,6 +118,17 @@ def hold(ctx: ExpertContext, steps: int) -> Actions:
         yield ctx.emit()
 
 
+def await_trailing(ctx: ExpertContext, side: str | None = None) -> Actions:
+    """Hold until the ``side`` arm's trailing motion (None: every arm's) has ended."""
+    while (side in ctx.trailing) if side is not None else ctx.trailing:
+        yield ctx.emit()
+
+
+def halt(ctx: ExpertContext, side: str) -> None:
+    """Stop the ``side`` arm's trailing motion where it is (it is needed again: no need to go home)."""
+    ctx.trailing.pop(side, None)
+
+
 def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
     """Find object ``i``: if it was seen before, turn to where it was; else sweep unexplored sectors
     nearest-first (explored ones last), stop as soon as it is visible, then centre it."""
@@ -203,6 +214,7 @@ def move_arm_joint(
     ctx: ExpertContext, side: str, q_goal, gripper: float | None = None, max_vel: float = 1.0
 ) -> Actions:
     """The paper's move_joint: linear joint path at <= max_vel rad/s with a smooth time scaling."""
+    ctx.require_idle(side)
     ctx.intent.camera_mode = CAMERA_HOLD
     q0 = arm_of(ctx.action, side)
     for q in interpolate_joints(q0, np.asarray(q_goal, float), max_vel=max_vel):
@@ -250,6 +262,7 @@ def line_path(
 
 
 def follow(ctx: ExpertContext, side: str, path, gripper: float | None = None) -> Actions:
+    ctx.require_idle(side)
     ctx.intent.camera_mode = CAMERA_HOLD
     for q in path:
         ctx.action = with_arm(ctx.action, side, q, gripper)
@@ -269,6 +282,7 @@ def arm_line(
 
 
 def set_gripper(ctx: ExpertContext, side: str, value: float, steps: int) -> Actions:
+    ctx.require_idle(side)
     g = gripper_index(side)
     v0 = ctx.action[g]
     for k in range(1, steps + 1):
@@ -345,11 +359,13 @@ def pick(
     flip_ok: bool = True,
     approach: float = 0.12,
     straight_approach: bool = False,
+    max_vel: float = 1.5,
 ) -> Actions:
     """Top-down grasp of object ``i`` from ``approach`` m above the grasp point, and lift; raises
     ExpertError if it did not come up. ``flip_ok=False`` keeps the finger order given by ``closing``
     (no 180 deg wrist flip). ``straight_approach``: the gripper rises to the approach height and comes in
-    along straight lines (a tall object: the approach's joint path dips and sweeps over it)."""
+    along straight lines (a tall object: the approach's joint path dips and sweeps over it).
+    ``max_vel``: the joints' peak speed (rad/s) on the way to the approach pose."""
     start_action(ctx, {i})
     closing = box_closing_axis(ctx, i) if closing is None else closing
     grasp = grasp_point(ctx, i)
@@ -364,7 +380,7 @@ def pick(
             yield from arm_line(ctx, side, [p[0], p[1], grasp[2] + approach], rot_now, 1.0, speed=0.25)
         yield from arm_line(ctx, side, grasp + [0, 0, approach], rot, 1.0, speed=0.25)
     else:
-        yield from arm_goto(ctx, side, grasp + [0, 0, approach], rot, gripper=1.0)
+        yield from arm_goto(ctx, side, grasp + [0, 0, approach], rot, gripper=1.0, max_vel=max_vel)
     yield from arm_line(ctx, side, grasp, rot, 1.0, speed=0.18)
     yield from set_gripper(ctx, side, 0.0, 10)
     ctx.intent.carried = {i}
@@ -446,16 +462,23 @@ def place_on_upper(
     clearance: float = 0.006,
     entry_r: float = 0.50,
     over: float = 0.03,
+    drop: bool = False,
+    from_shoulder: bool = False,
 ) -> Actions:
     """Set held object ``i`` down on the upper band, where no top-down pose reaches: the wrist turns
     horizontal (approach along the line from the robot's base, fingers closing across it), the
     object comes in at ``entry_r`` m from the base, ``over`` m above its set-down height (below the
     gripper nothing but the slab's edge), slides out over ``target_xy``, is lowered to
-    ``surface_z + clearance`` and released; the gripper backs out the way it came."""
+    ``surface_z + clearance`` and released; the gripper backs out the way it came. ``drop``: release
+    it at the height it came in (into a container, whose walls keep the gripper out).
+    ``from_shoulder``: approach along the line from the arm's shoulder instead (the wrist stays
+    clear of its limits where the arm reaches high across the torso's heading)."""
     p, rot = tcp_pose(ctx, side)
     _, obj_rot = ctx.pose(i)
     centre = ctx.center(i)
-    u = np.array([target_xy[0], target_xy[1], 0.0]) / np.linalg.norm(target_xy[:2])
+    origin = ctx.ik.shoulder(side, ctx.yaw)[:2] if from_shoulder else np.zeros(2)
+    u = np.array([*(np.asarray(target_xy[:2]) - origin), 0.0])
+    u /= np.linalg.norm(u)
     tangent = np.array([-u[1], u[0], 0.0])
     # the fingers keep closing along (+/-) the tangent: the sign nearest the current closing axis
     grip = grasp_rotation(u, tangent if rot[:, 0] @ tangent >= 0 else -tangent)
@@ -469,23 +492,27 @@ def place_on_upper(
         return c - grip @ off
 
     z_down = surface_z + clearance
-    entry = tcp_at(entry_r * u[:2], z_down + over)
+    entry = tcp_at(target_xy[:2] - (np.linalg.norm(target_xy[:2]) - entry_r) * u[:2], z_down + over)
     above = tcp_at(target_xy, z_down + over)
     down = tcp_at(target_xy, z_down)
     for pose in (entry, above, down):
         solve_ik(ctx, side, arm_of(ctx.action, side), pose, grip)
     yield from arm_goto(ctx, side, entry, grip, gripper=0.0, max_vel=1.6)
-    yield from arm_line(ctx, side, above, grip, 0.0, speed=0.3)
-    yield from arm_line(ctx, side, down, grip, 0.0, speed=0.08)
-    yield from set_gripper(ctx, side, 1.0, 6)
+    yield from arm_line(ctx, side, above, grip, 0.0, speed=0.45)
+    if drop:
+        down = above
+    else:
+        yield from arm_line(ctx, side, down, grip, 0.0, speed=0.12)
+    yield from set_gripper(ctx, side, 1.0, 4)
     ctx.intent.carried = set()
     # back out level, the open fingers either side of the object, to inside the band's inner edge,
     # then drop below the slab: the joint path home must not sweep the fingers through its edge
-    back = entry + [0, 0, down[2] + 0.01 - entry[2]] - 0.05 * u
-    yield from arm_line(ctx, side, back, grip, 1.0, speed=0.35)
+    back = entry if drop else entry + [0, 0, down[2] + 0.01 - entry[2]] - 0.05 * u
+    yield from arm_line(ctx, side, back, grip, 1.0, speed=0.5)
     upper = ctx.sim.info.workspace.level(1)
+    below = back - (0.08 if drop else 0.0) * u  # from high up the wrist reaches down only inwards
     yield from arm_line(
-        ctx, side, [back[0], back[1], upper.top_z - upper.thickness - 0.08], grip, 1.0, speed=0.35
+        ctx, side, [below[0], below[1], upper.top_z - upper.thickness - 0.08], grip, 1.0, speed=0.6
     )
 
 
@@ -604,10 +631,16 @@ def carry_and_turn(
         yield ctx.emit()
 
 
-def retreat(ctx: ExpertContext, side: str) -> Actions:
-    """Lift clear and return the arm to its home configuration, gripper open."""
-    ctx.intent.camera_mode = CAMERA_HOLD
+def retreat(ctx: ExpertContext, side: str, trailing: bool = False) -> Actions:
+    """Return the arm to its home configuration, gripper open. ``trailing``: the arm goes home while
+    the script goes on with the head and the other arm (``await_trailing`` waits for it, ``halt``
+    stops it)."""
     home = embodiment.home_arm(ctx.sim.info.workspace.two_level)[side]
+    if trailing:
+        ctx.require_idle(side)
+        ctx.trailing[side] = (interpolate_joints(arm_of(ctx.action, side), home, max_vel=1.6), 1.0)
+        return
+    ctx.intent.camera_mode = CAMERA_HOLD
     yield from move_arm_joint(ctx, side, home, gripper=1.0, max_vel=1.6)
 
 

@@ -182,13 +182,20 @@ class SceneDraft:
         static: bool = False,
         tries: int = 200,
         yaw_jitter: float = 0.25,
+        half_depth: float | None = None,
         **params,
     ):
         """Sample a free spot in ``region`` (or the explicit ``r`` / ``angle``, a value or a range) and
         add the object. ``yaw``: radians, ``'random'``, or None (body +x points radially outward, give or
         take ``yaw_jitter`` rad). ``arms``: the arms that may touch it (checked reachable by the sampler).
+        ``half_depth``: how far the object reaches along the radius either side of its centre, for
+        the upper band's fit (default: its footprint radius; an oblong object placed with a known
+        yaw reaches less far across the band than its footprint circle).
         Returns (ObjectInfo, distance, angle_deg)."""
         foot = ASSETS[category].footprint
+        if half_depth is not None and not 0 < half_depth <= foot:
+            raise ValueError(f"{name}: half_depth {half_depth} must be in (0, footprint {foot}]")
+        depth = foot if half_depth is None else half_depth
         side = region.side if region.side is not None or not region.hidden else self.side()
         r = region.r if r is None else r
         angle = region.angles(side) if angle is None else angle
@@ -201,7 +208,7 @@ class SceneDraft:
             except ValueError as exc:  # an explicit spot off the fan
                 raise SamplingError(f"{name}: {exc}") from exc
             # the upper band is 20 cm deep: the whole footprint must stand on it
-            if region.level > 0 and not level.inner_radius + foot <= rr <= level.outer_radius - foot:
+            if region.level > 0 and not level.inner_radius + depth <= rr <= level.outer_radius - depth:
                 continue
             if not self.is_free(xy, foot, margin, region.level):
                 continue

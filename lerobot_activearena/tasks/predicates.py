@@ -301,6 +301,36 @@ def footprint_points(
     return pos + local @ rot.T
 
 
+def lowest_z(sim: ActiveArenaSim, obj: ObjectInfo) -> float:
+    """Height of the lowest point of ``obj``'s collision geoms (exact for boxes, spheres, cylinders
+    and capsules, whichever way they lie: its bounding box overshoots below a rolled can)."""
+    m, d = sim.model, sim.data
+    body = m.body(obj.body).id
+    low = math.inf
+    for g in np.flatnonzero(m.geom_bodyid == body):
+        if m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0:
+            continue  # visual only
+        t, size = int(m.geom_type[g]), m.geom_size[g]
+        z, rz = d.geom_xpos[g][2], d.geom_xmat[g].reshape(3, 3)[2]  # rz: the world z row
+        if t == mujoco.mjtGeom.mjGEOM_BOX:
+            drop = np.abs(rz) @ size
+        elif t == mujoco.mjtGeom.mjGEOM_SPHERE:
+            drop = size[0]
+        elif t in (mujoco.mjtGeom.mjGEOM_CYLINDER, mujoco.mjtGeom.mjGEOM_CAPSULE):
+            a = abs(rz[2])  # the axis' vertical component
+            rim = size[0] if t == mujoco.mjtGeom.mjGEOM_CAPSULE else size[0] * math.sqrt(max(0.0, 1 - a * a))
+            drop = size[1] * a + rim
+        elif t == mujoco.mjtGeom.mjGEOM_MESH:
+            adr, n = m.mesh_vertadr[m.geom_dataid[g]], m.mesh_vertnum[m.geom_dataid[g]]
+            drop = -float((m.mesh_vert[adr : adr + n] @ rz).min())
+        else:  # ellipsoid and the rest: their bounding box
+            drop = np.abs(rz) @ size
+        low = min(low, float(z - drop))
+    if low == math.inf:
+        raise ValueError(f"{obj.name} has no collision geoms on body {obj.body}")
+    return low
+
+
 def centre_point(sim: ActiveArenaSim, obj: ObjectInfo) -> np.ndarray:
     """World centre of ``obj``'s bounding box."""
     return body_point(sim, obj.body, obj.center_offset)
@@ -350,14 +380,22 @@ def on_support(
     )
 
 
-def in_container(sim: ActiveArenaSim, obj: ObjectInfo, container: ObjectInfo, z_tol: float = 0.01) -> bool:
+def in_container(
+    sim: ActiveArenaSim, obj: ObjectInfo, container: ObjectInfo, z_tol: float = 0.01, any_face: bool = False
+) -> bool:
     """``obj`` is inside ``container`` (``functional.container``): its centre over the inner floor,
-    its base above the floor (- ``z_tol``) and below the rim (inside, not lying across the top)."""
+    its base above the floor (- ``z_tol``) and below the rim (inside, not lying across the top).
+    ``any_face``: the base is the object's lowest point, whichever way it lies (a can on its side)."""
     box = container.functional.container
     if box is None:
         raise ValueError(f"{container.name} ({container.category}) declares no container")
     c = _local(sim, container, centre_point(sim, obj))[0]
-    base = _local(sim, container, footprint_points(sim, obj))[:, 2].min()
+    if any_face:
+        low = centre_point(sim, obj).copy()
+        low[2] = lowest_z(sim, obj)
+        base = _local(sim, container, low)[0, 2]
+    else:
+        base = _local(sim, container, footprint_points(sim, obj))[:, 2].min()
     inside = abs(c[0]) <= box.inner_half[0] and abs(c[1]) <= box.inner_half[1]
     return bool(inside and box.floor - z_tol <= base < box.rim)
 
