@@ -1,0 +1,117 @@
+"""ActiveArena-Plan's text and frame bookkeeping (paper App. "ActiveArena-Plan Architecture").
+
+The planner sees the last <= K + 1 stride-16 frames and the instruction, and answers
+``<think>..</think><subtask>..</subtask><retrieval>[positions]</retrieval>``; a position is a
+retrieval target when its frame lies in [q, q + 16) for an earlier subtask keyframe q. The executor
+(OFT) is prompted with the subtask and sees the retrieved frames of the uncapped stride-16 history
+and the current frame. At run time (``MemoryBank``) each chunk's retrieval adds frames to a
+persistent, de-duplicated bank; a malformed answer keeps the previous subtask and bank and is
+counted.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from ...annotations.keyframes import STRIDE
+
+PLANNER_HISTORY = 12  # K: history frames the planner sees (plus the current one)
+
+
+def stride_frames(x: int, stride: int = STRIDE, history: int | None = PLANNER_HISTORY) -> list[int]:
+    """x, x - s, x - 2s, ... >= 0 in chronological order; the last ``history`` + 1 of them (None: all)."""
+    if x < 0:
+        raise ValueError(f"frame index must be >= 0, got {x}")
+    frames = list(range(x % stride, x + 1, stride))
+    return frames if history is None else frames[-(history + 1) :]
+
+
+def retrieval_positions(frames: list[int], keyframes, stride: int = STRIDE) -> list[int]:
+    """Positions i (chronological, unique) of ``frames`` with q <= frames[i] < q + stride for a
+    subtask keyframe q observed by then (q <= the current, last frame)."""
+    now = frames[-1]
+    seen = [int(q) for q in keyframes if q <= now]
+    return [i for i, f in enumerate(frames) if any(q <= f < q + stride for q in seen)]
+
+
+def executor_memory(x: int, keyframes, stride: int = STRIDE) -> list[int]:
+    """The executor's frames: those of the uncapped stride-16 history in a keyframe window, then the
+    current frame ``x`` (not twice when it is the latest selected one)."""
+    frames = stride_frames(x, stride, history=None)
+    chosen = [frames[i] for i in retrieval_positions(frames, keyframes, stride)]
+    return chosen if chosen and chosen[-1] == x else [*chosen, x]
+
+
+def planner_prompt(instruction: str) -> str:
+    return (
+        f'Your task is: "{instruction}" The input images are ordered from earliest to latest, and the last '
+        "image is the current view. Please think about the current subtask and which frame(s) among the "
+        "input images are worth remembering. Your response should be in the format of: "
+        "<think>...</think><subtask>...</subtask><retrieval>...</retrieval>."
+    )
+
+
+def executor_prompt(subtask: str) -> str:
+    return (
+        f'Your task is: "{subtask}" The input images are ordered from earliest to latest, and the last '
+        "image is the current view. Please think about the next action."
+    )
+
+
+def planner_target(n_frames: int, subtask: str, positions: list[int]) -> str:
+    return (
+        f'<think>Frames: {n_frames} total ({n_frames - 1} history + current). Now the subtask is "{subtask}"'
+        f"</think><subtask>{subtask}</subtask><retrieval>[{', '.join(str(p) for p in positions)}]</retrieval>"
+    )
+
+
+@dataclass(frozen=True)
+class PlannerAnswer:
+    subtask: str
+    positions: tuple[int, ...]
+
+
+_ANSWER = re.compile(
+    r"^\s*<think>.*?</think>\s*<subtask>(?P<subtask>.*?)</subtask>\s*"
+    r"<retrieval>\s*\[(?P<positions>[\d,\s]*)\]\s*</retrieval>\s*$",
+    re.DOTALL,
+)
+
+
+def parse_planner_answer(text: str, n_frames: int) -> PlannerAnswer | None:
+    """The subtask and retrieval positions of a planner answer, or None when it is malformed: the
+    wrong structure, not exactly one non-empty subtask, or a position outside the input images."""
+    m = _ANSWER.match(text)
+    if m is None or text.count("<subtask>") != 1:
+        return None
+    subtask = m["subtask"].strip()
+    items = [p.strip() for p in m["positions"].split(",")] if m["positions"].strip() else []
+    if not subtask or any(not p.isdigit() for p in items):
+        return None
+    positions = tuple(sorted({int(p) for p in items}))
+    if positions and positions[-1] >= n_frames:
+        return None
+    return PlannerAnswer(subtask, positions)
+
+
+@dataclass
+class MemoryBank:
+    """One episode's planner-driven memory: the frames retrieved so far (absolute indices, sorted,
+    unique), the current subtask, and how many planner answers were malformed."""
+
+    subtask: str | None = None
+    frames: list[int] = field(default_factory=list)
+    malformed: int = 0
+
+    def update(self, answer: PlannerAnswer | None, input_frames: list[int]) -> None:
+        """Apply one planner answer to the images ``input_frames`` it saw (None: malformed, ignored)."""
+        if answer is None:
+            self.malformed += 1
+            return
+        self.subtask = answer.subtask
+        self.frames = sorted(set(self.frames) | {input_frames[p] for p in answer.positions})
+
+    def executor_frames(self, x: int) -> list[int]:
+        """Retrieved frames before ``x``, then ``x``."""
+        return [f for f in self.frames if f < x] + [x]
