@@ -1,6 +1,7 @@
-"""activearena_oft training-step time, peak memory and inference latency per chunk.
+"""activearena_oft (or activearena_groot) training-step time, peak memory and inference latency per chunk.
 
     python benchmarks/oft_train_step.py                      # tiny random Qwen3-VL on the CPU
+    python benchmarks/oft_train_step.py --policy-type activearena_groot   # the DiT head instead
     python benchmarks/oft_train_step.py --synthetic          # no dataset: random batches shaped like it
     python benchmarks/oft_train_step.py --vlm-path Qwen/Qwen3-VL-2B-Instruct --device cuda --batch-size 7
     activearena-make-tiny-vlm /tmp/qwen3vl_2b_random --architecture qwen3-vl-2b   # 2B dimensions, random
@@ -30,6 +31,7 @@ from lerobot.policies.factory import make_policy, make_pre_post_processors
 
 from lerobot_activearena.datasets_build.pipeline import build_dataset
 from lerobot_activearena.datasets_build.plan import BuildPlan
+from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
 
@@ -125,6 +127,18 @@ def main() -> None:
     p.add_argument("--memory", default="chunk")
     p.add_argument("--think", default="subtask")
     p.add_argument("--steps", type=int, default=5)
+    p.add_argument(
+        "--policy-type",
+        choices=["activearena_oft", "activearena_groot"],
+        default="activearena_oft",
+        help="activearena_groot: the same backbone and memory with the flow-matching DiT head",
+    )
+    p.add_argument(
+        "--dit",
+        choices=["paper", "tiny"],
+        default="paper",
+        help="activearena_groot's head: the paper's DiT-B (152 M parameters) or the tests' tiny one",
+    )
     p.add_argument("--gradient-checkpointing", action="store_true")
     p.add_argument(
         "--decode-tokens", type=int, default=32, help="greedy <think> tokens per chunk (subtask_max_tokens)"
@@ -157,7 +171,13 @@ def main() -> None:
     if args.synthetic and think == "subtask":
         think = "instruction"  # no annotations to read the subtask from; a think span of similar length
         print("synthetic batches: think=instruction stands in for think=subtask (same loss, similar length)")
-    cfg = ActiveArenaOFTConfig(
+    head = {}
+    if args.policy_type == "activearena_groot" and args.dit == "tiny":
+        head = {"dit_width": 32, "dit_depth": 2, "dit_heads": 2, "dit_queries": 4, "dit_out_dim": 32}
+        head |= {"decoder_width": 32, "noise_repeats": 2}
+    config_cls = ActiveArenaGR00TConfig if args.policy_type == "activearena_groot" else ActiveArenaOFTConfig
+    cfg = config_cls(
+        **head,
         vlm_path=vlm,
         device=args.device,
         memory=args.memory,
@@ -229,6 +249,11 @@ def main() -> None:
         images = int(batch["observation.vlm.frame_valid"].sum())
     n_params = sum(p.numel() for p in policy.parameters())
     peak = peak_memory(cuda)
+    head_params = sum(p.numel() for n, p in policy.named_parameters() if not n.startswith("vlm."))
+    print(
+        f"{args.policy_type}: action head, state encoder and queries {head_params / 1e6:.2f} M parameters"
+        + (f" (DiT: {args.dit})" if args.policy_type == "activearena_groot" else "")
+    )
     print(
         f"model {vlm}: {n_params / 1e6:.1f} M parameters, device {args.device}, batch {args.batch_size}, "
         f"K={args.history} ({args.memory} memory), think={args.think}"

@@ -50,6 +50,15 @@ def expert_episode():
 
 
 @pytest.fixture(scope="session")
+def tiny_vlm(tmp_path_factory):
+    """A tiny random Qwen3-VL folder (``--policy.vlm_path``), its tokenizer knowing every task's words."""
+    from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
+    from lerobot_activearena.tasks.registry import task_texts
+
+    return make_tiny_vlm(tmp_path_factory.mktemp("vlm") / "tiny_qwen3_vl", texts=task_texts())
+
+
+@pytest.fixture(scope="session")
 def bell_count_dataset(tmp_path_factory, worker_id):
     """The preview release recipe (``datasets_build/preview.json``) on a small scale: the bell and
     count tasks, one episode each, two shards built by two datatrove worker processes through

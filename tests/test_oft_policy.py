@@ -35,7 +35,6 @@ from lerobot_activearena.policies.activearena_oft.processor_activearena_oft impo
     THINK_MASK,
 )
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
-from lerobot_activearena.tasks.registry import task_texts
 from lerobot_activearena.tasks.rollout import run_expert_episode
 
 REPO = "local/bench_id"  # conftest.DATASET_REPO
@@ -48,8 +47,8 @@ def _exe(name):
 
 
 @pytest.fixture(scope="module")
-def vlm(tmp_path_factory):
-    return make_tiny_vlm(tmp_path_factory.mktemp("vlm") / "tiny_qwen3_vl", texts=task_texts())
+def vlm(tiny_vlm):
+    return tiny_vlm
 
 
 @pytest.fixture(scope="module")

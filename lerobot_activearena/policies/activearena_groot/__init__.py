@@ -1,3 +1,6 @@
-"""ActiveArena-VLA's GR00T run (`gr00t_subtask_action_12_ws`). So far its flow-matching DiT action
-head (``flow_dit``); the ``activearena_groot`` policy type (configuration / modeling / processor on
-the shared VLA base) is not built yet."""
+"""`activearena_groot`: ActiveArena-VLA's GR00T run (`gr00t_subtask_action_12_ws`): the OFT run's
+backbone and memory with a flow-matching DiT action head (``flow_dit``)."""
+
+from .configuration_activearena_groot import ActiveArenaGR00TConfig
+
+__all__ = ["ActiveArenaGR00TConfig"]

@@ -161,9 +161,11 @@ class FlowMatchingDiT(nn.Module):
         context_mask: Tensor | None = None,
         generator: torch.Generator | None = None,
         reduction: str = "mean",
+        step_mask: Tensor | None = None,
     ) -> Tensor:
         """Flow-matching MSE, each sample repeated ``noise_repeats`` times with fresh noise and time;
-        ``reduction="none"``: one loss per sample (averaged over its repeats)."""
+        ``reduction="none"``: one loss per sample (averaged over its repeats). ``step_mask`` (B,
+        horizon): the chunk steps that count (padding past an episode's end does not)."""
         r = self.config.noise_repeats
         act = actions.repeat_interleave(r, dim=0)
         ctx = context.repeat_interleave(r, dim=0)
@@ -171,7 +173,12 @@ class FlowMatchingDiT(nn.Module):
         noise = torch.randn(act.shape, generator=generator, device=act.device, dtype=act.dtype)
         t = self.sample_time(act.shape[0], generator, act.device).to(act.dtype)
         noisy = (1 - t)[:, None, None] * noise + t[:, None, None] * act
-        per = F.mse_loss(self.velocity(noisy, t, ctx, mask), act - noise, reduction="none").mean(dim=(1, 2))
+        err = F.mse_loss(self.velocity(noisy, t, ctx, mask), act - noise, reduction="none").mean(dim=2)
+        if step_mask is None:
+            per = err.mean(dim=1)
+        else:
+            keep = step_mask.repeat_interleave(r, dim=0).to(err.dtype)
+            per = (err * keep).sum(dim=1) / keep.sum(dim=1).clamp(min=1)
         per = per.view(-1, r).mean(dim=1)
         return per.mean() if reduction == "mean" else per
 

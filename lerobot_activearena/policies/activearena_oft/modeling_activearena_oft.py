@@ -57,13 +57,20 @@ def _in_precision(method):
     @functools.wraps(method)
     def wrapper(self, *args, **kwargs):
         with torch.autocast(
-            device_type=self.action_queries.device.type,
+            device_type=self.device.type,
             dtype=torch.bfloat16,
             enabled=self.config.autocast_bfloat16,
         ):
             return method(self, *args, **kwargs)
 
     return wrapper
+
+
+def _real_steps(batch: dict[str, Tensor], target: Tensor) -> Tensor:
+    """(B, chunk) True where the chunk's step is real (LeRobot pads past an episode's end)."""
+    if "action_is_pad" in batch:
+        return ~batch["action_is_pad"]
+    return torch.ones(target.shape[:2], dtype=torch.bool, device=target.device)
 
 
 class ActiveArenaOFTPolicy(PreTrainedPolicy):
@@ -88,10 +95,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         vc = self.vlm.config
         width = vc.text_config.hidden_size
         self.max_frames = config.history + 1
-        self.action_queries = nn.Parameter(torch.randn(config.chunk_size, width) * 0.02)
-        self.head = MLPResNet(
-            width, config.head_hidden_mult * width, config.predicted_action_dim, config.head_blocks
-        )
+        self._build_action_head(width)
         state_ft = config.input_features.get(OBS_STATE)
         self.state_encoder = (
             StateEncoder(int(state_ft.shape[0]), config.state_hidden, width, self.max_frames)
@@ -105,6 +109,38 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         )
         self.pad_id = vc.text_config.pad_token_id or 0
         self.reset()
+
+    # ----- the action head (what a subclass with another head replaces) -----
+    def _build_action_head(self, width: int) -> None:
+        self.action_queries = nn.Parameter(torch.randn(self.config.chunk_size, width) * 0.02)
+        self.head = MLPResNet(
+            width,
+            self.config.head_hidden_mult * width,
+            self.config.predicted_action_dim,
+            self.config.head_blocks,
+        )
+
+    @property
+    def n_queries(self) -> int:
+        """Action query tokens after the prompt: one per chunk step."""
+        return self.config.chunk_size
+
+    @property
+    def device(self) -> torch.device:
+        return self.vlm.get_input_embeddings().weight.device
+
+    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
+        """The (B, chunk, predicted_action_dim) prediction from the last-layer states at the action queries."""
+        return self.head(hidden[kind == QUERY].view(kind.shape[0], self.config.chunk_size, -1).float())
+
+    def _action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
+        """Per-sample L1 over the chunk's real (not padded) steps."""
+        pred = self._actions(hidden, kind).float()
+        target = batch[ACTION][..., : self.config.predicted_action_dim]
+        keep = _real_steps(batch, target)
+        l1 = (pred - target).abs().mean(-1)
+        l1 = (l1 * keep).sum(-1) / keep.sum(-1).clamp(min=1)
+        return l1, {"l1_loss": float(l1.detach().mean())}
 
     # ----- optimisation -----
     def get_optim_params(self) -> list[dict]:
@@ -132,7 +168,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         prompt, the action queries, then the optional think span. Returns the backbone's inputs and the
         per-position ``kind`` (-1 = padding)."""
         batch_size, n_frames = valid.shape
-        dev = self.action_queries.device
+        dev = self.device
         if state is not None and state.dim() == 2:  # no history: one state per sample
             state = state[:, None]
         seqs, kinds, images, states = [], [], [], []
@@ -152,8 +188,8 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                         (b, j, j + self.max_frames - n_frames)
                     )  # current frame: always the last slot
             p = prompt[b][prompt_mask[b]].tolist()
-            ids += p + [self.pad_id] * self.config.chunk_size
-            kind += [TEXT] * len(p) + [QUERY] * self.config.chunk_size
+            ids += p + [self.pad_id] * self.n_queries
+            kind += [TEXT] * len(p) + [QUERY] * self.n_queries
             if think is not None:
                 t = think[b][think_mask[b]].tolist()
                 ids += t
@@ -169,9 +205,10 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         attn = (kind >= 0).long()
         mm = (kind == IMAGE).long()
         embeds = self.vlm.get_input_embeddings()(input_ids)
-        embeds = embeds.masked_scatter(
-            (kind == QUERY)[..., None], self.action_queries.to(embeds.dtype).repeat(batch_size, 1)
-        )
+        if self.n_queries:
+            embeds = embeds.masked_scatter(
+                (kind == QUERY)[..., None], self.action_queries.to(embeds.dtype).repeat(batch_size, 1)
+            )
         if states:
             rows = torch.stack([state[b, j] for b, j, _ in states]).to(dev, torch.float32)
             slots = torch.tensor([s for _, _, s in states], device=dev)
@@ -232,19 +269,20 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         )
         return out, feats
 
-    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
-        """The (B, chunk, action_dim) prediction from the last-layer states at the action queries."""
-        return self.head(hidden[kind == QUERY].view(kind.shape[0], self.config.chunk_size, -1).float())
-
     def _encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor | None]:
-        """Returns the (B, chunk, action_dim) prediction and, when a think span is given, its LM loss.
-        Arguments as ``_assemble``."""
+        """Returns the (B, chunk, predicted_action_dim) prediction and, when a think span is given, its
+        LM loss. Arguments as ``_assemble``."""
+        h, kind, lm_loss = self._hidden(*args, vision_cache=vision_cache)
+        return self._actions(h, kind), lm_loss
+
+    def _hidden(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor, Tensor | None]:
+        """The backbone's last-layer states, the per-position ``kind`` and, when a think span is given,
+        its LM loss. Arguments as ``_assemble``."""
         seq = self._assemble(*args)
         kind, input_ids = seq["kind"], seq["input_ids"]
         h = self._backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
-        actions = self._actions(h, kind)
         if not (kind == THINK).any():
-            return actions, None
+            return h, kind, None
         span = kind == THINK
         src = span.clone()
         src[:, :-1] &= span[:, 1:]  # a think token predicts the next think token
@@ -252,7 +290,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         tgt = torch.zeros_like(span)
         tgt[:, 1:] = src[:, :-1]
         logits = self.vlm.lm_head(h[src]).float()
-        return actions, nn.functional.cross_entropy(logits, input_ids[tgt])
+        return h, kind, nn.functional.cross_entropy(logits, input_ids[tgt])
 
     # ----- training -----
     @_in_precision
@@ -261,7 +299,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         if state is not None and state.dim() == 2:
             state = state[:, None]
         think = batch.get(THINK_IDS) if self.config.think != "none" else None
-        pred, lm_loss = self._encode(
+        h, kind, lm_loss = self._hidden(
             batch[PIXELS],
             batch[GRID],
             batch[FRAME_VALID],
@@ -272,16 +310,8 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             think,
             batch.get(THINK_MASK),
         )
-        pred, target = pred.float(), batch[ACTION][..., : self.config.predicted_action_dim]
-        keep = (
-            ~batch["action_is_pad"]
-            if "action_is_pad" in batch
-            else torch.ones(target.shape[:2], dtype=torch.bool, device=target.device)
-        )
-        l1 = (pred - target).abs().mean(-1)
-        l1 = (l1 * keep).sum(-1) / keep.sum(-1).clamp(min=1)
-        loss = l1.mean() if reduction == "mean" else l1
-        info = {"l1_loss": float(l1.detach().mean())}
+        per_sample, info = self._action_loss(h, kind, batch)
+        loss = per_sample.mean() if reduction == "mean" else per_sample
         if lm_loss is not None:
             loss = loss + self.config.lm_loss_weight * lm_loss
             info["lm_loss"] = float(lm_loss.detach())
@@ -418,7 +448,7 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         ``use_cache`` the images and prompt go through the backbone once and every new token reuses
         their keys and values; without it each step re-encodes the whole sequence (the reference)."""
         start, end = self._think_token_ids()
-        batch_size, dev = encode_args[2].shape[0], self.action_queries.device
+        batch_size, dev = encode_args[2].shape[0], self.device
         fed = torch.full((batch_size, 1), start, dtype=torch.long)  # <think> and every token fed back since
         rows, step_logits = torch.arange(batch_size, device=dev), []
         seq = cache = actions = None

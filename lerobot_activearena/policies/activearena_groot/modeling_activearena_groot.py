@@ -1,0 +1,50 @@
+"""ActiveArena-VLA-GR00T: ``activearena_oft``'s policy (backbone, memory bank, state tokens, think
+loss, evaluation loop) with its action head replaced. No action queries enter the backbone's
+sequence; the DiT cross-attends to the last-layer states of the images, state tokens and prompt
+(not the think span: at inference it is not there), is trained by flow matching and samples a chunk
+with a few Euler steps."""
+
+from __future__ import annotations
+
+import torch
+from lerobot.utils.constants import ACTION
+from torch import Tensor
+
+from ..activearena_oft.modeling_activearena_oft import THINK, ActiveArenaOFTPolicy, _real_steps
+from .configuration_activearena_groot import ActiveArenaGR00TConfig
+from .flow_dit import FlowMatchingDiT
+
+
+class ActiveArenaGR00TPolicy(ActiveArenaOFTPolicy):
+    config_class = ActiveArenaGR00TConfig
+    name = "activearena_groot"
+
+    def _build_action_head(self, width: int) -> None:
+        self.dit = FlowMatchingDiT(self.config.dit_config(context_dim=width))
+
+    @property
+    def n_queries(self) -> int:
+        return 0  # the DiT keeps its own query tokens
+
+    @staticmethod
+    def _context_mask(kind: Tensor) -> Tensor:
+        return (kind >= 0) & (kind != THINK)
+
+    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
+        """A sampled (B, chunk, predicted_action_dim) chunk (torch's global RNG: seeded runs repeat)."""
+        return self.dit.sample(hidden.float(), self._context_mask(kind))
+
+    def _action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
+        target = batch[ACTION][..., : self.config.predicted_action_dim].float()
+        per = self.dit.loss(
+            target,
+            hidden.float(),
+            self._context_mask(kind),
+            reduction="none",
+            step_mask=_real_steps(batch, target),
+        )
+        return per, {"flow_loss": float(per.detach().mean())}
+
+    @torch.no_grad()
+    def count_head_parameters(self) -> int:
+        return sum(p.numel() for p in self.dit.parameters())
