@@ -73,7 +73,7 @@ def test_losses_reach_the_head_and_backbone_and_a_seed_fixes_the_chunk(tiny_vlm,
     for name in ("dit.blocks.0.k.weight", "dit.decoder.2.weight", "state_encoder.mlp.0.weight"):
         assert params[name].grad is not None and params[name].grad.abs().sum() > 0, name
     assert policy.vlm.get_input_embeddings().weight.grad.abs().sum() > 0
-    seq = policy._assemble(*_encode_args(policy, batch))
+    seq = policy._assemble(*policy.training_args(batch))
     assert not (seq["kind"] == QUERY).any()  # the DiT keeps its own queries
     policy.eval()
     one = pre(torch.utils.data.default_collate([ds[70]]))
@@ -86,27 +86,6 @@ def test_losses_reach_the_head_and_backbone_and_a_seed_fixes_the_chunk(tiny_vlm,
     assert chunks[0].shape == (1, 16, 18)
     torch.testing.assert_close(chunks[0], chunks[1])
     assert not torch.allclose(chunks[0], chunks[2])
-
-
-def _encode_args(policy, batch):
-    from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import (
-        FRAME_VALID,
-        GRID,
-        PIXELS,
-        PREFIX_IDS,
-        PROMPT_IDS,
-        PROMPT_MASK,
-    )
-
-    return (
-        batch[PIXELS],
-        batch[GRID],
-        batch[FRAME_VALID],
-        batch["observation.state"],
-        batch[PREFIX_IDS],
-        batch[PROMPT_IDS],
-        batch[PROMPT_MASK],
-    )
 
 
 def test_the_preset_trains_saves_and_plays_through_both_evaluators(tiny_vlm, bell_count_dataset, tmp_path):

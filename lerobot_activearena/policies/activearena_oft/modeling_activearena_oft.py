@@ -293,13 +293,13 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         return h, kind, nn.functional.cross_entropy(logits, input_ids[tgt])
 
     # ----- training -----
-    @_in_precision
-    def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
+    def training_args(self, batch: dict[str, Tensor]) -> tuple:
+        """``_assemble``'s arguments from a preprocessed dataset batch (history frames, think target)."""
         state = batch.get(OBS_STATE) if self.state_encoder is not None else None
         if state is not None and state.dim() == 2:
             state = state[:, None]
         think = batch.get(THINK_IDS) if self.config.think != "none" else None
-        h, kind, lm_loss = self._hidden(
+        return (
             batch[PIXELS],
             batch[GRID],
             batch[FRAME_VALID],
@@ -310,6 +310,10 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             think,
             batch.get(THINK_MASK),
         )
+
+    @_in_precision
+    def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
+        h, kind, lm_loss = self._hidden(*self.training_args(batch))
         per_sample, info = self._action_loss(h, kind, batch)
         loss = per_sample.mean() if reduction == "mean" else per_sample
         if lm_loss is not None:
