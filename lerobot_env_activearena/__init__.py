@@ -1,8 +1,13 @@
 """Discovery shim: LeRobot imports installed ``lerobot_env_*`` distributions by name
 (``register_third_party_plugins``); importing this registers ``--env.type=activearena`` and the
-policy types ``activearena_expert``, ``activearena_oft`` and ``activearena_groot``."""
+policy types ``activearena_expert``, ``activearena_oft``, ``activearena_groot`` and ``activearena_fast``."""
 
 from lerobot_activearena.envs import configs as env_configs
-from lerobot_activearena.policies import activearena_expert, activearena_groot, activearena_oft
+from lerobot_activearena.policies import (
+    activearena_expert,
+    activearena_fast,
+    activearena_groot,
+    activearena_oft,
+)
 
-__all__ = ["activearena_expert", "activearena_groot", "activearena_oft", "env_configs"]
+__all__ = ["activearena_expert", "activearena_fast", "activearena_groot", "activearena_oft", "env_configs"]

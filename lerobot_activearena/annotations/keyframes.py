@@ -153,14 +153,23 @@ def retrieval_positions(frames, subtask_keyframes_seen, stride: int = STRIDE) ->
     return [i for i, f in enumerate(frames) if any(q <= f < q + stride for q in qs)]
 
 
-WRITE_POLICIES = ("chunk", "subtask", "motion", "none")
+def planned_memory(t: int, subtask_keyframes, stride: int = STRIDE) -> list[int]:
+    """ActiveArena-Plan's executor memory before t: the frames of the uncapped S(t) inside a window
+    [q, q + s) of a subtask keyframe q <= t (``subtask_keyframes``: the indicator up to t), t excluded."""
+    k = np.asarray(subtask_keyframes)[: t + 1]
+    frames = stride_sequence(t, stride)
+    return [frames[i] for i in retrieval_positions(frames, np.flatnonzero(k), stride) if frames[i] < t]
+
+
+WRITE_POLICIES = ("chunk", "subtask", "motion", "planned", "none")
 
 
 def memory_frames(policy: str, t: int, history: int = 12, keyframes=None) -> list[int]:
     """History frame indices (chronological, all < t) for a memory write policy, H = ``history``:
     ``chunk``: the stride-16 frames t-16H .. t-16 (at chunk boundaries these are the chunk keyframes);
     ``subtask`` / ``motion``: M_t over that keyframe indicator (``keyframes``, covering frames < t);
-    ``none``: no history."""
+    ``planned``: the most recent H of ActiveArena-Plan's executor memory (``keyframes``: the subtask
+    indicator, covering frames <= t); ``none``: no history."""
     if policy not in WRITE_POLICIES:
         raise ValueError(f"memory write policy must be one of {WRITE_POLICIES}, got {policy!r}")
     if policy == "none" or history == 0:
@@ -168,5 +177,8 @@ def memory_frames(policy: str, t: int, history: int = 12, keyframes=None) -> lis
     if policy == "chunk":
         return stride_sequence(t, history=history)[:-1]
     if keyframes is None:
-        raise ValueError(f"the {policy!r} write policy needs the episode's {policy}_keyframe indicator")
+        kind = "subtask" if policy == "planned" else policy
+        raise ValueError(f"the {policy!r} write policy needs the episode's {kind}_keyframe indicator")
+    if policy == "planned":
+        return planned_memory(t, keyframes)[-history:]
     return memory_view(t, keyframes, history)

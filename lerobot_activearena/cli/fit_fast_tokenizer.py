@@ -93,6 +93,12 @@ def fit(argv: list[str] | None = None) -> dict:
     episodes = frames["episode_index"].to_numpy()
     low, high = np.asarray(meta.stats["action"]["min"], float), np.asarray(meta.stats["action"]["max"], float)
     held = np.isin(episodes, np.unique(episodes)[args.holdout - 1 :: args.holdout])
+    if held.all() or not held.any():
+        p.error(
+            f"--holdout {args.holdout} leaves {'no' if held.all() else 'no held-out'} episodes to "
+            f"{'fit on' if held.all() else 'measure on'} among the dataset's {len(np.unique(episodes))}; "
+            "pick a smaller --holdout"
+        )
     fit_chunks = normalise(action_chunks(actions[~held], episodes[~held]), low, high)
     test_chunks = normalise(action_chunks(actions[held], episodes[held]), low, high)
     print(

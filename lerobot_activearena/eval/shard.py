@@ -26,15 +26,39 @@ def read_records(folder: Path) -> dict[tuple[str, str, int], dict]:
     an episode wins, and a line cut short by a kill is ignored."""
     out: dict[tuple[str, str, int], dict] = {}
     for f in sorted(Path(folder).rglob("*.jsonl")):
-        for line in f.read_text().splitlines():
-            try:
-                rec = json.loads(line)
-            except ValueError:
-                continue
-            if rec.get("episode") is None:
-                continue
+        for rec in _lines(f):
             out.setdefault((rec["task"], rec["split"], int(rec["episode"])), rec)
+    for f in sorted(Path(folder).rglob(f"*{POLICY_STATS}")):  # what the policy counted (e.g. FAST's decodes)
+        for rec in _lines(f):
+            key = (rec["task"], rec["split"], int(rec["episode"]))
+            if key in out:
+                out[key].setdefault("policy_stats", rec["policy_stats"])
     return out
+
+
+POLICY_STATS = ".policy_stats"  # JSON lines a shard writes beside the env's records
+
+
+def _lines(path: Path):
+    for line in path.read_text().splitlines():
+        try:
+            rec = json.loads(line)
+        except ValueError:  # a line cut short by a kill
+            continue
+        if rec.get("episode") is not None:
+            yield rec
+
+
+def write_policy_stats(folder: Path, shard: EvalShard, episodes: list[int], stats: list[dict]) -> None:
+    """One line per episode of a rollout with the policy's own counts (``policy.rollout_stats()``)."""
+    import os
+
+    with open(Path(folder) / f"policy_{os.getpid()}{POLICY_STATS}", "a") as f:
+        for k, st in zip(episodes, stats, strict=True):
+            f.write(
+                json.dumps({"task": shard.task, "split": shard.split, "episode": k, "policy_stats": st})
+                + "\n"
+            )
 
 
 def env_config(plan: EvalPlan, task: str, split: str, log_dir: Path | None):
@@ -131,6 +155,8 @@ def run_shard(
                 )
         finally:
             close_envs(envs)
+        if callable(getattr(policy, "rollout_stats", None)):
+            write_policy_stats(folder, shard, batch, policy.rollout_stats())
         if record:
             last = int(torch.argmax(data["done"][0].to(int)))
             path = video_path(run_dir, shard, batch[0])

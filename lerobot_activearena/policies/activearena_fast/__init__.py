@@ -1,3 +1,7 @@
-"""ActiveArena-VLA's FAST run (`fast_subtask_action_12_ws`). So far its action tokenizer
-(``action_tokenizer``, fitted by ``activearena-fit-fast-tokenizer``); the ``activearena_fast``
-policy type (the backbone's vocabulary extended with the action tokens) is not built yet."""
+"""`activearena_fast`: ActiveArena-VLA's FAST run (`fast_subtask_action_12_ws`): the OFT run's backbone
+and memory with actions as FAST tokens (``action_tokenizer``, fitted by
+``activearena-fit-fast-tokenizer``) in the backbone's extended vocabulary."""
+
+from .configuration_activearena_fast import ActiveArenaFASTConfig
+
+__all__ = ["ActiveArenaFASTConfig"]

@@ -420,13 +420,20 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         self._subtask: list[tuple[int, ...] | None] = [None] * batch_size
         self._subtask_new = [False] * batch_size
 
-    def _think_token_ids(self) -> tuple[int, int]:
-        if not hasattr(self, "_think_ids"):
+    @property
+    def text_tokenizer(self):
+        """The backbone's tokenizer (loaded at first use)."""
+        if not hasattr(self, "_text_tokenizer"):
             from transformers import AutoTokenizer
 
-            tok = load_from_vlm_path(AutoTokenizer.from_pretrained, self.config.vlm_path, "tokenizer")
-            self._think_ids = (tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>"))
-        return self._think_ids
+            self._text_tokenizer = load_from_vlm_path(
+                AutoTokenizer.from_pretrained, self.config.vlm_path, "tokenizer"
+            )
+        return self._text_tokenizer
+
+    def _think_token_ids(self) -> tuple[int, int]:
+        tok = self.text_tokenizer
+        return tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>")
 
     @torch.no_grad()
     def predict_subtask(self, encode_args: tuple) -> list[tuple[int, ...]]:
@@ -443,20 +450,38 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
         tokens, _, actions = self._greedy_think(encode_args, vision_cache=vision_cache)
         return tokens, actions
 
-    @_in_precision
     def _greedy_think(
         self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
     ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
-        """Greedy decoding after ``<think>``; returns the tokens, each step's (B, vocab) logits and the
-        action chunk read from the first pass's query positions. With
-        ``use_cache`` the images and prompt go through the backbone once and every new token reuses
-        their keys and values; without it each step re-encodes the whole sequence (the reference)."""
+        """Greedy decoding after ``<think>`` up to ``</think>``; returns the tokens, each step's (B, vocab)
+        logits and the action chunk read from the first pass's query positions."""
         start, end = self._think_token_ids()
+        tokens, step_logits, (hidden, kind) = self._greedy(
+            encode_args, [start], end, self.config.subtask_max_tokens, use_cache, vision_cache
+        )
+        return tokens, step_logits, self._actions(hidden, kind)
+
+    @_in_precision
+    def _greedy(
+        self,
+        encode_args: tuple,
+        start: list[int],
+        stop: int,
+        max_tokens: int,
+        use_cache: bool = True,
+        vision_cache: dict | None = None,
+    ) -> tuple[list[tuple[int, ...]], list[Tensor], tuple[Tensor, Tensor]]:
+        """Greedy decoding after the ``start`` tokens (fed as the think span) until every sample has
+        produced ``stop`` or ``max_tokens`` tokens. Returns each sample's new tokens (up to and
+        including its first ``stop``), each step's (B, vocab) logits and the first pass's last-layer
+        states and ``kind``. With ``use_cache`` the images and prompt go through the backbone once and
+        every new token reuses their keys and values; without it each step re-encodes the whole
+        sequence (the reference)."""
         batch_size, dev = encode_args[2].shape[0], self.device
-        fed = torch.full((batch_size, 1), start, dtype=torch.long)  # <think> and every token fed back since
+        fed = torch.tensor([start] * batch_size, dtype=torch.long)  # start and every token fed back since
         rows, step_logits = torch.arange(batch_size, device=dev), []
-        seq = cache = actions = None
-        for _ in range(self.config.subtask_max_tokens):
+        seq = cache = first = None
+        for _ in range(max_tokens):
             if seq is None or not use_cache:
                 seq = self._assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
                 out = self._backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
@@ -466,8 +491,8 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
                     .values
                 )
                 hidden, cache = out.last_hidden_state[rows, last], out.past_key_values
-                if actions is None:
-                    actions = self._actions(out.last_hidden_state, seq["kind"])
+                if first is None:
+                    first = (out.last_hidden_state, seq["kind"])
                 position = seq["position_ids"][:, rows, last]  # (3, B): a text token's M-RoPE position
                 attn = seq["attention_mask"]
             else:
@@ -484,12 +509,12 @@ class ActiveArenaOFTPolicy(PreTrainedPolicy):
             logits = self.vlm.lm_head(hidden).float()
             step_logits.append(logits)
             fed = torch.cat([fed, logits.argmax(-1).cpu()[:, None]], dim=1)
-            if (fed[:, 1:] == end).any(1).all():
+            if (fed[:, len(start) :] == stop).any(1).all():
                 break
         tokens = []
-        for row in fed[:, 1:].tolist():  # each sample's text up to and including its first </think>
-            tokens.append(tuple(row[: row.index(end) + 1] if end in row else row))
-        return tokens, step_logits, actions
+        for row in fed[:, len(start) :].tolist():  # each sample's tokens up to and including its first stop
+            tokens.append(tuple(row[: row.index(stop) + 1] if stop in row else row))
+        return tokens, step_logits, first
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:

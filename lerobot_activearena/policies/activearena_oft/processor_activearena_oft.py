@@ -116,6 +116,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
 
     vlm_path: str = "Qwen/Qwen3-VL-2B-Instruct"
     think: str = "none"
+    think_template: str = THINK  # the training target's text around the think target
     image_max_pixels: int = HEAD_WIDTH * HEAD_HEIGHT
     # Where the image processor runs: the policy's device, so on a GPU the resizing and patching of
     # the 13 frames per sample happen there and do not hold up the training loop's CPU.
@@ -185,7 +186,9 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
                 targets = list(comp["subtask"])
             else:
                 targets = tasks
-            obs[THINK_IDS], obs[THINK_MASK] = self._tokenize([THINK.format(target=t) for t in targets])
+            obs[THINK_IDS], obs[THINK_MASK] = self._tokenize(
+                [self.think_template.format(target=t) for t in targets]
+            )
         out = dict(transition)
         out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
         return out
@@ -202,6 +205,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         return {
             "vlm_path": self.vlm_path,
             "think": self.think,
+            "think_template": self.think_template,
             "image_max_pixels": self.image_max_pixels,
             "device": self.device,
         }
@@ -230,10 +234,14 @@ def make_activearena_oft_pre_post_processors(
     config: ActiveArenaOFTConfig,
     dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
     dataset_meta: Any | None = None,
+    think_template: str = THINK,
+    after_normalize: tuple[ProcessorStep, ...] = (),
 ) -> tuple[
     PolicyProcessorPipeline[dict[str, Any], dict[str, Any]],
     PolicyProcessorPipeline[PolicyAction, PolicyAction],
 ]:
+    """The OFT pipelines; the other ActiveArena-VLA types pass their own think template and steps that
+    run after normalisation."""
     # lerobot-train hands the dataset metadata to make_policy, which keeps it on the config
     dataset_meta = dataset_meta or getattr(config, "_runtime_dataset_meta", None)
     if dataset_meta is not None and getattr(dataset_meta, "root", None) is not None:
@@ -249,10 +257,19 @@ def make_activearena_oft_pre_post_processors(
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,
         think=config.think,
+        think_template=think_template,
         image_max_pixels=config.image_max_pixels,
         device=config.device or "cpu",
     )
     return make_policy_processor_pipelines(
-        input_steps=[s.rename_observations, s.add_batch_dim, annotations, inputs, s.normalize, s.to_device],
+        input_steps=[
+            s.rename_observations,
+            s.add_batch_dim,
+            annotations,
+            inputs,
+            s.normalize,
+            *after_normalize,
+            s.to_device,
+        ],
         output_steps=[s.unnormalize, *([HoldViewAtHomeStep()] if config.fixed_view else []), s.to_cpu],
     )
