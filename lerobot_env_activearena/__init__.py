@@ -1,6 +1,7 @@
 """Discovery shim: LeRobot imports installed ``lerobot_env_*`` distributions by name
 (``register_third_party_plugins``); importing this registers ``--env.type=activearena`` and the
-policy types ``activearena_expert``, ``activearena_oft``, ``activearena_groot`` and ``activearena_fast``."""
+policy types ``activearena_expert``, ``activearena_oft``, ``activearena_groot``, ``activearena_fast``,
+``activearena_planner`` and ``activearena_plan``."""
 
 from lerobot_activearena.envs import configs as env_configs
 from lerobot_activearena.policies import (
@@ -8,6 +9,14 @@ from lerobot_activearena.policies import (
     activearena_fast,
     activearena_groot,
     activearena_oft,
+    activearena_plan,
 )
 
-__all__ = ["activearena_expert", "activearena_fast", "activearena_groot", "activearena_oft", "env_configs"]
+__all__ = [
+    "activearena_expert",
+    "activearena_fast",
+    "activearena_groot",
+    "activearena_oft",
+    "activearena_plan",
+    "env_configs",
+]

@@ -10,22 +10,15 @@ import numpy as np
 import pytest
 import torch
 from conftest import DATASET_REPO
-from lerobot.configs.default import EvalConfig
-from lerobot.configs.eval import EvalPipelineConfig
-from lerobot.configs.policies import PreTrainedConfig
-from lerobot.configs.train import TrainPipelineConfig
 from lerobot.configs.types import NormalizationMode
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
-from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
-from lerobot.scripts.lerobot_train import train as lerobot_train
 from lerobot.utils.constants import ACTION
+from policy_runs import play_both, train_preset
 
-from lerobot_activearena.cli.eval import main as activearena_eval
 from lerobot_activearena.cli.fit_fast_tokenizer import fit
-from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
 from lerobot_activearena.policies.activearena_fast.processor_activearena_fast import HOLD_COMMAND
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import QUERY, THINK
@@ -156,61 +149,22 @@ def test_a_response_that_does_not_decode_holds_the_last_command(
 def test_the_preset_trains_saves_and_plays_through_both_evaluators(
     tiny_vlm, bell_count_dataset, action_tokenizer, tmp_path
 ):
-    train_dir = tmp_path / "train"
-    cfg = TrainPipelineConfig.from_pretrained(
+    ckpt = train_preset(
         PRESET,
-        cli_args=[
-            f"--dataset.repo_id={DATASET_REPO}",
-            f"--dataset.root={bell_count_dataset}",
-            f"--policy.vlm_path={tiny_vlm}",
-            f"--policy.action_tokenizer_path={action_tokenizer}",
-            "--policy.device=cpu",
-            "--policy.history=2",
-            *[f"--policy.{k}={v}" for k, v in SMALL.items()],
-            "--steps=2",
-            "--batch_size=2",
-            "--num_workers=0",
-            "--save_freq=2",
-            "--log_freq=1",
-            f"--output_dir={train_dir}",
-        ],
+        bell_count_dataset,
+        tiny_vlm,
+        tmp_path / "train",
+        f"--policy.action_tokenizer_path={action_tokenizer}",
+        "--policy.history=2",
+        *[f"--policy.{k}={v}" for k, v in SMALL.items()],
     )
-    lerobot_train(cfg)
-    ckpt = train_dir / "checkpoints" / "last" / "pretrained_model"
     assert json.loads((ckpt / "config.json").read_text())["type"] == "activearena_fast"
     saved = ckpt / "action_tokenizer"
     assert (saved / "fast_tokenizer.json").read_text() == (
         action_tokenizer / "fast_tokenizer.json"
     ).read_text()
-
-    policy = PreTrainedConfig.from_pretrained(ckpt)
-    policy.pretrained_path, policy.device = ckpt, "cpu"
-    policy.action_tokenizer_path = str(tmp_path / "gone")  # the checkpoint's own copy is used
-    out = tmp_path / "eval"
-    env = ActiveArenaEnvConfig(
-        task="click_bell_rotate_view", episode_length=16, episode_log_dir=str(out / "episodes")
-    )
-    lerobot_eval_main(
-        EvalPipelineConfig(
-            env=env, policy=policy, eval=EvalConfig(n_episodes=1, batch_size=1), output_dir=out, seed=1000
-        )
-    )
-    assert json.loads((out / "eval_info.json").read_text())["overall"]["n_episodes"] == 1
-    run = tmp_path / "protocol"
-    activearena_eval(
-        [
-            f"--policy.path={ckpt}",
-            "--policy.device=cpu",
-            "--tasks=click_bell_rotate_view",
-            "--env.episode_length=16",
-            "--splits=id",
-            "--episodes=1",
-            "--videos=0",
-            f"--out={run}",
-        ]
-    )
-    theirs = json.loads(next((out / "episodes").glob("*.jsonl")).read_text().splitlines()[0])
-    mine = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
-    for key in ("scene_seed", "steps", "success"):
-        assert mine[key] == theirs[key], key
+    config = json.loads((ckpt / "config.json").read_text())
+    config["action_tokenizer_path"] = str(tmp_path / "gone")  # the checkpoint's own copy is used
+    (ckpt / "config.json").write_text(json.dumps(config))
+    _, mine = play_both(ckpt, tmp_path)
     assert mine["policy_stats"] == {"chunks": 1, "failed_decodes": 1}  # 16 steps: one chunk, random backbone

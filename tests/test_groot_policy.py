@@ -8,19 +8,12 @@ from pathlib import Path
 
 import torch
 from conftest import DATASET_REPO
-from lerobot.configs.default import EvalConfig
-from lerobot.configs.eval import EvalPipelineConfig
-from lerobot.configs.policies import PreTrainedConfig
-from lerobot.configs.train import TrainPipelineConfig
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
-from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
-from lerobot.scripts.lerobot_train import train as lerobot_train
+from policy_runs import play_both, train_preset
 
-from lerobot_activearena.cli.eval import main as activearena_eval
-from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import QUERY
 
@@ -89,56 +82,16 @@ def test_losses_reach_the_head_and_backbone_and_a_seed_fixes_the_chunk(tiny_vlm,
 
 
 def test_the_preset_trains_saves_and_plays_through_both_evaluators(tiny_vlm, bell_count_dataset, tmp_path):
-    train_dir = tmp_path / "train"
-    cfg = TrainPipelineConfig.from_pretrained(
+    tiny = [f"--policy.{k}={v}" for k, v in TINY_DIT.items()]
+    ckpt = train_preset(
         PRESET,
-        cli_args=[
-            f"--dataset.repo_id={DATASET_REPO}",
-            f"--dataset.root={bell_count_dataset}",
-            f"--policy.vlm_path={tiny_vlm}",
-            "--policy.device=cpu",
-            "--policy.state_hidden=32",
-            "--policy.history=2",
-            *[f"--policy.{k}={v}" for k, v in TINY_DIT.items()],
-            "--steps=2",
-            "--batch_size=2",
-            "--num_workers=0",
-            "--save_freq=2",
-            "--log_freq=1",
-            f"--output_dir={train_dir}",
-        ],
+        bell_count_dataset,
+        tiny_vlm,
+        tmp_path / "train",
+        "--policy.state_hidden=32",
+        "--policy.history=2",
+        *tiny,
     )
-    lerobot_train(cfg)
-    ckpt = train_dir / "checkpoints" / "last" / "pretrained_model"
     saved = json.loads((ckpt / "config.json").read_text())
     assert saved["type"] == "activearena_groot" and saved["dit_width"] == 32
-
-    policy = PreTrainedConfig.from_pretrained(ckpt)
-    policy.pretrained_path, policy.device = ckpt, "cpu"
-    out = tmp_path / "eval"
-    env = ActiveArenaEnvConfig(
-        task="click_bell_rotate_view", episode_length=16, episode_log_dir=str(out / "episodes")
-    )
-    lerobot_eval_main(
-        EvalPipelineConfig(
-            env=env, policy=policy, eval=EvalConfig(n_episodes=1, batch_size=1), output_dir=out, seed=1000
-        )
-    )
-    assert json.loads((out / "eval_info.json").read_text())["overall"]["n_episodes"] == 1
-    run = tmp_path / "protocol"
-    activearena_eval(
-        [
-            f"--policy.path={ckpt}",
-            "--policy.device=cpu",
-            "--tasks=click_bell_rotate_view",
-            "--env.episode_length=16",
-            "--splits=id",
-            "--episodes=1",
-            "--videos=0",
-            f"--out={run}",
-        ]
-    )
-    theirs = json.loads(next((out / "episodes").glob("*.jsonl")).read_text().splitlines()[0])
-    mine = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
-    for key in ("scene_seed", "steps", "success"):
-        assert mine[key] == theirs[key], key
+    play_both(ckpt, tmp_path)

@@ -4,6 +4,7 @@ answers that parse back, malformed answers that change nothing but a counter."""
 
 import pytest
 
+from lerobot_activearena.annotations.keyframes import retrieval_positions
 from lerobot_activearena.policies.activearena_plan.planning import (
     MemoryBank,
     PlannerAnswer,
@@ -12,7 +13,6 @@ from lerobot_activearena.policies.activearena_plan.planning import (
     parse_planner_answer,
     planner_prompt,
     planner_target,
-    retrieval_positions,
     stride_frames,
 )
 

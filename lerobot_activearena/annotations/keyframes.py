@@ -146,19 +146,19 @@ def stride_sequence(x: int, stride: int = STRIDE, history: int | None = None) ->
     return seq if history is None else seq[-(history + 1) :]
 
 
-def retrieval_positions(frames, subtask_keyframes_seen, stride: int = STRIDE) -> list[int]:
-    """Positions i of ``frames`` with q <= f_i < q + s for some observed subtask keyframe q
-    (unique, chronological)."""
-    qs = list(subtask_keyframes_seen)
+def retrieval_positions(frames, subtask_keyframes, stride: int = STRIDE) -> list[int]:
+    """Positions i of ``frames`` (chronological; the last is the current one) with q <= f_i < q + s
+    for a subtask keyframe q observed by then (q <= the current frame); unique, chronological."""
+    now = frames[-1]
+    qs = [int(q) for q in subtask_keyframes if q <= now]
     return [i for i, f in enumerate(frames) if any(q <= f < q + stride for q in qs)]
 
 
 def planned_memory(t: int, subtask_keyframes, stride: int = STRIDE) -> list[int]:
     """ActiveArena-Plan's executor memory before t: the frames of the uncapped S(t) inside a window
-    [q, q + s) of a subtask keyframe q <= t (``subtask_keyframes``: the indicator up to t), t excluded."""
-    k = np.asarray(subtask_keyframes)[: t + 1]
+    [q, q + s) of a subtask keyframe q <= t (``subtask_keyframes``: frame indices), t excluded."""
     frames = stride_sequence(t, stride)
-    return [frames[i] for i in retrieval_positions(frames, np.flatnonzero(k), stride) if frames[i] < t]
+    return [frames[i] for i in retrieval_positions(frames, subtask_keyframes, stride) if frames[i] < t]
 
 
 WRITE_POLICIES = ("chunk", "subtask", "motion", "planned", "none")
@@ -180,5 +180,5 @@ def memory_frames(policy: str, t: int, history: int = 12, keyframes=None) -> lis
         kind = "subtask" if policy == "planned" else policy
         raise ValueError(f"the {policy!r} write policy needs the episode's {kind}_keyframe indicator")
     if policy == "planned":
-        return planned_memory(t, keyframes)[-history:]
+        return planned_memory(t, np.flatnonzero(np.asarray(keyframes)[: t + 1]))[-history:]
     return memory_view(t, keyframes, history)

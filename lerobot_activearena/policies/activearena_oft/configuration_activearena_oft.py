@@ -87,6 +87,11 @@ class ActiveArenaOFTConfig(PreTrainedConfig):
         super().__post_init__()
         if self.memory not in WRITE_POLICIES:
             raise ValueError(f"--policy.memory must be one of {WRITE_POLICIES}, got {self.memory!r}")
+        if self.memory == "planned" and self.type != "activearena_plan":
+            raise ValueError(
+                "memory=planned is ActiveArena-Plan's executor memory (frames its planner retrieves): "
+                "use --policy.type=activearena_plan"
+            )
         if self.think not in THINK_TARGETS:
             raise ValueError(f"--policy.think must be one of {THINK_TARGETS}, got {self.think!r}")
         for name, allowed in (

@@ -48,13 +48,21 @@ class DatasetAnnotations:
         ep, sid = int(self.cols["episode_index"][index]), int(self.cols["subtask_index"][index])
         return self.subtask_text[ep].get(sid, self.instruction[ep])
 
+    def subtask_keyframes(self, index: int) -> tuple[int, list[int]]:
+        """The frame at global ``index``'s episode position x and its episode's subtask keyframes <= x."""
+        ep = int(self.cols["episode_index"][index])
+        start = self.ep_start[ep]
+        x = index - start
+        return x, [int(q) for q in np.flatnonzero(self.cols["subtask_keyframe"][start : index + 1])]
+
     def memory_indices(self, index: int, policy: str, history: int) -> list[int]:
         """Global indices of M_t for the frame at global ``index`` (chronological, all before it)."""
         ep = int(self.cols["episode_index"][index])
         start = self.ep_start[ep]
+        kind = "subtask" if policy == "planned" else policy  # the executor's windows: subtask keyframes
         kf = (
-            self.cols[f"{policy}_keyframe"][start : self.ep_end[ep]]
-            if policy in ("subtask", "motion")
+            self.cols[f"{kind}_keyframe"][start : self.ep_end[ep]]
+            if policy in ("subtask", "motion", "planned")
             else None
         )
         return [start + f for f in memory_frames(policy, index - start, history, kf)]

@@ -37,6 +37,7 @@ PROMPT = (
     "Task: {instruction}<|im_end|>\n<|im_start|>assistant\n"
 )
 THINK = "<think>{target}</think><|im_end|>"
+KEYFRAME_MEMORIES = ("subtask", "motion", "planned")  # memories the annotation step loads per sample
 
 
 def _pad_flag(comp: dict, batch_size: int, n_frames: int) -> torch.Tensor:
@@ -50,17 +51,21 @@ def _pad_flag(comp: dict, batch_size: int, n_frames: int) -> torch.Tensor:
 @dataclass
 class ActiveArenaAnnotationStep(ProcessorStep):
     """Training only (batches that carry the dataset ``index``): adds the annotated current subtask
-    text and, for the subtask / motion write policies, the keyframe-memory frames and states."""
+    text and, for the subtask / motion / planned write policies, the keyframe-memory frames and states."""
 
     dataset_root: str | None = None
     repo_id: str = "local/activearena"
     memory: str = "chunk"
     history: int = 12
     think: str = "none"
+    subtask_prompt: bool = False  # the prompt names the current subtask (ActiveArena-Plan's executor)
     _ann: Any = field(default=None, init=False, repr=False)
 
+    def _needs_subtask(self) -> bool:
+        return self.think == "subtask" or self.subtask_prompt
+
     def _needed(self) -> bool:
-        return self.think == "subtask" or (self.memory in ("subtask", "motion") and self.history > 0)
+        return self._needs_subtask() or (self.memory in KEYFRAME_MEMORIES and self.history > 0)
 
     def __call__(self, transition):
         comp = transition.get(TransitionKey.COMPLEMENTARY_DATA) or {}
@@ -78,10 +83,10 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             self._ann = DatasetAnnotations(self.dataset_root, self.repo_id)
         idx = torch.as_tensor(index).reshape(-1).tolist()
         comp = dict(comp)
-        if self.think == "subtask":
+        if self._needs_subtask():
             comp["subtask"] = [self._ann.subtask(i) for i in idx]
         obs = dict(transition[TransitionKey.OBSERVATION])
-        if self.memory in ("subtask", "motion") and self.history > 0:
+        if self.memory in KEYFRAME_MEMORIES and self.history > 0:
             img = obs[IMAGE_KEY]
             if img.dim() != 4:
                 raise ValueError(f"keyframe memory expects the current frame only, got {tuple(img.shape)}")
@@ -101,6 +106,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             "memory": self.memory,
             "history": self.history,
             "think": self.think,
+            "subtask_prompt": self.subtask_prompt,
         }
 
     def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
@@ -117,6 +123,8 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
     vlm_path: str = "Qwen/Qwen3-VL-2B-Instruct"
     think: str = "none"
     think_template: str = THINK  # the training target's text around the think target
+    prompt_template: str = PROMPT  # the prompt after the images; {instruction}: the task (or subtask)
+    subtask_prompt: bool = False  # training: the prompt names the annotated subtask, not the task
     image_max_pixels: int = HEAD_WIDTH * HEAD_HEIGHT
     # Where the image processor runs: the policy's device, so on a GPU the resizing and patching of
     # the 13 frames per sample happen there and do not hold up the training loop's CPU.
@@ -175,9 +183,14 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             raise ValueError("activearena_oft needs the task instruction ('task') in the batch")
         tasks = [tasks] * batch_size if isinstance(tasks, str) else list(tasks)
         obs[PREFIX_IDS] = self._tokenize([PREFIX] * batch_size)[0]
-        obs[PROMPT_IDS], obs[PROMPT_MASK] = self._tokenize([PROMPT.format(instruction=t) for t in tasks])
+        named = list(comp["subtask"]) if self.subtask_prompt and "subtask" in comp else tasks
+        obs[PROMPT_IDS], obs[PROMPT_MASK] = self._tokenize(
+            [self.prompt_template.format(instruction=t) for t in named]
+        )
         if transition.get(TransitionKey.ACTION) is not None and self.think != "none":
-            if self.think == "subtask":
+            if "think_target" in comp:  # a complete target written by the annotation step (the planner)
+                targets = list(comp["think_target"])
+            elif self.think == "subtask":
                 if "subtask" not in comp:
                     raise ValueError(
                         "think=subtask needs the annotated subtask text: train on an ActiveArena "
@@ -206,6 +219,8 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             "vlm_path": self.vlm_path,
             "think": self.think,
             "think_template": self.think_template,
+            "prompt_template": self.prompt_template,
+            "subtask_prompt": self.subtask_prompt,
             "image_max_pixels": self.image_max_pixels,
             "device": self.device,
         }
@@ -236,6 +251,9 @@ def make_activearena_oft_pre_post_processors(
     dataset_meta: Any | None = None,
     think_template: str = THINK,
     after_normalize: tuple[ProcessorStep, ...] = (),
+    prompt_template: str = PROMPT,
+    subtask_prompt: bool = False,
+    annotation_step: type[ActiveArenaAnnotationStep] | None = None,
 ) -> tuple[
     PolicyProcessorPipeline[dict[str, Any], dict[str, Any]],
     PolicyProcessorPipeline[PolicyAction, PolicyAction],
@@ -247,17 +265,20 @@ def make_activearena_oft_pre_post_processors(
     if dataset_meta is not None and getattr(dataset_meta, "root", None) is not None:
         config.dataset_root = str(dataset_meta.root)
     s = make_default_policy_processor_steps(config, dataset_stats, normalizer_device=config.device)
-    annotations = ActiveArenaAnnotationStep(
+    annotations = (annotation_step or ActiveArenaAnnotationStep)(
         dataset_root=config.dataset_root,
         repo_id=getattr(dataset_meta, "repo_id", None) or "local/activearena",
         memory=config.memory,
         history=config.history,
         think=config.think,
+        subtask_prompt=subtask_prompt,
     )
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,
         think=config.think,
         think_template=think_template,
+        prompt_template=prompt_template,
+        subtask_prompt=subtask_prompt,
         image_max_pixels=config.image_max_pixels,
         device=config.device or "cpu",
     )

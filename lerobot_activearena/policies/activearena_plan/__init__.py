@@ -1,3 +1,7 @@
-"""ActiveArena-VLA's planned run (`oft_subtask_planned_12_ws`). So far its prompts, targets,
-retrieval labels, answer parser and run-time memory bank (``planning``); the planner and executor
-policy types and their run-time loop are not built yet."""
+"""ActiveArena-Plan (`oft_subtask_planned_12_ws`): the planner (``activearena_planner``) and the OFT
+executor (``activearena_plan``, which runs its planner at evaluation), their prompts, targets,
+retrieval labels and run-time memory bank (``planning``)."""
+
+from .configuration_activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
+
+__all__ = ["ActiveArenaPlanConfig", "ActiveArenaPlannerConfig"]

@@ -14,33 +14,21 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from ...annotations.keyframes import STRIDE
+from ...annotations.keyframes import STRIDE, planned_memory, stride_sequence
 
 PLANNER_HISTORY = 12  # K: history frames the planner sees (plus the current one)
 
 
 def stride_frames(x: int, stride: int = STRIDE, history: int | None = PLANNER_HISTORY) -> list[int]:
-    """x, x - s, x - 2s, ... >= 0 in chronological order; the last ``history`` + 1 of them (None: all)."""
-    if x < 0:
-        raise ValueError(f"frame index must be >= 0, got {x}")
-    frames = list(range(x % stride, x + 1, stride))
-    return frames if history is None else frames[-(history + 1) :]
-
-
-def retrieval_positions(frames: list[int], keyframes, stride: int = STRIDE) -> list[int]:
-    """Positions i (chronological, unique) of ``frames`` with q <= frames[i] < q + stride for a
-    subtask keyframe q observed by then (q <= the current, last frame)."""
-    now = frames[-1]
-    seen = [int(q) for q in keyframes if q <= now]
-    return [i for i, f in enumerate(frames) if any(q <= f < q + stride for q in seen)]
+    """The planner's input frames: x, x - s, x - 2s, ... >= 0 in chronological order; the last
+    ``history`` + 1 of them (None: all)."""
+    return stride_sequence(x, stride, history)
 
 
 def executor_memory(x: int, keyframes, stride: int = STRIDE) -> list[int]:
     """The executor's frames: those of the uncapped stride-16 history in a keyframe window, then the
     current frame ``x`` (not twice when it is the latest selected one)."""
-    frames = stride_frames(x, stride, history=None)
-    chosen = [frames[i] for i in retrieval_positions(frames, keyframes, stride)]
-    return chosen if chosen and chosen[-1] == x else [*chosen, x]
+    return [*planned_memory(x, keyframes, stride), x]
 
 
 def planner_prompt(instruction: str) -> str:

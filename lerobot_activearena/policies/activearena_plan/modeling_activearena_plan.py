@@ -1,0 +1,206 @@
+"""ActiveArena-Plan: the planner (``activearena_planner``: Qwen3-VL over the stride-16 frames, no state,
+trained on its text target only) and the OFT executor (``activearena_plan``) with the run-time loop the
+release does not publish. At every chunk (a multiple of 16 steps) the planner reads the last <= 13
+stride frames; its retrievals join the env's persistent, de-duplicated ``MemoryBank``; the executor
+acts from the bank's frames (each with its state) and the current one, prompted with the planner's
+subtask. A malformed answer keeps the previous subtask and bank and is counted (``rollout_stats``);
+before any valid answer the executor is prompted with the instruction."""
+
+from __future__ import annotations
+
+import torch
+from lerobot.utils.constants import OBS_STATE
+from torch import Tensor
+
+from ...annotations.keyframes import STRIDE
+from ..activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy, _in_precision
+from ..activearena_oft.processor_activearena_oft import GRID, PIXELS, PREFIX_IDS
+from .configuration_activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
+from .planning import MemoryBank, parse_planner_answer, stride_frames
+from .processor_activearena_plan import EXECUTOR_PROMPT, PLANNER_PROMPT
+
+
+class ActiveArenaPlannerPolicy(ActiveArenaOFTPolicy):
+    config_class = ActiveArenaPlannerConfig
+    name = "activearena_planner"
+
+    def _build_action_head(self, width: int) -> None:
+        pass  # the planner answers in text
+
+    @property
+    def n_queries(self) -> int:
+        return 0
+
+    def get_optim_params(self) -> list[dict]:
+        return [g for g in super().get_optim_params() if g["params"]]
+
+    @_in_precision
+    def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
+        if reduction != "mean":
+            raise ValueError("activearena_planner's loss is one cross-entropy over the batch's tokens")
+        ce = self._hidden(*self.training_args(batch))[2]
+        return ce, {"lm_loss": float(ce.detach())}
+
+    @torch.no_grad()
+    def plan(self, encode_args: tuple, vision_cache: dict | None = None) -> list[str]:
+        """Each sample's greedy answer, from ``<think>`` (the prompt's images are ``encode_args``)."""
+        tok = self.text_tokenizer
+        start, stop = self._think_token_ids()[0], tok.convert_tokens_to_ids("<|im_end|>")
+        answers = self._greedy(encode_args, [start], stop, self.config.plan_max_tokens, True, vision_cache)[0]
+        return [
+            "<think>" + tok.decode([t for t in ids if t != stop], skip_special_tokens=False)
+            for ids in answers
+        ]
+
+    def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        raise TypeError(
+            "activearena_planner answers with a subtask and retrievals, not actions: evaluate the executor "
+            "(--policy.path=<activearena_plan checkpoint>), which loads this planner via --policy.planner_path"
+        )
+
+    predict_action_chunk = select_action
+
+
+class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
+    config_class = ActiveArenaPlanConfig
+    name = "activearena_plan"
+
+    def reset(self) -> None:
+        super().reset()
+        self._banks: list[MemoryBank] | None = None
+        self._frames: list[dict[int, dict]] | None = None  # env -> stride frame index -> stored frame
+        self._calls: list[int] = []
+
+    @property
+    def planner(self) -> ActiveArenaPlannerPolicy:
+        """The planner checkpoint at ``planner_path``, loaded at first use (kept out of this policy's
+        parameters: the two are trained and saved separately)."""
+        if getattr(self, "_planner", None) is None:
+            from lerobot.configs.policies import PreTrainedConfig
+
+            path = self.config.planner_path
+            if not path:
+                raise ValueError(
+                    "activearena_plan runs its planner at evaluation: pass --policy.planner_path=<a trained "
+                    "activearena_planner checkpoint> (see docs/policy.md, ActiveArena-Plan)"
+                )
+            cfg = PreTrainedConfig.from_pretrained(path)
+            if cfg.type != "activearena_planner":
+                raise ValueError(
+                    f"--policy.planner_path={path} is an {cfg.type!r} checkpoint, not activearena_planner"
+                )
+            if cfg.image_max_pixels != self.config.image_max_pixels:
+                raise ValueError(
+                    f"planner and executor must process images alike: image_max_pixels {cfg.image_max_pixels} "
+                    f"vs {self.config.image_max_pixels}"
+                )
+            cfg.device = self.config.device
+            planner = ActiveArenaPlannerPolicy.from_pretrained(path, config=cfg)
+            object.__setattr__(self, "_planner", planner.eval())
+        return self._planner
+
+    def rollout_stats(self) -> list[dict[str, int]]:
+        """Per env since the last reset: planner answers, malformed ones, frames in the bank."""
+        banks = self._banks or []
+        return [
+            {"planner_calls": c, "malformed_plans": b.malformed, "bank_frames": len(b.frames)}
+            for c, b in zip(self._calls, banks, strict=True)
+        ]
+
+    @staticmethod
+    def _prompts(tokenizer, template: str, texts: list[str]) -> tuple[Tensor, Tensor]:
+        ids = tokenizer(
+            [template.format(instruction=t) for t in texts],
+            padding=True,
+            padding_side="right",
+            return_tensors="pt",
+            add_special_tokens=False,
+        )
+        return ids["input_ids"], ids["attention_mask"].bool()
+
+    def _stack(self, entries: list[list[dict]], slots: int, with_state: bool):
+        """Left-padded (B, slots) frames from stored entries, and the vision cache over them."""
+        first = entries[0][-1]
+        batch_size = len(entries)
+        pixels = first["pixels"].new_zeros((batch_size, slots, *first["pixels"].shape))
+        grid = first["grid"].new_ones((batch_size, slots, 3))
+        valid = torch.zeros(batch_size, slots, dtype=torch.bool)
+        state = None
+        if with_state and first["state"] is not None:
+            state = first["state"].new_zeros((batch_size, slots, first["state"].shape[-1]))
+        cache = {}
+        for b, row in enumerate(entries):
+            for slot, e in zip(range(slots - len(row), slots), row, strict=True):
+                pixels[b, slot], grid[b, slot], valid[b, slot] = e["pixels"], e["grid"], True
+                if state is not None:
+                    state[b, slot] = e["state"]
+                cache[(b, slot)] = e
+        return pixels, grid, valid, state, cache
+
+    @torch.no_grad()
+    def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        self.eval()
+        batch_size, t = batch[PIXELS].shape[0], self._t
+        if self._banks is None:
+            self._banks = [MemoryBank() for _ in range(batch_size)]
+            self._frames = [{} for _ in range(batch_size)]
+            self._calls = [0] * batch_size
+        if t % STRIDE == 0:
+            for b in range(batch_size):
+                self._frames[b][t] = {
+                    "pixels": batch[PIXELS][b, -1],
+                    "grid": batch[GRID][b, -1],
+                    "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
+                    "planner": {},  # the planner's vision features of this frame
+                }
+        if not self._queue:
+            chunk = self._plan_and_act(batch)[:, : self.config.n_action_steps]
+            self._queue.extend(chunk.transpose(0, 1))
+        self._t += 1
+        return self._queue.popleft()
+
+    @_in_precision
+    def _plan_and_act(self, batch: dict[str, Tensor]) -> Tensor:
+        t, batch_size = self._t, batch[PIXELS].shape[0]
+        tasks = batch.get("task")
+        if tasks is None:
+            raise ValueError("activearena_plan needs the task instruction ('task') in the batch")
+        tasks = [tasks] * batch_size if isinstance(tasks, str) else list(tasks)
+        seen = stride_frames(t)
+        # planner: the last <= 13 stride frames and the instruction, no state
+        rows = [
+            [{**self._frames[b][f], "vision": self._frames[b][f]["planner"].get("vision")} for f in seen]
+            for b in range(batch_size)
+        ]
+        pixels, grid, valid, _, cache = self._stack(rows, len(seen), with_state=False)
+        prompt, mask = self._prompts(self.planner.text_tokenizer, PLANNER_PROMPT, tasks)
+        answers = self.planner.plan(
+            (pixels, grid, valid, None, batch[PREFIX_IDS], prompt, mask), vision_cache=cache
+        )
+        for (b, slot), e in cache.items():  # keep the planner's features for the frame's next visits
+            self._frames[b][seen[slot]]["planner"]["vision"] = e.get("vision")
+        for b, text in enumerate(answers):
+            self._calls[b] += 1
+            self._banks[b].update(parse_planner_answer(text, len(seen)), seen)
+        # executor: the retrieved frames (each with its state), the current one, the planner's subtask
+        slots = self.config.history + 1
+        frames = [self._banks[b].executor_frames(t)[-slots:] for b in range(batch_size)]
+        pixels, grid, valid, state, cache = self._stack(
+            [[self._frames[b][f] for f in fs] for b, fs in enumerate(frames)], slots, with_state=True
+        )
+        subtasks = [bank.subtask or task for bank, task in zip(self._banks, tasks, strict=True)]
+        prompt, mask = self._prompts(self.text_tokenizer, EXECUTOR_PROMPT, subtasks)
+        args = (
+            pixels,
+            grid,
+            valid,
+            state if self.state_encoder is not None else None,
+            batch[PREFIX_IDS],
+            prompt,
+            mask,
+        )
+        pred = self._encode(*args, vision_cache=cache)[0]
+        for b in range(batch_size):  # forget frames neither in the bank nor in the planner's next view
+            keep = set(self._banks[b].frames) | set(stride_frames(t + STRIDE))
+            self._frames[b] = {f: e for f, e in self._frames[b].items() if f in keep}
+        return pred.float()

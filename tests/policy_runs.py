@@ -1,0 +1,80 @@
+"""Shared steps of the policy-preset tests: a preset through ``lerobot-train`` for 2 steps on the tiny
+backbone, then its checkpoint through LeRobot's eval loop and through activearena-eval on the same
+seed (one short episode each)."""
+
+import json
+from pathlib import Path
+
+from conftest import DATASET_REPO
+from lerobot.configs.default import EvalConfig
+from lerobot.configs.eval import EvalPipelineConfig
+from lerobot.configs.policies import PreTrainedConfig
+from lerobot.configs.train import TrainPipelineConfig
+from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
+from lerobot.scripts.lerobot_train import train as lerobot_train
+
+from lerobot_activearena.cli.eval import main as activearena_eval
+from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
+
+PRESETS = Path(__file__).parents[1] / "configs" / "policy"
+TASK = "click_bell_rotate_view"
+
+
+def train_preset(preset: Path, dataset: Path, vlm: Path, out: Path, *extra: str) -> Path:
+    """2 training steps at batch 2; returns the saved checkpoint folder."""
+    cfg = TrainPipelineConfig.from_pretrained(
+        preset,
+        cli_args=[
+            f"--dataset.repo_id={DATASET_REPO}",
+            f"--dataset.root={dataset}",
+            f"--policy.vlm_path={vlm}",
+            "--policy.device=cpu",
+            *extra,
+            "--steps=2",
+            "--batch_size=2",
+            "--num_workers=0",
+            "--save_freq=2",
+            "--log_freq=1",
+            f"--output_dir={out}",
+        ],
+    )
+    lerobot_train(cfg)
+    return out / "checkpoints" / "last" / "pretrained_model"
+
+
+def play_both(ckpt: Path, out: Path, steps: int = 16) -> tuple[dict, dict]:
+    """One episode of ``steps`` through lerobot-eval and one through activearena-eval; returns their
+    episode records (lerobot-eval's env log, activearena-eval's merged record) after checking that
+    they played the same scene for the same number of steps."""
+    policy = PreTrainedConfig.from_pretrained(ckpt)
+    policy.pretrained_path, policy.device = ckpt, "cpu"
+    theirs_dir = out / "lerobot_eval"
+    env = ActiveArenaEnvConfig(task=TASK, episode_length=steps, episode_log_dir=str(theirs_dir / "episodes"))
+    lerobot_eval_main(
+        EvalPipelineConfig(
+            env=env,
+            policy=policy,
+            eval=EvalConfig(n_episodes=1, batch_size=1),
+            output_dir=theirs_dir,
+            seed=1000,
+        )
+    )
+    assert json.loads((theirs_dir / "eval_info.json").read_text())["overall"]["n_episodes"] == 1
+    run = out / "activearena_eval"
+    activearena_eval(
+        [
+            f"--policy.path={ckpt}",
+            "--policy.device=cpu",
+            f"--tasks={TASK}",
+            f"--env.episode_length={steps}",
+            "--splits=id",
+            "--episodes=1",
+            "--videos=0",
+            f"--out={run}",
+        ]
+    )
+    theirs = json.loads(next((theirs_dir / "episodes").glob("*.jsonl")).read_text().splitlines()[0])
+    mine = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
+    for key in ("scene_seed", "steps", "success"):
+        assert mine[key] == theirs[key], key
+    return theirs, mine

@@ -1,0 +1,166 @@
+"""ActiveArena-Plan on the tiny random Qwen3-VL: the planner's training target (the paper's prompt,
+subtask and retrieval positions from the dataset's keyframes), the executor's subtask prompt and
+planned memory, the run-time loop (planner -> bank -> executor; malformed answers counted and
+ignored), and both presets through lerobot-train, then lerobot-eval and activearena-eval running
+planner and executor together."""
+
+import json
+from pathlib import Path
+
+import pytest
+import torch
+from conftest import DATASET_REPO
+from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
+from lerobot.datasets.factory import resolve_delta_timestamps
+from lerobot.datasets.lerobot_dataset import LeRobotDataset
+from lerobot.policies.factory import make_policy, make_pre_post_processors
+from policy_runs import play_both, train_preset
+
+from lerobot_activearena.annotations.keyframes import planned_memory, retrieval_positions
+from lerobot_activearena.policies.activearena_oft.dataset_annotations import DatasetAnnotations
+from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import THINK
+from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import (
+    FRAME_VALID,
+    PROMPT_IDS,
+    PROMPT_MASK,
+)
+from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
+from lerobot_activearena.policies.activearena_plan.planning import (
+    planner_prompt,
+    planner_target,
+    stride_frames,
+)
+
+PRESETS = Path(__file__).parents[1] / "configs" / "policy"
+EXECUTOR, PLANNER = (
+    PRESETS / "oft_subtask_planned_12_ws.json",
+    PRESETS / "oft_subtask_planned_12_ws_planner.json",
+)
+FRAME = 70  # a frame of the first episode with history
+
+
+def _preset(path, cls):
+    policy = json.loads(path.read_text())["policy"]
+    return cls(**{k: v for k, v in policy.items() if k != "type"}, device="cpu")
+
+
+def test_the_presets_are_the_papers_planner_and_executor():
+    planner, executor = _preset(PLANNER, ActiveArenaPlannerConfig), _preset(EXECUTOR, ActiveArenaPlanConfig)
+    assert (planner.type, planner.memory, planner.history, planner.use_state) == (
+        "activearena_planner",
+        "chunk",
+        12,
+        False,
+    )
+    assert (executor.type, executor.memory, executor.think, executor.use_state) == (
+        "activearena_plan",
+        "planned",
+        "none",
+        True,
+    )
+    with pytest.raises(ValueError, match="activearena_plan"):
+        _preset(PRESETS / "oft_subtask_action_12_ws.json", ActiveArenaPlanConfig).__class__.__bases__[0](
+            memory="planned"
+        )
+
+
+def _dataset(cfg, meta, root):
+    return LeRobotDataset(
+        DATASET_REPO, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta)
+    )
+
+
+def test_planner_and_executor_training_inputs(tiny_vlm, bell_count_dataset):
+    meta = LeRobotDatasetMetadata(DATASET_REPO, root=bell_count_dataset)
+    ann = DatasetAnnotations(bell_count_dataset, DATASET_REPO)
+    x, keyframes = ann.subtask_keyframes(FRAME)
+    frames = stride_frames(x)
+
+    cfg = ActiveArenaPlannerConfig(vlm_path=str(tiny_vlm), device="cpu")
+    torch.manual_seed(0)
+    planner = make_policy(cfg, ds_meta=meta)
+    pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
+    batch = pre(torch.utils.data.default_collate([_dataset(cfg, meta, bell_count_dataset)[FRAME]]))
+    assert int(batch[FRAME_VALID][0].sum()) == len(frames) and batch.get("observation.state_token") is None
+    seq = planner._assemble(*planner.training_args(batch))
+    tok = planner.text_tokenizer
+    target = tok.decode(seq["input_ids"][0][seq["kind"][0] == THINK].tolist())
+    positions = retrieval_positions(frames, keyframes)
+    assert target == planner_target(len(frames), ann.subtask(FRAME), positions) + "<|im_end|>"
+    assert positions and keyframes[0] == 0  # the episode's first keyframe window holds its first frame
+    prompt = tok.decode(batch[PROMPT_IDS][0][batch[PROMPT_MASK][0]].tolist())
+    assert prompt.startswith(planner_prompt(batch["task"][0]))
+    loss, info = planner.forward(batch)
+    loss.backward()
+    assert info["lm_loss"] > 0 and planner.vlm.get_input_embeddings().weight.grad.abs().sum() > 0
+
+    ecfg = ActiveArenaPlanConfig(
+        vlm_path=str(tiny_vlm), device="cpu", state_hidden=32, dataset_root=str(bell_count_dataset)
+    )
+    pre, _ = make_pre_post_processors(ecfg, dataset_stats=meta.stats)
+    batch = pre(torch.utils.data.default_collate([_dataset(ecfg, meta, bell_count_dataset)[FRAME]]))
+    assert int(batch[FRAME_VALID][0].sum()) == len(planned_memory(x, keyframes)) + 1  # retrieved + current
+    prompt = tok.decode(batch[PROMPT_IDS][0][batch[PROMPT_MASK][0]].tolist())
+    assert prompt.startswith(f'Your task is: "{ann.subtask(FRAME)}"') and "next action" in prompt
+
+
+def test_the_run_time_loop_chains_planner_bank_and_executor(tiny_vlm, bell_count_dataset, tmp_path):
+    meta = LeRobotDatasetMetadata(DATASET_REPO, root=bell_count_dataset)
+    torch.manual_seed(0)
+    make_policy(
+        ActiveArenaPlannerConfig(vlm_path=str(tiny_vlm), device="cpu", plan_max_tokens=8), ds_meta=meta
+    ).save_pretrained(tmp_path / "planner")
+    cfg = ActiveArenaPlanConfig(
+        vlm_path=str(tiny_vlm), device="cpu", state_hidden=32, planner_path=str(tmp_path / "planner")
+    )
+    policy = make_policy(cfg, ds_meta=meta).eval()
+    pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
+    frame = LeRobotDataset(DATASET_REPO, root=bell_count_dataset, video_backend="pyav")[FRAME]
+    obs = {k: frame[k][None] for k in ("observation.images.head", "observation.state")}
+    obs["task"] = [frame["task"]]
+    seen = []
+    encode = policy._encode
+
+    def spy(*args, vision_cache=None):
+        seen.append((int(args[2][0].sum()), policy.text_tokenizer.decode(args[5][0][args[6][0]].tolist())))
+        return encode(*args, vision_cache=vision_cache)
+
+    policy._encode = spy
+    policy.reset()
+    for _ in range(33):  # chunks at 0, 16, 32
+        assert policy.select_action(pre(obs)).shape == (1, 18)
+    assert policy.rollout_stats() == [{"planner_calls": 3, "malformed_plans": 3, "bank_frames": 0}]
+    assert [n for n, _ in seen] == [1, 1, 1]  # nothing retrieved: the current frame only
+    assert all(p.startswith(f'Your task is: "{frame["task"]}"') for _, p in seen)  # no subtask yet
+
+    answers = iter(
+        [
+            "<think>x</think><subtask>ring the bell</subtask><retrieval>[0]</retrieval>",
+            "garbled",
+            "<think>x</think><subtask>press it</subtask><retrieval>[1]</retrieval>",
+        ]
+    )
+    policy.planner.plan = lambda args, vision_cache=None: [next(answers)]
+    policy.reset()
+    seen.clear()
+    for _ in range(33):
+        policy.select_action(pre(obs))
+    assert policy.rollout_stats() == [{"planner_calls": 3, "malformed_plans": 1, "bank_frames": 2}]
+    assert [n for n, _ in seen] == [1, 2, 3]  # frame 0 retrieved at t=0 stays; frame 16 joins at t=32
+    prompts = [p for _, p in seen]
+    assert prompts[0].startswith('Your task is: "ring the bell"') and prompts[1] == prompts[0]  # kept
+    assert prompts[2].startswith('Your task is: "press it"')
+
+
+def test_both_presets_train_and_play_through_both_evaluators(tiny_vlm, bell_count_dataset, tmp_path):
+    def train(preset, out, *extra):
+        return train_preset(preset, bell_count_dataset, tiny_vlm, out, "--policy.state_hidden=32", *extra)
+
+    planner = train(PLANNER, tmp_path / "planner", "--policy.history=2", "--policy.plan_max_tokens=8")
+    executor = train(
+        EXECUTOR, tmp_path / "executor", "--policy.history=4", f"--policy.planner_path={planner}"
+    )
+    assert json.loads((executor / "config.json").read_text())["planner_path"] == str(planner.resolve())
+    _, mine = play_both(executor, tmp_path, steps=20)
+    stats = mine["policy_stats"]  # chunks at steps 0 and 16; 8 tokens never spell an answer
+    assert stats == {"planner_calls": 2, "malformed_plans": 2, "bank_frames": 0}
