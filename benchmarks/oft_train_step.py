@@ -1,7 +1,10 @@
-"""activearena_oft (or activearena_groot) training-step time, peak memory and inference latency per chunk.
+"""ActiveArena-VLA training-step time, peak memory and inference latency per chunk, for each head.
 
     python benchmarks/oft_train_step.py                      # tiny random Qwen3-VL on the CPU
     python benchmarks/oft_train_step.py --policy-type activearena_groot   # the DiT head instead
+    python benchmarks/oft_train_step.py --policy-type activearena_fast    # FAST action tokens
+    python benchmarks/oft_train_step.py --policy-type activearena_plan    # Plan: executor (+ planner)
+    python benchmarks/oft_train_step.py --policy-type activearena_planner # Plan: the planner's training
     python benchmarks/oft_train_step.py --synthetic          # no dataset: random batches shaped like it
     python benchmarks/oft_train_step.py --vlm-path Qwen/Qwen3-VL-2B-Instruct --device cuda --batch-size 7
     activearena-make-tiny-vlm /tmp/qwen3vl_2b_random --architecture qwen3-vl-2b   # 2B dimensions, random
@@ -31,9 +34,19 @@ from lerobot.policies.factory import make_policy, make_pre_post_processors
 
 from lerobot_activearena.datasets_build.pipeline import build_dataset
 from lerobot_activearena.datasets_build.plan import BuildPlan
+from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
+from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
+
+CONFIGS = {
+    "activearena_oft": ActiveArenaOFTConfig,
+    "activearena_groot": ActiveArenaGR00TConfig,
+    "activearena_fast": ActiveArenaFASTConfig,
+    "activearena_planner": ActiveArenaPlannerConfig,
+    "activearena_plan": ActiveArenaPlanConfig,
+}
 
 
 def peak_memory(cuda: bool) -> str:
@@ -129,9 +142,19 @@ def main() -> None:
     p.add_argument("--steps", type=int, default=5)
     p.add_argument(
         "--policy-type",
-        choices=["activearena_oft", "activearena_groot"],
+        choices=list(CONFIGS),
         default="activearena_oft",
-        help="activearena_groot: the same backbone and memory with the flow-matching DiT head",
+        help="the head: OFT regression, GR00T flow-matching DiT, FAST tokens, Plan's executor or planner",
+    )
+    p.add_argument(
+        "--action-tokens",
+        type=int,
+        default=26,
+        help="activearena_fast: action tokens decoded per chunk (p95 on the preview release: 26); the "
+        "tiny random backbone never ends its answer, so the budget is what it decodes",
+    )
+    p.add_argument(
+        "--plan-tokens", type=int, default=64, help="activearena_plan: planner answer tokens per chunk"
     )
     p.add_argument(
         "--dit",
@@ -167,20 +190,41 @@ def main() -> None:
     args = p.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="aa_oft_bench_"))
     vlm = args.vlm_path or str(make_tiny_vlm(tmp / "tiny_vlm"))
-    think = args.think
+    think, memory, kind = args.think, args.memory, args.policy_type
+    if args.synthetic and kind in ("activearena_fast", "activearena_planner", "activearena_plan"):
+        raise SystemExit(f"--synthetic has no annotations or action statistics for {kind}; use a dataset")
     if args.synthetic and think == "subtask":
         think = "instruction"  # no annotations to read the subtask from; a think span of similar length
         print("synthetic batches: think=instruction stands in for think=subtask (same loss, similar length)")
     head = {}
-    if args.policy_type == "activearena_groot" and args.dit == "tiny":
+    if kind == "activearena_groot" and args.dit == "tiny":
         head = {"dit_width": 32, "dit_depth": 2, "dit_heads": 2, "dit_queries": 4, "dit_out_dim": 32}
         head |= {"decoder_width": 32, "noise_repeats": 2}
-    config_cls = ActiveArenaGR00TConfig if args.policy_type == "activearena_groot" else ActiveArenaOFTConfig
-    cfg = config_cls(
+    if kind == "activearena_planner":
+        head, think, memory = {"use_state": False, "plan_max_tokens": args.plan_tokens}, "subtask", "chunk"
+    if kind == "activearena_plan":  # the executor: retrieved frames (up to K), no think target
+        think, memory = "none", "planned"
+    root = args.root
+    if root is None and not args.synthetic:
+        root = tmp / "ds"
+        plan = BuildPlan(
+            repo_id=args.repo_id,
+            split="id",
+            tasks=["click_bell_rotate_view", "count_target_press_button"],
+            episodes=1,
+            episodes_per_shard=1,
+        )
+        build_dataset(plan, root, workers=2, progress=False)
+    if kind == "activearena_fast":
+        from lerobot_activearena.cli.fit_fast_tokenizer import fit
+
+        fit(["--repo-id", args.repo_id, "--root", str(root), "--out", str(tmp / "fast"), "--holdout", "2"])
+        head = {"action_tokenizer_path": str(tmp / "fast"), "max_action_tokens": args.action_tokens}
+    cfg = CONFIGS[kind](
         **head,
         vlm_path=vlm,
         device=args.device,
-        memory=args.memory,
+        memory=memory,
         history=args.history,
         think=think,
         gradient_checkpointing=args.gradient_checkpointing,
@@ -189,24 +233,13 @@ def main() -> None:
         subtask_max_tokens=args.decode_tokens,
     )
     if args.synthetic:
-        if args.memory != "chunk":
+        if memory != "chunk":
             raise SystemExit(
                 "--synthetic draws chunk-memory batches; use --memory chunk (or a dataset via --root)"
             )
         policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
         ds = None
     else:
-        root = args.root
-        if root is None:
-            root = tmp / "ds"
-            plan = BuildPlan(
-                repo_id=args.repo_id,
-                split="id",
-                tasks=["click_bell_rotate_view", "count_target_press_button"],
-                episodes=1,
-                episodes_per_shard=1,
-            )
-            build_dataset(plan, root, workers=2, progress=False)
         meta = LeRobotDatasetMetadata(args.repo_id, root=root)
         policy = make_policy(cfg, ds_meta=meta)
         pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
@@ -251,12 +284,12 @@ def main() -> None:
     peak = peak_memory(cuda)
     head_params = sum(p.numel() for n, p in policy.named_parameters() if not n.startswith("vlm."))
     print(
-        f"{args.policy_type}: action head, state encoder and queries {head_params / 1e6:.2f} M parameters"
-        + (f" (DiT: {args.dit})" if args.policy_type == "activearena_groot" else "")
+        f"{kind}: action head, state encoder and queries {head_params / 1e6:.2f} M parameters"
+        + (f" (DiT: {args.dit})" if kind == "activearena_groot" else "")
     )
     print(
         f"model {vlm}: {n_params / 1e6:.1f} M parameters, device {args.device}, batch {args.batch_size}, "
-        f"K={args.history} ({args.memory} memory), think={args.think}"
+        f"K={args.history} ({memory} memory), think={think}"
     )
     print(
         f"precision: {'bfloat16 autocast' if cfg.autocast_bfloat16 else 'float32'} compute, "
@@ -272,6 +305,14 @@ def main() -> None:
             f"{args.batch_size / step_s:.2f} samples/s; "
             f"images in the last batch: {images}; peak memory: {peak}"
         )
+    if kind == "activearena_planner":
+        return  # the planner acts only inside activearena_plan: its inference is timed there
+    if kind == "activearena_plan":  # a planner (same backbone size) for the executor to run
+        planner_cfg = ActiveArenaPlannerConfig(
+            vlm_path=vlm, device=args.device, dtype=args.dtype, plan_max_tokens=args.plan_tokens
+        )
+        make_policy(planner_cfg, ds_meta=meta).save_pretrained(tmp / "planner")
+        policy.config.planner_path = str(tmp / "planner")
     policy.eval()
     policy.reset()
     item = (
@@ -307,18 +348,32 @@ def main() -> None:
         "grid": b[processor_activearena_oft.GRID][0, -1],
         "state": b["observation.state"][0],
     }
-    policy._bank[0] = [dict(entry, t=16 * k) for k in range(args.history)]
+    full = 16 * args.history
+    if kind == "activearena_plan":  # K + 1 stride frames stored, K of them retrieved into the bank
+        policy._frames[0] = {16 * k: dict(entry, planner={}) for k in range(args.history + 1)}
+        policy._banks[0].frames = [16 * k for k in range(args.history)]
+    else:
+        policy._bank[0] = [dict(entry, t=16 * k) for k in range(args.history)]
     for _ in range(2):  # cold: every memory frame through the vision tower; warm: their features reused
         policy._queue.clear()
-        policy._t = 16 * args.history
+        policy._t = full
         lat.append(timed(lambda: policy.select_action(b))[0])
     peak = peak_memory(cuda)
+    what = {
+        "activearena_fast": f" (greedy decoding of {args.decode_tokens} think + {args.action_tokens} action + 8 tag "
+        "tokens: the random backbone never ends its answer)",
+        "activearena_plan": f" (planner: {args.history + 1} frames and {args.plan_tokens} answer tokens; executor: "
+        f"{args.history} retrieved frames + the current one)",
+    }.get(kind, "")
     print(
-        f"inference per chunk: {lat[2] * 1000:.0f} ms with {args.history} memory frames + the current one "
+        f"inference per chunk{what}: {lat[2] * 1000:.0f} ms with {args.history} memory frames + the current one "
         f"(memory frames' vision features reused, as in an episode), {lat[1] * 1000:.0f} ms encoding all "
         f"{args.history + 1} images, {lat[0] * 1000:.0f} ms with the current frame only; peak memory so far: {peak}"
     )
-    if args.think == "subtask":  # what memory=subtask adds per chunk: greedy <think> decoding
+    if args.think == "subtask" and kind in (
+        "activearena_oft",
+        "activearena_groot",
+    ):  # what memory=subtask adds per chunk: greedy <think> decoding
         pixels, grid, valid, state, cache = policy._history_batch(b)
         enc = (
             pixels,

@@ -147,6 +147,12 @@ class ActiveArenaFASTPolicy(ActiveArenaOFTPolicy):
         for b in range(batch_size):
             self._decode_stats["chunks"][b] += 1
             if failed[b]:
+                if not sum(self._decode_stats["failed_decodes"]):
+                    log.warning(
+                        "activearena_fast: a response did not decode to a %d x %d chunk; the env holds its last "
+                        "command (failures are counted per episode: policy_stats in activearena-eval records)",
+                        *pred.shape[1:],
+                    )
                 self._decode_stats["failed_decodes"][b] += 1
                 pred[b] = hold[b].to(pred)[None, : pred.shape[-1]]
         self._last_command = pred[:, self.config.n_action_steps - 1].clone()
