@@ -119,3 +119,8 @@ def pytest_terminal_summary(terminalreporter):
         f"for every task: {tasked / len(tasks):.1f} s per task x {len(tasks)} tasks; slowest: "
         + ", ".join(f"{t} {sec:.1f} s" for t, sec in slowest)
     )
+    heaviest = sorted(per_task.items(), key=lambda kv: -sum(kv[1].values()))[:6]
+    terminalreporter.write_line(
+        "per task, by test function: "
+        + ", ".join(f"{f.split('::')[-1]} {sum(per.values()) / len(tasks):.1f} s" for f, per in heaviest)
+    )
