@@ -26,6 +26,8 @@ from lerobot_activearena.policies.activearena_oft.processor_activearena_oft impo
 )
 from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
 from lerobot_activearena.policies.activearena_plan.planning import (
+    PlannerAnswer,
+    parse_planner_answer,
     planner_prompt,
     planner_target,
     stride_frames,
@@ -102,6 +104,33 @@ def test_planner_and_executor_training_inputs(tiny_vlm, bell_count_dataset):
     assert int(batch[FRAME_VALID][0].sum()) == len(planned_memory(x, keyframes)) + 1  # retrieved + current
     prompt = tok.decode(batch[PROMPT_IDS][0][batch[PROMPT_MASK][0]].tolist())
     assert prompt.startswith(f'Your task is: "{ann.subtask(FRAME)}"') and "next action" in prompt
+
+
+def test_an_overfitted_planner_answers_its_target(tiny_vlm, bell_count_dataset):
+    """The planner's decode path: after overfitting one sample, its greedy answer parses to the
+    sample's subtask and retrieval positions."""
+    meta = LeRobotDatasetMetadata(DATASET_REPO, root=bell_count_dataset)
+    ann = DatasetAnnotations(bell_count_dataset, DATASET_REPO)
+    x, keyframes = ann.subtask_keyframes(FRAME)
+    frames = stride_frames(x, history=2)
+    cfg = ActiveArenaPlannerConfig(vlm_path=str(tiny_vlm), device="cpu", history=2)
+    torch.manual_seed(0)
+    planner = make_policy(cfg, ds_meta=meta)
+    pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
+    batch = pre(torch.utils.data.default_collate([_dataset(cfg, meta, bell_count_dataset)[FRAME]]))
+    opt = torch.optim.AdamW(planner.parameters(), lr=5e-3)
+    planner.train()
+    for _ in range(200):
+        loss, _ = planner.forward(batch)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+        if float(loss) < 0.03:
+            break
+    planner.eval()
+    args = planner.training_args(batch)[:7]
+    answer = parse_planner_answer(planner.plan(args)[0], len(frames))
+    assert answer == PlannerAnswer(ann.subtask(FRAME), tuple(retrieval_positions(frames, keyframes)))
 
 
 def test_the_run_time_loop_chains_planner_bank_and_executor(tiny_vlm, bell_count_dataset, tmp_path):
