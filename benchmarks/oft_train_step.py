@@ -37,8 +37,8 @@ from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
-from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
 from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
+from lerobot_activearena.policies.activearena_vla.tiny_vlm import make_tiny_vlm
 
 CONFIGS = {
     "activearena_oft": ActiveArenaOFTConfig,
@@ -338,14 +338,14 @@ def main() -> None:
 
     # chunk boundary with an empty memory, then one with a full bank (K frames, as K chunk boundaries
     # of memory=chunk would have written; their content does not change the compute)
-    from lerobot_activearena.policies.activearena_oft import processor_activearena_oft
+    from lerobot_activearena.policies.activearena_vla import processor_activearena_vla
 
     policy.reset()
     b = pre(dict(obs))
     lat = [timed(lambda: policy.select_action(b))[0]]
     entry = {
-        "pixels": b[processor_activearena_oft.PIXELS][0, -1],
-        "grid": b[processor_activearena_oft.GRID][0, -1],
+        "pixels": b[processor_activearena_vla.PIXELS][0, -1],
+        "grid": b[processor_activearena_vla.GRID][0, -1],
         "state": b["observation.state"][0],
     }
     full = 16 * args.history
@@ -380,9 +380,9 @@ def main() -> None:
             grid,
             valid,
             state if policy.state_encoder is not None else None,
-            b[processor_activearena_oft.PREFIX_IDS],
-            b[processor_activearena_oft.PROMPT_IDS],
-            b[processor_activearena_oft.PROMPT_MASK],
+            b[processor_activearena_vla.PREFIX_IDS],
+            b[processor_activearena_vla.PROMPT_IDS],
+            b[processor_activearena_vla.PROMPT_MASK],
         )
         with torch.no_grad():
             cached, (tokens, _, _) = timed(

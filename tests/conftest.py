@@ -52,7 +52,7 @@ def expert_episode():
 @pytest.fixture(scope="session")
 def tiny_vlm(tmp_path_factory):
     """A tiny random Qwen3-VL folder (``--policy.vlm_path``), its tokenizer knowing every task's words."""
-    from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
+    from lerobot_activearena.policies.activearena_vla.tiny_vlm import make_tiny_vlm
     from lerobot_activearena.tasks.registry import task_texts
 
     return make_tiny_vlm(tmp_path_factory.mktemp("vlm") / "tiny_qwen3_vl", texts=task_texts())

@@ -21,8 +21,8 @@ from policy_runs import play_both, train_preset
 from lerobot_activearena.cli.fit_fast_tokenizer import fit
 from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
 from lerobot_activearena.policies.activearena_fast.processor_activearena_fast import HOLD_COMMAND
-from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import QUERY, THINK
-from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import RAW_STATE
+from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY, THINK
+from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import RAW_STATE
 
 PRESET = Path(__file__).parents[1] / "configs" / "policy" / "fast_subtask_action_12_ws.json"
 SMALL = {"state_hidden": 32, "subtask_max_tokens": 6, "max_action_tokens": 12}

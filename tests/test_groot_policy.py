@@ -15,7 +15,7 @@ from lerobot.policies.factory import make_policy, make_pre_post_processors
 from policy_runs import play_both, train_preset
 
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
-from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import QUERY
+from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY
 
 PRESET = Path(__file__).parents[1] / "configs" / "policy" / "gr00t_subtask_action_12_ws.json"
 TINY_DIT = {

@@ -27,14 +27,14 @@ from lerobot_activearena.annotations.keyframes import motion_keyframes
 from lerobot_activearena.cli.eval import main as activearena_eval
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
-from lerobot_activearena.policies.activearena_oft.dataset_annotations import DatasetAnnotations
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
-from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import (
+from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
+from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
     PIXELS,
     THINK_IDS,
     THINK_MASK,
 )
-from lerobot_activearena.policies.activearena_oft.tiny_vlm import make_tiny_vlm
+from lerobot_activearena.policies.activearena_vla.tiny_vlm import make_tiny_vlm
 from lerobot_activearena.tasks.rollout import run_expert_episode
 
 REPO = "local/bench_id"  # conftest.DATASET_REPO
@@ -436,7 +436,7 @@ def test_the_2b_architecture_preset_has_the_real_models_size(tmp_path):
     from transformers import Qwen3VLForConditionalGeneration
 
     from lerobot_activearena.policies.activearena_oft.heads import MLPResNet
-    from lerobot_activearena.policies.activearena_oft.tiny_vlm import QWEN3_VL_2B, qwen3_vl_config
+    from lerobot_activearena.policies.activearena_vla.tiny_vlm import QWEN3_VL_2B, qwen3_vl_config
 
     cfg = qwen3_vl_config(QWEN3_VL_2B["text"], QWEN3_VL_2B["vision"])
     with torch.device("meta"):  # shapes only, no memory

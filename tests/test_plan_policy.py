@@ -17,13 +17,6 @@ from lerobot.policies.factory import make_policy, make_pre_post_processors
 from policy_runs import play_both, train_preset
 
 from lerobot_activearena.annotations.keyframes import planned_memory, retrieval_positions
-from lerobot_activearena.policies.activearena_oft.dataset_annotations import DatasetAnnotations
-from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import THINK
-from lerobot_activearena.policies.activearena_oft.processor_activearena_oft import (
-    FRAME_VALID,
-    PROMPT_IDS,
-    PROMPT_MASK,
-)
 from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
 from lerobot_activearena.policies.activearena_plan.planning import (
     PlannerAnswer,
@@ -31,6 +24,13 @@ from lerobot_activearena.policies.activearena_plan.planning import (
     planner_prompt,
     planner_target,
     stride_frames,
+)
+from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
+from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import THINK
+from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+    FRAME_VALID,
+    PROMPT_IDS,
+    PROMPT_MASK,
 )
 
 PRESETS = Path(__file__).parents[1] / "configs" / "policy"

@@ -27,7 +27,7 @@ def main(argv: list[str] | None = None) -> None:
         p.error(f"{args.out_dir} already holds a model; pass --overwrite to replace it")
     if args.hidden % 4 or args.hidden < 32:
         p.error("--hidden must be a multiple of 4 and >= 32")
-    from ..policies.activearena_oft.tiny_vlm import make_tiny_vlm
+    from ..policies.activearena_vla.tiny_vlm import make_tiny_vlm
     from ..tasks.registry import task_texts
 
     out = make_tiny_vlm(

@@ -1,5 +1,5 @@
 """Config of ActiveArena-VLA-FAST (`fast_subtask_action_12_ws`): the OFT run's backbone, memory, state
-tokens and optimiser (every field of ``activearena_oft``) with the action queries and regression head
+tokens and optimiser (the shared ``activearena_vla`` fields) with the action queries and regression head
 replaced by action tokens: the backbone's vocabulary grows by the FAST tokenizer's 2,048 ids and the
 chunk is the text after ``<think>..</think><action>``, learned with one cross-entropy and decoded
 greedily."""
@@ -12,14 +12,14 @@ from pathlib import Path
 from lerobot.configs.policies import PreTrainedConfig
 from lerobot.configs.types import NormalizationMode
 
-from ..activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
+from ..activearena_vla.configuration_activearena_vla import ActiveArenaVLAConfig
 
 ACTION_TOKENIZER_DIR = "action_tokenizer"  # where a checkpoint keeps its FAST tokenizer
 
 
 @PreTrainedConfig.register_subclass("activearena_fast")
 @dataclass
-class ActiveArenaFASTConfig(ActiveArenaOFTConfig):
+class ActiveArenaFASTConfig(ActiveArenaVLAConfig):
     # The FAST tokenizer folder written by `activearena-fit-fast-tokenizer` (fitted on the training
     # dataset); it is saved into every checkpoint, which then loads its own copy.
     action_tokenizer_path: str | None = None

@@ -1,5 +1,5 @@
-"""ActiveArena-VLA-FAST: ``activearena_oft``'s policy (backbone, memory bank, state tokens, evaluation
-loop) whose actions are text. The backbone's vocabulary grows by the FAST tokenizer's ids; the target
+"""ActiveArena-VLA-FAST: the shared ActiveArena-VLA policy (``activearena_vla``: backbone, memory
+bank, state tokens, evaluation loop) whose actions are text. The backbone's vocabulary grows by the FAST tokenizer's ids; the target
 after the prompt is ``<think>{subtask}</think><action>{action tokens}</action><|im_end|>``, learned with
 one cross-entropy. At evaluation the response is decoded greedily; one that does not spell a
 16 x 18 chunk never stops the episode: that env holds its last command (before its first, its
@@ -16,7 +16,7 @@ import torch
 from lerobot.utils.constants import ACTION
 from torch import Tensor
 
-from ..activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy, _in_precision
+from ..activearena_vla.modeling_activearena_vla import ActiveArenaVLAPolicy, _in_precision
 from .action_tokenizer import FastActionTokenizer
 from .configuration_activearena_fast import ACTION_TOKENIZER_DIR, ActiveArenaFASTConfig
 from .processor_activearena_fast import ACTION_SUFFIX, HOLD_COMMAND
@@ -24,7 +24,7 @@ from .processor_activearena_fast import ACTION_SUFFIX, HOLD_COMMAND
 log = logging.getLogger(__name__)
 
 
-class ActiveArenaFASTPolicy(ActiveArenaOFTPolicy):
+class ActiveArenaFASTPolicy(ActiveArenaVLAPolicy):
     config_class = ActiveArenaFASTConfig
     name = "activearena_fast"
 

@@ -1,4 +1,4 @@
-"""ActiveArena-VLA-FAST's processors: those of ``activearena_oft`` with the think target followed by
+"""ActiveArena-VLA-FAST's processors: the shared ones of ``activearena_vla`` with the think target followed by
 ``<action>`` (the policy appends the chunk's action tokens and ``</action>``), plus one step that
 writes the current state in the action's normalisation: the command the policy holds when a
 response does not decode to a chunk before it has issued any."""
@@ -14,10 +14,10 @@ from lerobot.processor import ProcessorStep, ProcessorStepRegistry
 from lerobot.processor.normalize_processor import _NormalizationMixin
 from lerobot.utils.constants import ACTION
 
-from ..activearena_oft.processor_activearena_oft import (
+from ..activearena_vla.processor_activearena_vla import (
     RAW_STATE,
     VLM,
-    make_activearena_oft_pre_post_processors,
+    make_activearena_vla_pre_post_processors,
 )
 
 HOLD_COMMAND = VLM + "hold_command"
@@ -55,7 +55,7 @@ def make_activearena_fast_pre_post_processors(config, dataset_stats=None, datase
         stats=dataset_stats,
         device=config.device,
     )
-    return make_activearena_oft_pre_post_processors(
+    return make_activearena_vla_pre_post_processors(
         config,
         dataset_stats,
         dataset_meta,

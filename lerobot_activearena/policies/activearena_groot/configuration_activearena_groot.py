@@ -1,5 +1,5 @@
 """Config of ActiveArena-VLA-GR00T (`gr00t_subtask_action_12_ws`): the OFT run's backbone, memory,
-state tokens, ``<think>`` co-training and optimiser (every field of ``activearena_oft``), with the
+state tokens, ``<think>`` co-training and optimiser (the shared ``activearena_vla`` fields), with the
 action queries and MLPResNet replaced by a flow-matching DiT head that cross-attends to the
 backbone's hidden states (``flow_dit``)."""
 
@@ -9,13 +9,13 @@ from dataclasses import dataclass
 
 from lerobot.configs.policies import PreTrainedConfig
 
-from ..activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
+from ..activearena_vla.configuration_activearena_vla import ActiveArenaVLAConfig
 from .flow_dit import DiTConfig
 
 
 @PreTrainedConfig.register_subclass("activearena_groot")
 @dataclass
-class ActiveArenaGR00TConfig(ActiveArenaOFTConfig):
+class ActiveArenaGR00TConfig(ActiveArenaVLAConfig):
     # DiT-B (paper / release): 16 blocks, 12 heads x 64 = 768 wide, 32 learned query tokens, output 1024,
     # action decoder MLP 1024; Beta(1.5, 1) flow time, 8 noise repeats, 4 Euler steps at inference.
     dit_width: int = 768

@@ -1,5 +1,5 @@
-"""ActiveArena-VLA-GR00T: ``activearena_oft``'s policy (backbone, memory bank, state tokens, think
-loss, evaluation loop) with its action head replaced. No action queries enter the backbone's
+"""ActiveArena-VLA-GR00T: the shared ActiveArena-VLA policy (``activearena_vla``: backbone, memory
+bank, state tokens, think loss, evaluation loop) with a flow-matching action head. No action queries enter the backbone's
 sequence; the DiT cross-attends to the last-layer states of the images, state tokens and prompt
 (not the think span: at inference it is not there), is trained by flow matching and samples a chunk
 with a few Euler steps."""
@@ -10,12 +10,12 @@ import torch
 from lerobot.utils.constants import ACTION
 from torch import Tensor
 
-from ..activearena_oft.modeling_activearena_oft import THINK, ActiveArenaOFTPolicy, _real_steps
+from ..activearena_vla.modeling_activearena_vla import THINK, ActiveArenaVLAPolicy, _real_steps
 from .configuration_activearena_groot import ActiveArenaGR00TConfig
 from .flow_dit import FlowMatchingDiT
 
 
-class ActiveArenaGR00TPolicy(ActiveArenaOFTPolicy):
+class ActiveArenaGR00TPolicy(ActiveArenaVLAPolicy):
     config_class = ActiveArenaGR00TConfig
     name = "activearena_groot"
 

@@ -14,12 +14,13 @@ from lerobot.configs.policies import PreTrainedConfig
 
 from ...annotations.keyframes import STRIDE
 from ..activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
+from ..activearena_vla.configuration_activearena_vla import ActiveArenaVLAConfig
 from .planning import PLANNER_HISTORY
 
 
 @PreTrainedConfig.register_subclass("activearena_planner")
 @dataclass
-class ActiveArenaPlannerConfig(ActiveArenaOFTConfig):
+class ActiveArenaPlannerConfig(ActiveArenaVLAConfig):
     memory: str = "chunk"  # the stride-16 frames
     history: int = PLANNER_HISTORY
     use_state: bool = False  # the planner sees images and language only

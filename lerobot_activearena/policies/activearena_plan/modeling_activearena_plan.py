@@ -13,14 +13,15 @@ from lerobot.utils.constants import OBS_STATE
 from torch import Tensor
 
 from ...annotations.keyframes import STRIDE
-from ..activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy, _in_precision
-from ..activearena_oft.processor_activearena_oft import GRID, PIXELS, PREFIX_IDS
+from ..activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
+from ..activearena_vla.modeling_activearena_vla import ActiveArenaVLAPolicy, _in_precision
+from ..activearena_vla.processor_activearena_vla import GRID, PIXELS, PREFIX_IDS
 from .configuration_activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
 from .planning import MemoryBank, parse_planner_answer, stride_frames
 from .processor_activearena_plan import EXECUTOR_PROMPT, PLANNER_PROMPT
 
 
-class ActiveArenaPlannerPolicy(ActiveArenaOFTPolicy):
+class ActiveArenaPlannerPolicy(ActiveArenaVLAPolicy):
     config_class = ActiveArenaPlannerConfig
     name = "activearena_planner"
 

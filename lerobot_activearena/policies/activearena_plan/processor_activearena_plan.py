@@ -1,4 +1,4 @@
-"""ActiveArena-Plan's processors: those of ``activearena_oft`` with the paper's prompts. The planner's
+"""ActiveArena-Plan's processors: the shared ones of ``activearena_vla`` with the paper's prompts. The planner's
 annotation step also writes its complete training target (subtask and the retrieval positions of its
 input frames); the executor is prompted with the annotated subtask at training time (at evaluation the
 policy re-prompts it with the planner's)."""
@@ -12,9 +12,9 @@ from lerobot.lerobot_types import TransitionKey
 from lerobot.processor import ProcessorStepRegistry
 
 from ...annotations.keyframes import retrieval_positions
-from ..activearena_oft.processor_activearena_oft import (
+from ..activearena_vla.processor_activearena_vla import (
     ActiveArenaAnnotationStep,
-    make_activearena_oft_pre_post_processors,
+    make_activearena_vla_pre_post_processors,
 )
 from .planning import executor_prompt, planner_prompt, planner_target, stride_frames
 
@@ -47,7 +47,7 @@ class PlannerAnnotationStep(ActiveArenaAnnotationStep):
 
 
 def make_activearena_planner_pre_post_processors(config, dataset_stats=None, dataset_meta=None):
-    return make_activearena_oft_pre_post_processors(
+    return make_activearena_vla_pre_post_processors(
         config,
         dataset_stats,
         dataset_meta,
@@ -58,6 +58,6 @@ def make_activearena_planner_pre_post_processors(config, dataset_stats=None, dat
 
 
 def make_activearena_plan_pre_post_processors(config, dataset_stats=None, dataset_meta=None):
-    return make_activearena_oft_pre_post_processors(
+    return make_activearena_vla_pre_post_processors(
         config, dataset_stats, dataset_meta, prompt_template=EXECUTOR_PROMPT, subtask_prompt=True
     )

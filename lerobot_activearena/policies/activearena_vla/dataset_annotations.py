@@ -11,7 +11,7 @@ import numpy as np
 import torch
 
 from ...annotations.keyframes import memory_frames
-from .configuration_activearena_oft import IMAGE_KEY
+from .configuration_activearena_vla import IMAGE_KEY
 
 COLUMNS = ("episode_index", "frame_index", "subtask_index", "subtask_keyframe", "motion_keyframe")
 

@@ -1,0 +1,185 @@
+"""The fields every ActiveArena-VLA head shares (paper App. "Internal Baseline Details"): the Qwen3-VL
+backbone, up to K history images chosen by a memory write policy, optional per-image state tokens,
+the ``<think>`` target, precision and the optimiser preset. Each head's registered config
+(``activearena_oft``, ``activearena_groot``, ``activearena_fast``, ``activearena_planner``,
+``activearena_plan``) subclasses it and adds its own fields."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lerobot.configs.policies import PreTrainedConfig
+from lerobot.configs.types import FeatureType, NormalizationMode
+from lerobot.optim.optimizers import AdamWConfig
+from lerobot.optim.schedulers import CosineDecayWithWarmupSchedulerConfig
+from lerobot.utils.constants import ACTION, OBS_STATE
+
+from ...annotations.keyframes import STRIDE, WRITE_POLICIES
+from ...sim.action import ACTION_DIM, HEAD_PITCH, TORSO_YAW
+from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+
+IMAGE_KEY = "observation.images.head"
+THINK_TARGETS = ("none", "instruction", "subtask")
+DTYPES = ("auto", "float32", "bfloat16")
+ATTENTION = ("sdpa", "flash_attention_2", "eager")
+WEIGHT_DTYPES = ("float32", "bfloat16")
+VIEW_DIMS = slice(TORSO_YAW, HEAD_PITCH + 1)  # the active-viewpoint dimensions: the action's last two
+
+
+@dataclass
+class ActiveArenaVLAConfig(PreTrainedConfig):
+    # Backbone: a Hugging Face id or a local folder (model, tokenizer and image processor together).
+    vlm_path: str = "Qwen/Qwen3-VL-2B-Instruct"
+    # Memory: write policy for the history images and their number K (the current image is extra).
+    memory: str = "chunk"
+    history: int = 12
+    use_state: bool = True
+    # ActiveArena-Fixed: learn only the 16 arm and gripper dimensions; every output chunk holds the
+    # torso yaw and head pitch at home (evaluate with configs/env/activearena_fixed_*.json)
+    fixed_view: bool = False
+    think: str = "subtask"  # auxiliary <think> target: none | instruction | subtask
+    lm_loss_weight: float = 0.1
+    subtask_max_tokens: int = 32  # memory=subtask at evaluation: greedy <think> decoding budget per chunk
+    chunk_size: int = 16
+    n_action_steps: int = 16
+    state_hidden: int = 1024
+    image_max_pixels: int = (
+        HEAD_WIDTH * HEAD_HEIGHT
+    )  # the head camera's native size: 192 visual tokens per image
+    # Where the dataset's annotations are read at training time (subtask text, keyframe columns);
+    # filled by lerobot-train from the dataset, unused at evaluation.
+    dataset_root: str | None = None
+    gradient_checkpointing: bool = False
+    # Compute precision: auto (bfloat16 autocast on CUDA, float32 elsewhere) | float32 | bfloat16. The
+    # parameters stay float32 (master weights: AdamW's small updates are kept, as DeepSpeed ZeRO-2 does
+    # in the paper's run) unless weights_dtype=bfloat16, which halves their memory but rounds most
+    # updates at lr 1e-5 away (warned).
+    dtype: str = "auto"
+    weights_dtype: str = "float32"
+    # The backbone's attention kernel: sdpa (PyTorch's fused scaled-dot-product attention: flash or
+    # memory-efficient kernels on CUDA) | flash_attention_2 (needs the flash-attn package) | eager.
+    attn_implementation: str = "sdpa"
+    push_to_hub: bool = (
+        False  # LeRobot's default (True) needs a repo id; opt in with --policy.push_to_hub=true
+    )
+    # Optimiser (paper: AdamW (0.9, 0.95), eps 1e-8, wd 1e-8, backbone 1e-5, heads 1e-4,
+    # 5k-step linear warm-up, cosine to 5e-7, clip 1.0).
+    optimizer_lr: float = 1e-5
+    head_lr: float = 1e-4
+    optimizer_betas: tuple[float, float] = (0.9, 0.95)
+    optimizer_eps: float = 1e-8
+    optimizer_weight_decay: float = 1e-8
+    optimizer_grad_clip_norm: float = 1.0
+    scheduler_warmup_steps: int = 5_000
+    scheduler_decay_steps: int = 150_000
+    scheduler_decay_lr: float = 5e-7
+    normalization_mapping: dict[str, NormalizationMode] = field(
+        default_factory=lambda: {
+            "VISUAL": NormalizationMode.IDENTITY,
+            "STATE": NormalizationMode.MEAN_STD,
+            "ACTION": NormalizationMode.MEAN_STD,
+        }
+    )
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.memory not in WRITE_POLICIES:
+            raise ValueError(f"--policy.memory must be one of {WRITE_POLICIES}, got {self.memory!r}")
+        if self.memory == "planned" and self.type != "activearena_plan":
+            raise ValueError(
+                "memory=planned is ActiveArena-Plan's executor memory (frames its planner retrieves): "
+                "use --policy.type=activearena_plan"
+            )
+        if self.think not in THINK_TARGETS:
+            raise ValueError(f"--policy.think must be one of {THINK_TARGETS}, got {self.think!r}")
+        for name, allowed in (
+            ("dtype", DTYPES),
+            ("weights_dtype", WEIGHT_DTYPES),
+            ("attn_implementation", ATTENTION),
+        ):
+            if getattr(self, name) not in allowed:
+                raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")
+        if self.history < 0:
+            raise ValueError(f"--policy.history must be >= 0, got {self.history}")
+        if self.memory == "none":
+            self.history = 0
+        if not 1 <= self.n_action_steps <= self.chunk_size:
+            raise ValueError(
+                f"n_action_steps ({self.n_action_steps}) must be in 1..chunk_size ({self.chunk_size})"
+            )
+        # A local folder is stored absolute, so a checkpoint reloads from any working directory.
+        for name in ("vlm_path", "dataset_root"):
+            value = getattr(self, name)
+            if value and Path(value).expanduser().is_dir():
+                setattr(self, name, str(Path(value).expanduser().resolve()))
+
+    @property
+    def autocast_bfloat16(self) -> bool:
+        """Whether the forward passes run under bfloat16 autocast."""
+        return self.dtype == "bfloat16" or (self.dtype == "auto" and str(self.device).startswith("cuda"))
+
+    @property
+    def uses_history(self) -> bool:
+        return self.history > 0 and self.memory != "none"
+
+    @property
+    def observation_delta_indices(self) -> list[int] | None:
+        # chunk memory reads its stride-16 history straight from the dataset; keyframe memories load
+        # their frames through the annotation step (a per-sample set LeRobot's delta indices cannot express)
+        if self.memory == "chunk" and self.history > 0:
+            return [-STRIDE * k for k in range(self.history, 0, -1)] + [0]
+        return None
+
+    @property
+    def action_delta_indices(self) -> list[int]:
+        return list(range(self.chunk_size))
+
+    @property
+    def reward_delta_indices(self) -> None:
+        return None
+
+    def get_optimizer_preset(self) -> AdamWConfig:
+        return AdamWConfig(
+            lr=self.optimizer_lr,
+            betas=self.optimizer_betas,
+            eps=self.optimizer_eps,
+            weight_decay=self.optimizer_weight_decay,
+            grad_clip_norm=self.optimizer_grad_clip_norm,
+        )
+
+    def get_scheduler_preset(self) -> CosineDecayWithWarmupSchedulerConfig:
+        return CosineDecayWithWarmupSchedulerConfig(
+            num_warmup_steps=self.scheduler_warmup_steps,
+            num_decay_steps=self.scheduler_decay_steps,
+            peak_lr=self.optimizer_lr,
+            decay_lr=self.scheduler_decay_lr,
+        )
+
+    def validate_features(self) -> None:
+        img = self.input_features.get(IMAGE_KEY)
+        if img is None or img.type != FeatureType.VISUAL:
+            raise ValueError(
+                f"{self.type} needs the head camera {IMAGE_KEY!r}; input features were "
+                f"{sorted(self.input_features)}"
+            )
+        if self.use_state and OBS_STATE not in self.input_features:
+            raise ValueError(f"use_state=true needs {OBS_STATE!r} (or pass --policy.use_state=false)")
+        act = self.output_features.get(ACTION)
+        if act is None:
+            raise ValueError(f"{self.type} needs an 'action' output feature")
+        if self.fixed_view and self.action_dim != ACTION_DIM:
+            raise ValueError(
+                f"fixed_view=true drops the torso and head dimensions of the {ACTION_DIM}-D ActiveArena action; "
+                f"this dataset's action is {self.action_dim}-D"
+            )
+
+    @property
+    def action_dim(self) -> int:
+        act = self.output_features.get(ACTION)
+        return int(act.shape[0]) if act is not None else ACTION_DIM
+
+    @property
+    def predicted_action_dim(self) -> int:
+        """The dimensions the head predicts: all, or (fixed_view) the arms' and grippers' 16."""
+        return VIEW_DIMS.start if self.fixed_view else self.action_dim

@@ -1,0 +1,546 @@
+"""The ActiveArena-VLA base every head shares: Qwen3-VL reads the memory images, the current image
+(each optionally followed by a soft state token) and the prompt; a head's action queries (if it
+has any) follow the prompt, then the optional ``<think>`` span, trained with next-token loss. The
+queries cannot attend to the span (causal attention), so regressed actions never depend on text.
+A head fills the hooks ``_build_action_head``, ``n_queries``, ``_actions`` and ``_action_loss`` (or
+overrides ``forward`` and ``_encode``, as the text heads do, decoding with ``_greedy``).
+
+The same ``_assemble`` / ``_encode`` serve training (history from the batch) and evaluation (history from the
+policy's memory bank, written causally and reset per episode), so both see identical inputs."""
+
+from __future__ import annotations
+
+import functools
+import warnings
+from collections import deque
+
+import numpy as np
+import torch
+from lerobot.policies.pretrained import PreTrainedPolicy
+from lerobot.utils.constants import OBS_STATE
+from torch import Tensor, nn
+
+from ...annotations.keyframes import STRIDE, motion_keyframes
+from .configuration_activearena_vla import ActiveArenaVLAConfig
+from .processor_activearena_vla import (
+    FRAME_VALID,
+    GRID,
+    PIXELS,
+    PREFIX_IDS,
+    PROMPT_IDS,
+    PROMPT_MASK,
+    RAW_STATE,
+    THINK_IDS,
+    THINK_MASK,
+)
+from .state_encoder import StateEncoder
+from .vlm_loading import load_from_vlm_path
+
+TEXT, IMAGE, STATE, QUERY, THINK = 0, 1, 2, 3, 4
+
+
+def _weights_dtype(config: ActiveArenaVLAConfig) -> torch.dtype:
+    if config.weights_dtype == "bfloat16":
+        warnings.warn(
+            "weights_dtype=bfloat16: the backbone's parameters are bfloat16, so AdamW updates smaller "
+            "than their last bit (most of them at lr 1e-5) round away. Keep the default float32 master "
+            "weights (bfloat16 compute comes from dtype=auto/bfloat16) unless memory forces this.",
+            UserWarning,
+            stacklevel=3,
+        )
+        return torch.bfloat16
+    return torch.float32
+
+
+def _in_precision(method):
+    """Run ``method`` under the policy's autocast (bfloat16 compute over float32 weights when enabled)."""
+
+    @functools.wraps(method)
+    def wrapper(self, *args, **kwargs):
+        with torch.autocast(
+            device_type=self.device.type,
+            dtype=torch.bfloat16,
+            enabled=self.config.autocast_bfloat16,
+        ):
+            return method(self, *args, **kwargs)
+
+    return wrapper
+
+
+def _real_steps(batch: dict[str, Tensor], target: Tensor) -> Tensor:
+    """(B, chunk) True where the chunk's step is real (LeRobot pads past an episode's end)."""
+    if "action_is_pad" in batch:
+        return ~batch["action_is_pad"]
+    return torch.ones(target.shape[:2], dtype=torch.bool, device=target.device)
+
+
+class ActiveArenaVLAPolicy(PreTrainedPolicy):
+    """Not a policy type of its own: the registered heads subclass it."""
+
+    config_class = ActiveArenaVLAConfig
+    name = "activearena_vla"
+
+    def __init__(self, config: ActiveArenaVLAConfig, **kwargs):
+        super().__init__(config)
+        config.validate_features()
+        self.config = config
+        from transformers import Qwen3VLForConditionalGeneration
+
+        self.vlm = load_from_vlm_path(
+            Qwen3VLForConditionalGeneration.from_pretrained,
+            config.vlm_path,
+            "model",
+            dtype=_weights_dtype(config),
+            attn_implementation=config.attn_implementation,
+        )
+        if config.gradient_checkpointing:
+            self.vlm.gradient_checkpointing_enable()
+        vc = self.vlm.config
+        width = vc.text_config.hidden_size
+        self.max_frames = config.history + 1
+        self._build_action_head(width)
+        state_ft = config.input_features.get(OBS_STATE)
+        self.state_encoder = (
+            StateEncoder(int(state_ft.shape[0]), config.state_hidden, width, self.max_frames)
+            if config.use_state
+            else None
+        )
+        self.image_token_id, self.vision_start_id, self.vision_end_id = (
+            vc.image_token_id,
+            vc.vision_start_token_id,
+            vc.vision_end_token_id,
+        )
+        self.pad_id = vc.text_config.pad_token_id or 0
+        self.reset()
+
+    # ----- the action head: the hooks each head fills -----
+    def _build_action_head(self, width: int) -> None:
+        """Create the head's modules for a backbone of hidden size ``width``."""
+        raise NotImplementedError
+
+    @property
+    def n_queries(self) -> int:
+        """Action query tokens (``self.action_queries``) placed after the prompt."""
+        return 0
+
+    @property
+    def device(self) -> torch.device:
+        return self.vlm.get_input_embeddings().weight.device
+
+    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
+        """The (B, chunk, predicted_action_dim) prediction from the backbone's last-layer states."""
+        raise NotImplementedError
+
+    def _action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
+        """Per-sample action loss and its log entries."""
+        raise NotImplementedError
+
+    # ----- optimisation -----
+    def get_optim_params(self) -> list[dict]:
+        backbone = [p for p in self.vlm.parameters() if p.requires_grad]
+        heads = [p for n, p in self.named_parameters() if not n.startswith("vlm.") and p.requires_grad]
+        return [
+            {"params": backbone, "lr": self.config.optimizer_lr},
+            {"params": heads, "lr": self.config.head_lr},
+        ]
+
+    # ----- sequence assembly -----
+    def _assemble(
+        self,
+        pixels: Tensor,
+        grid: Tensor,
+        valid: Tensor,
+        state: Tensor | None,
+        prefix: Tensor,
+        prompt: Tensor,
+        prompt_mask: Tensor,
+        think: Tensor | None = None,
+        think_mask: Tensor | None = None,
+    ) -> dict[str, Tensor]:
+        """One right-padded token sequence per sample: the frames (each followed by its state token), the
+        prompt, the action queries, then the optional think span. Returns the backbone's inputs and the
+        per-position ``kind`` (-1 = padding)."""
+        batch_size, n_frames = valid.shape
+        dev = self.device
+        if state is not None and state.dim() == 2:  # no history: one state per sample
+            state = state[:, None]
+        seqs, kinds, images, states = [], [], [], []
+        for b in range(batch_size):
+            ids, kind = prefix[b].tolist(), [TEXT] * prefix.shape[1]
+            for j in range(n_frames):
+                if not valid[b, j]:
+                    continue
+                n = int(grid[b, j].prod()) // self.vlm.config.vision_config.spatial_merge_size**2
+                ids += [self.vision_start_id] + [self.image_token_id] * n + [self.vision_end_id]
+                kind += [TEXT] + [IMAGE] * n + [TEXT]
+                images.append((b, j))
+                if self.state_encoder is not None:
+                    ids.append(self.pad_id)
+                    kind.append(STATE)
+                    states.append(
+                        (b, j, j + self.max_frames - n_frames)
+                    )  # current frame: always the last slot
+            p = prompt[b][prompt_mask[b]].tolist()
+            ids += p + [self.pad_id] * self.n_queries
+            kind += [TEXT] * len(p) + [QUERY] * self.n_queries
+            if think is not None:
+                t = think[b][think_mask[b]].tolist()
+                ids += t
+                kind += [THINK] * len(t)
+            seqs.append(ids)
+            kinds.append(kind)
+        seq_len = max(len(s) for s in seqs)
+        input_ids = torch.full((batch_size, seq_len), self.pad_id, dtype=torch.long)
+        kind = torch.full((batch_size, seq_len), -1, dtype=torch.long)
+        for b, (s, k) in enumerate(zip(seqs, kinds, strict=True)):
+            input_ids[b, : len(s)], kind[b, : len(k)] = torch.tensor(s), torch.tensor(k)
+        input_ids, kind = input_ids.to(dev), kind.to(dev)
+        attn = (kind >= 0).long()
+        mm = (kind == IMAGE).long()
+        embeds = self.vlm.get_input_embeddings()(input_ids)
+        if self.n_queries:
+            embeds = embeds.masked_scatter(
+                (kind == QUERY)[..., None], self.action_queries.to(embeds.dtype).repeat(batch_size, 1)
+            )
+        if states:
+            rows = torch.stack([state[b, j] for b, j, _ in states]).to(dev, torch.float32)
+            slots = torch.tensor([s for _, _, s in states], device=dev)
+            embeds = embeds.masked_scatter(
+                (kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype)
+            )
+        pv = torch.cat([pixels[b, j] for b, j in images]).to(dev, self.vlm.dtype)
+        thw = torch.stack([grid[b, j] for b, j in images]).to(dev)
+        position_ids, _ = self.vlm.model.get_rope_index(
+            input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw, attention_mask=attn
+        )
+        return {
+            "input_ids": input_ids,
+            "kind": kind,
+            "inputs_embeds": embeds,
+            "attention_mask": attn,
+            "position_ids": position_ids,
+            "pixel_values": pv,
+            "image_grid_thw": thw,
+            "mm_token_type_ids": mm,
+            "images": images,
+        }
+
+    def _vision(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
+        """Vision tower per image (each image attends only to itself): its merged tokens and DeepStack
+        features, so a memory frame's can be kept and reused at later chunks."""
+        out = self.vlm.model.get_image_features(pixel_values, grid)
+        sizes = (grid.prod(-1) // self.vlm.config.vision_config.spatial_merge_size**2).tolist()
+        deep = [torch.split(d, sizes) for d in out.deepstack_features]
+        return [(e, [d[i] for d in deep]) for i, e in enumerate(out.pooler_output)]
+
+    def _backbone(self, seq: dict, use_cache: bool = False, vision_cache: dict | None = None):
+        """The language model over the assembled sequence, image tokens from the vision tower. Memory
+        frames found in ``vision_cache`` ((sample, frame) -> bank entry) reuse the entry's features;
+        the others are computed and stored there. Returns the output and each image's features."""
+        vision_cache = vision_cache or {}
+        images, grid = seq["images"], seq["image_grid_thw"]
+        rows = torch.split(seq["pixel_values"], grid.prod(-1).tolist())
+        feats: list = [vision_cache[k].get("vision") if k in vision_cache else None for k in images]
+        todo = [i for i, f in enumerate(feats) if f is None]
+        if todo:
+            for i, f in zip(todo, self._vision(torch.cat([rows[i] for i in todo]), grid[todo]), strict=True):
+                feats[i] = f
+                if images[i] in vision_cache:
+                    vision_cache[images[i]]["vision"] = f
+        mask = seq["kind"] == IMAGE
+        embeds = seq["inputs_embeds"].masked_scatter(
+            mask[..., None], torch.cat([f[0] for f in feats]).to(seq["inputs_embeds"].dtype)
+        )
+        deep = [torch.cat([f[1][layer] for f in feats]) for layer in range(len(feats[0][1]))]
+        out = self.vlm.model.language_model(
+            inputs_embeds=embeds,
+            attention_mask=seq["attention_mask"],
+            position_ids=seq["position_ids"],
+            use_cache=use_cache,
+            visual_pos_masks=mask,
+            deepstack_visual_embeds=deep,
+        )
+        return out, feats
+
+    def _encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor | None]:
+        """Returns the (B, chunk, predicted_action_dim) prediction and, when a think span is given, its
+        LM loss. Arguments as ``_assemble``."""
+        h, kind, lm_loss = self._hidden(*args, vision_cache=vision_cache)
+        return self._actions(h, kind), lm_loss
+
+    def _hidden(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor, Tensor | None]:
+        """The backbone's last-layer states, the per-position ``kind`` and, when a think span is given,
+        its LM loss. Arguments as ``_assemble``."""
+        seq = self._assemble(*args)
+        kind, input_ids = seq["kind"], seq["input_ids"]
+        h = self._backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
+        if not (kind == THINK).any():
+            return h, kind, None
+        span = kind == THINK
+        src = span.clone()
+        src[:, :-1] &= span[:, 1:]  # a think token predicts the next think token
+        src[:, -1] = False
+        tgt = torch.zeros_like(span)
+        tgt[:, 1:] = src[:, :-1]
+        logits = self.vlm.lm_head(h[src]).float()
+        return h, kind, nn.functional.cross_entropy(logits, input_ids[tgt])
+
+    # ----- training -----
+    def training_args(self, batch: dict[str, Tensor]) -> tuple:
+        """``_assemble``'s arguments from a preprocessed dataset batch (history frames, think target)."""
+        state = batch.get(OBS_STATE) if self.state_encoder is not None else None
+        if state is not None and state.dim() == 2:
+            state = state[:, None]
+        think = batch.get(THINK_IDS) if self.config.think != "none" else None
+        return (
+            batch[PIXELS],
+            batch[GRID],
+            batch[FRAME_VALID],
+            state,
+            batch[PREFIX_IDS],
+            batch[PROMPT_IDS],
+            batch[PROMPT_MASK],
+            think,
+            batch.get(THINK_MASK),
+        )
+
+    @_in_precision
+    def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
+        h, kind, lm_loss = self._hidden(*self.training_args(batch))
+        per_sample, info = self._action_loss(h, kind, batch)
+        loss = per_sample.mean() if reduction == "mean" else per_sample
+        if lm_loss is not None:
+            loss = loss + self.config.lm_loss_weight * lm_loss
+            info["lm_loss"] = float(lm_loss.detach())
+        return loss, info
+
+    # ----- evaluation: memory bank -----
+    def reset(self) -> None:
+        self._queue: deque[Tensor] = deque()
+        self._bank: list[list[dict]] | None = None
+        self._raw_states: list[list[np.ndarray]] | None = None
+        self._current_vision: dict = {}
+        self._t = 0
+
+    def _retained(self, b: int) -> bool:
+        """Is the frame just observed (step ``self._t``) written to env b's memory?"""
+        policy = self.config.memory
+        if policy == "chunk":
+            return self._t % STRIDE == 0
+        if policy == "motion":
+            return bool(motion_keyframes(np.stack(self._raw_states[b]))[-1])
+        if policy == "subtask":  # decided at chunk boundaries, where the subtask is predicted
+            new, self._subtask_new[b] = self._subtask_new[b], False
+            return new
+        return False
+
+    def _history_batch(self, batch: dict[str, Tensor]):
+        """Stack each env's last K memory entries (left-padded) and the current frame. Also returns the
+        vision cache: (env, slot) -> the memory entry (its features are reused or stored there), and an
+        empty entry for the current frame that receives its features."""
+        batch_size = batch[PIXELS].shape[0]
+        history = self.config.history if self.config.uses_history else 0
+        cur_pix, cur_grid = batch[PIXELS][:, -1], batch[GRID][:, -1]
+        cur_state = batch.get(OBS_STATE)
+        cur_state = cur_state[:, -1] if cur_state is not None and cur_state.dim() == 3 else cur_state
+        pixels = cur_pix.new_zeros((batch_size, history + 1, *cur_pix.shape[1:]))
+        grid = cur_grid.new_ones((batch_size, history + 1, 3))
+        valid = torch.zeros(batch_size, history + 1, dtype=torch.bool)
+        state = (
+            None if cur_state is None else cur_state.new_zeros((batch_size, history + 1, cur_state.shape[-1]))
+        )
+        cache: dict[tuple[int, int], dict] = {}
+        for b in range(batch_size):
+            mem = self._bank[b][-history:] if history else []
+            cache[(b, history)] = {}
+            for slot, entry in zip(range(history - len(mem), history), mem, strict=True):
+                cache[(b, slot)] = entry
+                pixels[b, slot], grid[b, slot], valid[b, slot] = entry["pixels"], entry["grid"], True
+                if state is not None:
+                    state[b, slot] = entry["state"]
+            pixels[b, history], grid[b, history], valid[b, history] = cur_pix[b], cur_grid[b], True
+            if state is not None:
+                state[b, history] = cur_state[b]
+        return pixels, grid, valid, state, cache
+
+    @torch.no_grad()
+    @_in_precision
+    def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        """A chunk for the batch's current frames. A dataset batch carries its own history (T > 1);
+        an env batch (T = 1) gets it from the memory bank."""
+        cache = None
+        if batch[PIXELS].shape[1] > 1:
+            state = batch.get(OBS_STATE)
+            state = state[:, None] if state is not None and state.dim() == 2 else state
+            pixels, grid, valid = batch[PIXELS], batch[GRID], batch[FRAME_VALID]
+        else:
+            if self._bank is None:
+                self._start(batch)
+            pixels, grid, valid, state, cache = self._history_batch(batch)
+        args = (
+            pixels,
+            grid,
+            valid,
+            state if self.state_encoder is not None else None,
+            batch[PREFIX_IDS],
+            batch[PROMPT_IDS],
+            batch[PROMPT_MASK],
+        )
+        if cache is not None and self.config.memory == "subtask" and self.config.uses_history:
+            subtasks, pred = self.predict_subtask_and_actions(args, vision_cache=cache)
+            for b, sub in enumerate(subtasks):
+                self._subtask_new[b] = sub != self._subtask[b]  # first frame of a new (predicted) subtask
+                self._subtask[b] = sub
+        else:
+            pred = self._encode(*args, vision_cache=cache)[0]
+        if self.config.fixed_view:  # placeholders: the postprocessor sets torso and head to home
+            pred = nn.functional.pad(pred, (0, self.config.action_dim - pred.shape[-1]))
+        if cache is not None:  # the current frames' features, for a memory write at this step
+            self._current_vision = {
+                b: entry.get("vision") for (b, slot), entry in cache.items() if slot == valid.shape[1] - 1
+            }
+        return pred.float()
+
+    def _start(self, batch: dict[str, Tensor]) -> None:
+        if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
+            raise ValueError(
+                "memory=subtask at evaluation writes a frame when the policy's own predicted subtask "
+                "changes, so it needs a policy trained with think=subtask"
+            )
+        batch_size = batch[PIXELS].shape[0]
+        self._bank = [[] for _ in range(batch_size)]
+        self._raw_states = [[] for _ in range(batch_size)]
+        self._subtask: list[tuple[int, ...] | None] = [None] * batch_size
+        self._subtask_new = [False] * batch_size
+
+    @property
+    def text_tokenizer(self):
+        """The backbone's tokenizer (loaded at first use)."""
+        if not hasattr(self, "_text_tokenizer"):
+            from transformers import AutoTokenizer
+
+            self._text_tokenizer = load_from_vlm_path(
+                AutoTokenizer.from_pretrained, self.config.vlm_path, "tokenizer"
+            )
+        return self._text_tokenizer
+
+    def _think_token_ids(self) -> tuple[int, int]:
+        tok = self.text_tokenizer
+        return tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>")
+
+    @torch.no_grad()
+    def predict_subtask(self, encode_args: tuple) -> list[tuple[int, ...]]:
+        """Greedy ``<think>`` decoding: the token ids of each sample's predicted current subtask (up to and
+        including ``</think>``). It decides which frames the subtask memory keeps; the actions never read it."""
+        return self._greedy_think(encode_args)[0]
+
+    @torch.no_grad()
+    def predict_subtask_and_actions(
+        self, encode_args: tuple, vision_cache: dict | None = None
+    ) -> tuple[list[tuple[int, ...]], Tensor]:
+        """The predicted subtasks and the action chunk from one backbone pass over images and prompt: the
+        queries sit before ``<think>``, so (causal attention) the actions are those of ``_encode``."""
+        tokens, _, actions = self._greedy_think(encode_args, vision_cache=vision_cache)
+        return tokens, actions
+
+    def _greedy_think(
+        self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
+    ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
+        """Greedy decoding after ``<think>`` up to ``</think>``; returns the tokens, each step's (B, vocab)
+        logits and the action chunk read from the first pass's query positions."""
+        start, end = self._think_token_ids()
+        tokens, step_logits, (hidden, kind) = self._greedy(
+            encode_args, [start], end, self.config.subtask_max_tokens, use_cache, vision_cache
+        )
+        return tokens, step_logits, self._actions(hidden, kind)
+
+    @_in_precision
+    def _greedy(
+        self,
+        encode_args: tuple,
+        start: list[int],
+        stop: int,
+        max_tokens: int,
+        use_cache: bool = True,
+        vision_cache: dict | None = None,
+    ) -> tuple[list[tuple[int, ...]], list[Tensor], tuple[Tensor, Tensor]]:
+        """Greedy decoding after the ``start`` tokens (fed as the think span) until every sample has
+        produced ``stop`` or ``max_tokens`` tokens. Returns each sample's new tokens (up to and
+        including its first ``stop``), each step's (B, vocab) logits and the first pass's last-layer
+        states and ``kind``. With ``use_cache`` the images and prompt go through the backbone once and
+        every new token reuses their keys and values; without it each step re-encodes the whole
+        sequence (the reference)."""
+        batch_size, dev = encode_args[2].shape[0], self.device
+        fed = torch.tensor([start] * batch_size, dtype=torch.long)  # start and every token fed back since
+        rows, step_logits = torch.arange(batch_size, device=dev), []
+        seq = cache = first = None
+        for _ in range(max_tokens):
+            if seq is None or not use_cache:
+                seq = self._assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
+                out = self._backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
+                last = (
+                    torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1)
+                    .max(1)
+                    .values
+                )
+                hidden, cache = out.last_hidden_state[rows, last], out.past_key_values
+                if first is None:
+                    first = (out.last_hidden_state, seq["kind"])
+                position = seq["position_ids"][:, rows, last]  # (3, B): a text token's M-RoPE position
+                attn = seq["attention_mask"]
+            else:
+                position = position + 1  # the next text token, on all M-RoPE axes
+                attn = torch.cat([attn, attn.new_ones(batch_size, 1)], dim=1)
+                out = self.vlm.model.language_model(
+                    inputs_embeds=self.vlm.get_input_embeddings()(fed[:, -1:].to(dev)),
+                    attention_mask=attn,
+                    position_ids=position[..., None],
+                    past_key_values=cache,
+                    use_cache=True,
+                )
+                hidden, cache = out.last_hidden_state[:, -1], out.past_key_values
+            logits = self.vlm.lm_head(hidden).float()
+            step_logits.append(logits)
+            fed = torch.cat([fed, logits.argmax(-1).cpu()[:, None]], dim=1)
+            if (fed[:, len(start) :] == stop).any(1).all():
+                break
+        tokens = []
+        for row in fed[:, len(start) :].tolist():  # each sample's tokens up to and including its first stop
+            tokens.append(tuple(row[: row.index(stop) + 1] if stop in row else row))
+        return tokens, step_logits, first
+
+    @torch.no_grad()
+    def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        self.eval()
+        if self._bank is None:
+            self._start(batch)
+        batch_size = batch[PIXELS].shape[0]
+        if RAW_STATE in batch:
+            dim = self.config.input_features[OBS_STATE].shape[0]
+            if tuple(batch[RAW_STATE].shape) != (batch_size, dim):
+                raise ValueError(
+                    f"observation.state must be (batch, {dim}) at evaluation, got "
+                    f"{tuple(batch[RAW_STATE].shape)}: pass the current state only (history comes "
+                    "from the policy's memory bank)"
+                )
+            for b in range(batch_size):
+                self._raw_states[b].append(batch[RAW_STATE][b].float().cpu().numpy())
+        self._current_vision = {}
+        if not self._queue:
+            chunk = self.predict_action_chunk(batch)[:, : self.config.n_action_steps]
+            self._queue.extend(chunk.transpose(0, 1))
+        if self.config.uses_history:
+            for b in range(batch_size):
+                if self._retained(b):  # vision features: this step's, else computed at first use
+                    self._bank[b].append(
+                        {
+                            "t": self._t,
+                            "pixels": batch[PIXELS][b, -1],
+                            "grid": batch[GRID][b, -1],
+                            "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
+                            "vision": self._current_vision.get(b),
+                        }
+                    )
+                    del self._bank[b][: -self.config.history]
+        self._t += 1
+        return self._queue.popleft()

@@ -1,0 +1,299 @@
+"""Processors of every ActiveArena-VLA head. Pre: rename -> batch -> annotations (training only: subtask
+text, keyframe memory) -> VLM inputs (Qwen image processing and tokenisation) -> normalise state /
+action -> device. Post: unnormalise the action -> CPU. Saved with the checkpoint, so
+``lerobot-eval --policy.path=...`` rebuilds them with no extra flags."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import torch
+from lerobot.configs.types import PipelineFeatureType, PolicyFeature
+from lerobot.lerobot_types import TransitionKey
+from lerobot.processor import (
+    PolicyAction,
+    PolicyActionProcessorStep,
+    PolicyProcessorPipeline,
+    ProcessorStep,
+    ProcessorStepRegistry,
+)
+from lerobot.processor.factory import make_default_policy_processor_steps, make_policy_processor_pipelines
+from lerobot.utils.constants import OBS_STATE
+
+from ...sim.action import HEAD_PITCH, TORSO_YAW
+from ...sim.embodiment import HOME_HEAD_PITCH, HOME_TORSO_YAW
+from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+from .configuration_activearena_vla import IMAGE_KEY, ActiveArenaVLAConfig
+from .vlm_loading import load_from_vlm_path
+
+VLM = "observation.vlm."
+PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
+PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
+THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
+PREFIX = "<|im_start|>user\n"
+PROMPT = (
+    "The images are ordered from earliest to latest, and the last image is the current view. "
+    "Task: {instruction}<|im_end|>\n<|im_start|>assistant\n"
+)
+THINK = "<think>{target}</think><|im_end|>"
+KEYFRAME_MEMORIES = ("subtask", "motion", "planned")  # memories the annotation step loads per sample
+
+
+def _pad_flag(comp: dict, batch_size: int, n_frames: int) -> torch.Tensor:
+    pad = comp.get(f"{IMAGE_KEY}_is_pad")
+    if pad is None or tuple(pad.shape) != (batch_size, n_frames):
+        return torch.zeros(batch_size, n_frames, dtype=torch.bool)
+    return pad.bool().cpu()
+
+
+# registry names keep their first (OFT) spelling: saved checkpoints refer to them
+@ProcessorStepRegistry.register(name="activearena_oft_annotations")
+@dataclass
+class ActiveArenaAnnotationStep(ProcessorStep):
+    """Training only (batches that carry the dataset ``index``): adds the annotated current subtask
+    text and, for the subtask / motion / planned write policies, the keyframe-memory frames and states."""
+
+    dataset_root: str | None = None
+    repo_id: str = "local/activearena"
+    memory: str = "chunk"
+    history: int = 12
+    think: str = "none"
+    subtask_prompt: bool = False  # the prompt names the current subtask (ActiveArena-Plan's executor)
+    _ann: Any = field(default=None, init=False, repr=False)
+
+    def _needs_subtask(self) -> bool:
+        return self.think == "subtask" or self.subtask_prompt
+
+    def _needed(self) -> bool:
+        return self._needs_subtask() or (self.memory in KEYFRAME_MEMORIES and self.history > 0)
+
+    def __call__(self, transition):
+        comp = transition.get(TransitionKey.COMPLEMENTARY_DATA) or {}
+        index = comp.get("index")
+        if index is None or not self._needed():
+            return transition  # evaluation: the policy's own memory bank supplies history
+        if self.dataset_root is None:
+            raise ValueError(
+                "this ActiveArena-VLA configuration reads the dataset's annotations at training time; "
+                "set --policy.dataset_root (lerobot-train fills it from --dataset.root)"
+            )
+        if self._ann is None:
+            from .dataset_annotations import DatasetAnnotations
+
+            self._ann = DatasetAnnotations(self.dataset_root, self.repo_id)
+        idx = torch.as_tensor(index).reshape(-1).tolist()
+        comp = dict(comp)
+        if self._needs_subtask():
+            comp["subtask"] = [self._ann.subtask(i) for i in idx]
+        obs = dict(transition[TransitionKey.OBSERVATION])
+        if self.memory in KEYFRAME_MEMORIES and self.history > 0:
+            img = obs[IMAGE_KEY]
+            if img.dim() != 4:
+                raise ValueError(f"keyframe memory expects the current frame only, got {tuple(img.shape)}")
+            obs[IMAGE_KEY], states, comp[f"{IMAGE_KEY}_is_pad"] = self._ann.memory_batch(
+                torch.tensor(idx), img, obs.get(OBS_STATE), self.memory, self.history
+            )
+            if states is not None:
+                obs[OBS_STATE] = states
+        out = dict(transition)
+        out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
+        return out
+
+    def get_config(self) -> dict[str, Any]:
+        return {
+            "dataset_root": self.dataset_root,
+            "repo_id": self.repo_id,
+            "memory": self.memory,
+            "history": self.history,
+            "think": self.think,
+            "subtask_prompt": self.subtask_prompt,
+        }
+
+    def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
+        return features
+
+
+@ProcessorStepRegistry.register(name="activearena_oft_vlm_inputs")
+@dataclass
+class ActiveArenaVLMInputsStep(ProcessorStep):
+    """Qwen3-VL inputs: every head image (history + current) through the model's image processor,
+    the instruction prompt and (training) the ``<think>`` target through its tokenizer. The policy
+    assembles the token sequence, so its memory bank can reuse processed frames at evaluation."""
+
+    vlm_path: str = "Qwen/Qwen3-VL-2B-Instruct"
+    think: str = "none"
+    think_template: str = THINK  # the training target's text around the think target
+    prompt_template: str = PROMPT  # the prompt after the images; {instruction}: the task (or subtask)
+    subtask_prompt: bool = False  # training: the prompt names the annotated subtask, not the task
+    image_max_pixels: int = HEAD_WIDTH * HEAD_HEIGHT
+    # Where the image processor runs: the policy's device, so on a GPU the resizing and patching of
+    # the 13 frames per sample happen there and do not hold up the training loop's CPU.
+    device: str = "cpu"
+    _processor: Any = field(default=None, init=False, repr=False)
+
+    def __post_init__(self):
+        from transformers import AutoProcessor
+
+        self._processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.vlm_path, "processor")
+
+    def _tokenize(self, texts: list[str]) -> tuple[torch.Tensor, torch.Tensor]:
+        tok = self._processor.tokenizer(
+            texts, padding=True, padding_side="right", return_tensors="pt", add_special_tokens=False
+        )
+        return tok["input_ids"], tok["attention_mask"].bool()
+
+    def __call__(self, transition):
+        obs = dict(transition[TransitionKey.OBSERVATION])
+        comp = dict(transition.get(TransitionKey.COMPLEMENTARY_DATA) or {})
+        if IMAGE_KEY not in obs:
+            raise KeyError(
+                f"ActiveArena-VLA policies need {IMAGE_KEY!r} in the observation (got {sorted(obs)})"
+            )
+        img = obs.pop(IMAGE_KEY)
+        img = img[:, None] if img.dim() == 4 else img
+        batch_size, n_frames = img.shape[:2]
+        valid = ~_pad_flag(comp, batch_size, n_frames)
+        # Padded history frames (before the episode start) are never read: only present frames go
+        # through the image processor, the others stay zeros (all frames share one size and grid).
+        keep = valid.flatten()
+        device = self._device()
+        frames = img.detach().to(device).flatten(0, 1)[keep.to(device)]
+        frames = (frames.float().clamp(0, 1) * 255).round().to(torch.uint8)
+        out = self._processor.image_processor(
+            images=list(frames),
+            return_tensors="pt",
+            device=device,
+            max_pixels=self.image_max_pixels,
+            min_pixels=16 * 16 * 4,
+        )
+        pv, grid = (
+            out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]),
+            out["image_grid_thw"],
+        )
+        pixels = pv.new_zeros((batch_size * n_frames, *pv.shape[1:]))
+        pixels[keep.to(pv.device)] = pv
+        grid = grid.cpu()
+        grids = grid[:1].repeat(batch_size * n_frames, 1)
+        grids[keep] = grid
+        obs[PIXELS] = pixels.reshape(batch_size, n_frames, *pv.shape[1:])
+        obs[GRID] = grids.reshape(batch_size, n_frames, 3)
+        obs[FRAME_VALID] = valid
+        if OBS_STATE in obs:
+            obs[RAW_STATE] = obs[OBS_STATE].clone()
+        tasks = comp.get("task")
+        if tasks is None:
+            raise ValueError("ActiveArena-VLA policies need the task instruction ('task') in the batch")
+        tasks = [tasks] * batch_size if isinstance(tasks, str) else list(tasks)
+        obs[PREFIX_IDS] = self._tokenize([PREFIX] * batch_size)[0]
+        named = list(comp["subtask"]) if self.subtask_prompt and "subtask" in comp else tasks
+        obs[PROMPT_IDS], obs[PROMPT_MASK] = self._tokenize(
+            [self.prompt_template.format(instruction=t) for t in named]
+        )
+        if transition.get(TransitionKey.ACTION) is not None and self.think != "none":
+            if "think_target" in comp:  # a complete target written by the annotation step (the planner)
+                targets = list(comp["think_target"])
+            elif self.think == "subtask":
+                if "subtask" not in comp:
+                    raise ValueError(
+                        "think=subtask needs the annotated subtask text: train on an ActiveArena "
+                        "dataset (activearena-build-dataset) with --policy.dataset_root set"
+                    )
+                targets = list(comp["subtask"])
+            else:
+                targets = tasks
+            obs[THINK_IDS], obs[THINK_MASK] = self._tokenize(
+                [self.think_template.format(target=t) for t in targets]
+            )
+        out = dict(transition)
+        out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
+        return out
+
+    def _device(self) -> torch.device:
+        """The configured device, or the CPU where it does not exist (a CUDA checkpoint evaluated on a
+        CPU machine with --policy.device=cpu)."""
+        dev = torch.device(self.device)
+        if dev.type == "cuda" and not torch.cuda.is_available():
+            return torch.device("cpu")
+        return dev
+
+    def get_config(self) -> dict[str, Any]:
+        return {
+            "vlm_path": self.vlm_path,
+            "think": self.think,
+            "think_template": self.think_template,
+            "prompt_template": self.prompt_template,
+            "subtask_prompt": self.subtask_prompt,
+            "image_max_pixels": self.image_max_pixels,
+            "device": self.device,
+        }
+
+    def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
+        return features
+
+
+@ProcessorStepRegistry.register(name="activearena_hold_view_at_home")
+@dataclass
+class HoldViewAtHomeStep(PolicyActionProcessorStep):
+    """ActiveArena-Fixed's output: the torso yaw and head pitch of every action are the home pose
+    (the policy learns the arms and grippers only)."""
+
+    def action(self, action: PolicyAction) -> PolicyAction:
+        action = action.clone()
+        action[..., TORSO_YAW] = HOME_TORSO_YAW
+        action[..., HEAD_PITCH] = HOME_HEAD_PITCH
+        return action
+
+    def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
+        return features
+
+
+def make_activearena_vla_pre_post_processors(
+    config: ActiveArenaVLAConfig,
+    dataset_stats: dict[str, dict[str, torch.Tensor]] | None = None,
+    dataset_meta: Any | None = None,
+    think_template: str = THINK,
+    after_normalize: tuple[ProcessorStep, ...] = (),
+    prompt_template: str = PROMPT,
+    subtask_prompt: bool = False,
+    annotation_step: type[ActiveArenaAnnotationStep] | None = None,
+) -> tuple[
+    PolicyProcessorPipeline[dict[str, Any], dict[str, Any]],
+    PolicyProcessorPipeline[PolicyAction, PolicyAction],
+]:
+    """The shared pipelines; a head passes its own think and prompt templates, annotation step and
+    steps that run after normalisation."""
+    # lerobot-train hands the dataset metadata to make_policy, which keeps it on the config
+    dataset_meta = dataset_meta or getattr(config, "_runtime_dataset_meta", None)
+    if dataset_meta is not None and getattr(dataset_meta, "root", None) is not None:
+        config.dataset_root = str(dataset_meta.root)
+    s = make_default_policy_processor_steps(config, dataset_stats, normalizer_device=config.device)
+    annotations = (annotation_step or ActiveArenaAnnotationStep)(
+        dataset_root=config.dataset_root,
+        repo_id=getattr(dataset_meta, "repo_id", None) or "local/activearena",
+        memory=config.memory,
+        history=config.history,
+        think=config.think,
+        subtask_prompt=subtask_prompt,
+    )
+    inputs = ActiveArenaVLMInputsStep(
+        vlm_path=config.vlm_path,
+        think=config.think,
+        think_template=think_template,
+        prompt_template=prompt_template,
+        subtask_prompt=subtask_prompt,
+        image_max_pixels=config.image_max_pixels,
+        device=config.device or "cpu",
+    )
+    return make_policy_processor_pipelines(
+        input_steps=[
+            s.rename_observations,
+            s.add_batch_dim,
+            annotations,
+            inputs,
+            s.normalize,
+            *after_normalize,
+            s.to_device,
+        ],
+        output_steps=[s.unnormalize, *([HoldViewAtHomeStep()] if config.fixed_view else []), s.to_cpu],
+    )
