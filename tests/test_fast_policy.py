@@ -149,7 +149,7 @@ def test_overfitting_one_sample_decodes_its_chunk(tiny_vlm, bell_count_dataset, 
         opt.zero_grad()
         loss.backward()
         opt.step()
-        losses.append(float(loss))
+        losses.append(loss.item())
         if losses[-1] < 0.015:
             break
     assert losses[-1] < 0.05 < losses[0], losses[::20]

@@ -125,7 +125,7 @@ def test_an_overfitted_planner_answers_its_target(tiny_vlm, bell_count_dataset):
         opt.zero_grad()
         loss.backward()
         opt.step()
-        if float(loss) < 0.03:
+        if loss.item() < 0.03:
             break
     planner.eval()
     args = planner.training_args(batch)[:7]
