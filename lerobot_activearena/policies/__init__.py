@@ -1,1 +1,3 @@
-"""LeRobot policy types shipped by the plugin (config / modeling / processor per policy)."""
+"""LeRobot policy types shipped by the plugin (config / modeling / processor per policy): the scripted
+expert and the ActiveArena-VLA heads (OFT, GR00T, FAST, Plan's planner and executor) on their shared
+base ``activearena_vla``."""
