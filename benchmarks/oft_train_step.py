@@ -375,11 +375,11 @@ def main() -> None:
         "activearena_groot",
     ):  # what memory=subtask adds per chunk: greedy <think> decoding
         pixels, grid, valid, state, cache = policy._history_batch(b)
-        enc = (
+        enc = policy._encode_args(
             pixels,
             grid,
             valid,
-            state if policy.state_encoder is not None else None,
+            state,
             b[processor_activearena_vla.PREFIX_IDS],
             b[processor_activearena_vla.PROMPT_IDS],
             b[processor_activearena_vla.PROMPT_MASK],

@@ -18,6 +18,28 @@ from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 
 PRESETS = Path(__file__).parents[1] / "configs" / "policy"
 TASK = "click_bell_rotate_view"
+RUNS = [  # the paper's table "Complete internal-baseline manifest"
+    "oft_instruction_action_12_ws",
+    "oft_no_action_12_ws",
+    "oft_subtask_no_0_ws",
+    "oft_subtask_action_12_wos",
+    "oft_subtask_action_12_ws",
+    "oft_subtask_action_6_ws",
+    "oft_subtask_motion_12_ws",
+    "oft_subtask_motion_6_ws",
+    "oft_subtask_subtask_12_ws",
+    "oft_subtask_subtask_6_ws",
+    "gr00t_subtask_action_12_ws",
+    "fast_subtask_action_12_ws",
+    "oft_subtask_planned_12_ws",
+]
+FIXED = "oft_subtask_action_12_ws_fixed"  # ActiveArena-Fixed
+
+
+def preset_config(path: Path, config_cls):
+    """A preset file's policy section as ``config_cls`` on the CPU."""
+    policy = json.loads(Path(path).read_text())["policy"]
+    return config_cls(**{k: v for k, v in policy.items() if k != "type"}, device="cpu")
 
 
 def train_preset(preset: Path, dataset: Path, vlm: Path, out: Path, *extra: str) -> Path:

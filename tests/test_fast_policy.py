@@ -16,7 +16,7 @@ from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
 from lerobot.utils.constants import ACTION
-from policy_runs import play_both, train_preset
+from policy_runs import play_both, preset_config, train_preset
 
 from lerobot_activearena.cli.fit_fast_tokenizer import fit
 from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
@@ -49,8 +49,7 @@ def action_tokenizer(bell_count_dataset, tmp_path_factory):
 
 
 def test_the_preset_is_the_papers_run():
-    policy = json.loads(PRESET.read_text())["policy"]
-    cfg = ActiveArenaFASTConfig(**{k: v for k, v in policy.items() if k != "type"}, device="cpu")
+    cfg = preset_config(PRESET, ActiveArenaFASTConfig)
     assert cfg.type == "activearena_fast" and (cfg.think, cfg.memory, cfg.history, cfg.use_state) == (
         "subtask",
         "chunk",

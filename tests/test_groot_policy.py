@@ -12,7 +12,7 @@ from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
-from policy_runs import play_both, train_preset
+from policy_runs import play_both, preset_config, train_preset
 
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY
@@ -30,8 +30,7 @@ TINY_DIT = {
 
 
 def test_the_preset_is_the_papers_head():
-    policy = json.loads(PRESET.read_text())["policy"]
-    cfg = ActiveArenaGR00TConfig(**{k: v for k, v in policy.items() if k != "type"}, device="cpu")
+    cfg = preset_config(PRESET, ActiveArenaGR00TConfig)
     assert cfg.type == "activearena_groot" and (cfg.think, cfg.memory, cfg.history, cfg.use_state) == (
         "subtask",
         "chunk",

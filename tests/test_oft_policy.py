@@ -11,8 +11,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 import torch
-from lerobot.configs.default import EvalConfig
-from lerobot.configs.eval import EvalPipelineConfig
 from lerobot.configs.policies import PreTrainedConfig
 from lerobot.configs.train import TrainPipelineConfig
 from lerobot.configs.types import FeatureType, PolicyFeature
@@ -20,12 +18,11 @@ from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
-from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
 from lerobot.scripts.lerobot_train import train as lerobot_train
+from policy_runs import FIXED, RUNS, play_both, train_preset
 
 from lerobot_activearena.annotations.keyframes import motion_keyframes
 from lerobot_activearena.cli.eval import main as activearena_eval
-from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
 from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
@@ -449,24 +446,8 @@ def test_the_2b_architecture_preset_has_the_real_models_size(tmp_path):
 
 
 def test_presets_match_the_papers_run_names():
-    names = sorted(
-        p.stem for p in CONFIGS.glob("oft_*.json") if "_planned_" not in p.stem
-    )  # Plan: its own types
-    assert names == sorted(
-        [
-            "oft_instruction_action_12_ws",
-            "oft_no_action_12_ws",
-            "oft_subtask_no_0_ws",
-            "oft_subtask_action_12_wos",
-            "oft_subtask_action_12_ws",
-            "oft_subtask_action_6_ws",
-            "oft_subtask_motion_12_ws",
-            "oft_subtask_motion_6_ws",
-            "oft_subtask_subtask_12_ws",
-            "oft_subtask_subtask_6_ws",
-            "oft_subtask_action_12_ws_fixed",  # ActiveArena-Fixed
-        ]
-    )
+    names = sorted(p.stem for p in CONFIGS.glob("oft_*.json") if "_planned_" not in p.stem)  # Plan: own types
+    assert names == sorted([r for r in RUNS if r.startswith("oft_") and "_planned_" not in r] + [FIXED])
     memory_of = {"action": "chunk", "no": "none", "motion": "motion", "subtask": "subtask"}
     for name in names:
         _, think, history, k, state, *fixed = name.split("_")
@@ -487,58 +468,15 @@ def test_lerobot_train_then_lerobot_eval(vlm, root, tmp_path):
     --config_path``; the CLIs' own discovery of the type is test_plugin_discovery's), then its
     checkpoint through LeRobot's eval loop and through activearena-eval: the same episode."""
     train_dir = tmp_path / "train"
-    cfg = TrainPipelineConfig.from_pretrained(
-        CONFIGS / "oft_subtask_action_6_ws.json",
-        cli_args=[
-            f"--dataset.repo_id={REPO}",
-            f"--dataset.root={root}",
-            f"--policy.vlm_path={vlm}",
-            "--policy.device=cpu",
-            "--policy.state_hidden=32",
-            "--steps=2",
-            "--batch_size=2",
-            "--num_workers=0",
-            "--save_freq=2",
-            "--log_freq=1",
-            f"--output_dir={train_dir}",
-        ],
+    ckpt = train_preset(
+        CONFIGS / "oft_subtask_action_6_ws.json", root, vlm, train_dir, "--policy.state_hidden=32"
     )
-    lerobot_train(cfg)
-    ckpt = train_dir / "checkpoints" / "last" / "pretrained_model"
     assert json.loads((ckpt / "config.json").read_text())["history"] == 6
     assert (train_dir / "checkpoints" / "last" / "training_state" / "training_step.json").exists()
-
-    policy = PreTrainedConfig.from_pretrained(ckpt)
-    policy.pretrained_path, policy.device = ckpt, "cpu"
-    out = tmp_path / "eval"
-    env = ActiveArenaEnvConfig(
-        task="click_bell_rotate_view", episode_length=32, episode_log_dir=str(out / "episodes")
-    )
-    lerobot_eval_main(
-        EvalPipelineConfig(
-            env=env, policy=policy, eval=EvalConfig(n_episodes=1, batch_size=1), output_dir=out, seed=1000
-        )
-    )
-    info = json.loads((out / "eval_info.json").read_text())
-    assert info["overall"]["n_episodes"] == 1
-    assert list(out.glob("videos/*/*.mp4"))
-    # the same checkpoint through activearena-eval's shards plays the same episode step for step
-    run = tmp_path / "protocol"
-    activearena_eval(
-        [
-            f"--policy.path={ckpt}",
-            "--policy.device=cpu",
-            "--tasks=click_bell_rotate_view",
-            "--env.episode_length=32",
-            "--splits=id",
-            "--episodes=1",
-            "--videos=0",
-            f"--out={run}",
-        ]
-    )
-    theirs = json.loads(next((out / "episodes").glob("*.jsonl")).read_text().splitlines()[0])
-    mine = json.loads((run / "id" / "episodes" / "records.jsonl").read_text().splitlines()[0])
-    for key in ("scene_seed", "steps", "success", "failure_state", "view_targets"):
+    # the same checkpoint through LeRobot's eval loop and activearena-eval's shards: the same episode
+    theirs, mine = play_both(ckpt, tmp_path, steps=32)
+    assert list((tmp_path / "lerobot_eval").glob("videos/*/*.mp4"))
+    for key in ("failure_state", "view_targets"):
         assert mine[key] == theirs[key], key
 
 

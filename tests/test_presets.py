@@ -8,24 +8,9 @@ import json
 import pytest
 from conftest import DATASET_REPO
 from lerobot.configs.train import TrainPipelineConfig
-from policy_runs import PRESETS, play_both, train_preset
+from policy_runs import FIXED, PRESETS, RUNS, play_both, train_preset
 
-RUNS = [  # the paper's table "Complete internal-baseline manifest"
-    "oft_instruction_action_12_ws",
-    "oft_no_action_12_ws",
-    "oft_subtask_no_0_ws",
-    "oft_subtask_action_12_wos",
-    "oft_subtask_action_12_ws",
-    "oft_subtask_action_6_ws",
-    "oft_subtask_motion_12_ws",
-    "oft_subtask_motion_6_ws",
-    "oft_subtask_subtask_12_ws",
-    "oft_subtask_subtask_6_ws",
-    "gr00t_subtask_action_12_ws",
-    "fast_subtask_action_12_ws",
-    "oft_subtask_planned_12_ws",
-]
-EXTRA = ["oft_subtask_action_12_ws_fixed", "oft_subtask_planned_12_ws_planner"]  # Fixed; Plan's planner
+EXTRA = [FIXED, "oft_subtask_planned_12_ws_planner"]  # ActiveArena-Fixed; Plan's planner
 PLAYED_ELSEWHERE = {
     "oft_subtask_action_6_ws": "test_oft_policy",
     "oft_subtask_action_12_ws_fixed": "test_oft_policy",

@@ -7,6 +7,7 @@ current state) for the chunk, and the failure is counted (``rollout_stats``)."""
 
 from __future__ import annotations
 
+import functools
 import logging
 import os
 from pathlib import Path
@@ -69,6 +70,11 @@ class ActiveArenaFASTPolicy(ActiveArenaVLAPolicy):
             return None
         return self.action_tokenizer.decode([ids[i] - base for i in where])
 
+    @functools.cached_property
+    def _action_suffix_ids(self) -> list[int]:
+        """``</action><|im_end|>`` in the backbone's tokens (tokenised once, not every step)."""
+        return self.text_tokenizer(ACTION_SUFFIX, add_special_tokens=False)["input_ids"]
+
     # ----- training: one cross-entropy over think text and action tokens -----
     def training_args(self, batch: dict[str, Tensor]) -> tuple:
         args = list(super().training_args(batch))
@@ -76,7 +82,7 @@ class ActiveArenaFASTPolicy(ActiveArenaVLAPolicy):
         if think is None:
             raise ValueError("activearena_fast trains on the think target: the batch has no think ids")
         target = batch[ACTION][..., : self.config.predicted_action_dim].float().cpu().numpy()
-        suffix = self.text_tokenizer(ACTION_SUFFIX, add_special_tokens=False)["input_ids"]
+        suffix = self._action_suffix_ids
         spans = [
             think[b][mask[b]].tolist() + self.action_token_ids(target[b]) + suffix for b in range(len(target))
         ]

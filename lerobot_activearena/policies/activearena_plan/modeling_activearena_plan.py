@@ -191,15 +191,7 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
         )
         subtasks = [bank.subtask or task for bank, task in zip(self._banks, tasks, strict=True)]
         prompt, mask = self._prompts(self.text_tokenizer, EXECUTOR_PROMPT, subtasks)
-        args = (
-            pixels,
-            grid,
-            valid,
-            state if self.state_encoder is not None else None,
-            batch[PREFIX_IDS],
-            prompt,
-            mask,
-        )
+        args = self._encode_args(pixels, grid, valid, state, batch[PREFIX_IDS], prompt, mask)
         pred = self._encode(*args, vision_cache=cache)[0]
         for b in range(batch_size):  # forget frames neither in the bank nor in the planner's next view
             keep = set(self._banks[b].frames) | set(stride_frames(t + STRIDE))

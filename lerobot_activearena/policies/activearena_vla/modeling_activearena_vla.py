@@ -377,14 +377,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             if self._bank is None:
                 self._start(batch)
             pixels, grid, valid, state, cache = self._history_batch(batch)
-        args = (
-            pixels,
-            grid,
-            valid,
-            state if self.state_encoder is not None else None,
-            batch[PREFIX_IDS],
-            batch[PROMPT_IDS],
-            batch[PROMPT_MASK],
+        args = self._encode_args(
+            pixels, grid, valid, state, batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK]
         )
         if cache is not None and self.config.memory == "subtask" and self.config.uses_history:
             subtasks, pred = self.predict_subtask_and_actions(args, vision_cache=cache)
@@ -400,6 +394,18 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 b: entry.get("vision") for (b, slot), entry in cache.items() if slot == valid.shape[1] - 1
             }
         return pred.float()
+
+    def _encode_args(self, pixels, grid, valid, state, prefix, prompt, prompt_mask) -> tuple:
+        """``_assemble``'s inputs at evaluation (no think span); the state only where it has tokens."""
+        return (
+            pixels,
+            grid,
+            valid,
+            state if self.state_encoder is not None else None,
+            prefix,
+            prompt,
+            prompt_mask,
+        )
 
     def _start(self, batch: dict[str, Tensor]) -> None:
         if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
