@@ -9,7 +9,7 @@ import pytest
 
 from lerobot_activearena.expert.ik import ArmIK, grasp_rotation, interpolate_pose
 from lerobot_activearena.expert.motion import CONTROL_DT, arm_of, interpolate_joints, with_arm
-from lerobot_activearena.sim.action import TORSO_YAW
+from lerobot_activearena.sim.action import LEFT_GRIPPER, RIGHT_GRIPPER, TORSO_YAW
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 
@@ -130,6 +130,7 @@ BELL_SEED = 1  # place_a2b_right, ID seed 1: A is the bell (0.35 kg, held around
 # meets a wrist limit). The 0.35 kg fan creeps along the pads meanwhile (14 mm; seeds 0-15: 1-26 mm,
 # the largest while the torso turns) but stays held: the bound for it is looser.
 LONG_TURN_SEED, FAN_CREEP = 1, 0.02
+GRIPPER = {"left": LEFT_GRIPPER, "right": RIGHT_GRIPPER}  # action index of each gripper command
 SEATED = 8  # held frames after lift-off in which the object seats itself in the pads
 
 
@@ -141,19 +142,23 @@ SEATED = 8  # held frames after lift-off in which the object seats itself in the
 def test_the_expert_carries_without_slip(task, seed):
     """The experts' grasps are physical too (no welds): while a gripper alone holds the object up,
     it stays put in the gripper's frame (within 5 mm) once seated: in the first frames off the
-    table a rounded object (a mouse's shell) settles in the pads (up to 8 mm)."""
+    table a rounded object (a mouse's shell) settles in the pads (up to 8 mm). Carrying ends when the
+    release begins: a frame reached by an opening gripper command is not carried (the object slides
+    out then, by design)."""
     from lerobot_activearena.sim.embodiment import TCP_SITES
     from lerobot_activearena.tasks.predicates import held_by_gripper
     from lerobot_activearena.tasks.rollout import run_expert_episode
 
     obj = CARRIED[task]
-    offsets, welds = [], []
+    offsets, welds, previous = [], [], []
 
     def on_frame(t, sim, frame, action):
         if t == 0:
             welds.append(int((sim.model.eq_type == mujoco.mjtEq.mjEQ_WELD).sum()))
         arm = held_by_gripper(sim, obj)
-        if arm is not None:
+        releasing = arm is not None and previous and previous[-1][GRIPPER[arm]] > 0.0
+        previous.append(action)
+        if arm is not None and not releasing:
             tcp, body = sim.data.site(TCP_SITES[arm]), sim.data.body(obj)
             offsets.append(tcp.xmat.reshape(3, 3).T @ (body.xpos - tcp.xpos))
 
