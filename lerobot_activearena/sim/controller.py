@@ -7,6 +7,8 @@ directly (their actuators are force-limited).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .action import ACTION_DIM, HEAD_PITCH, LEFT_ARM, RIGHT_ARM, TORSO_YAW
@@ -24,10 +26,11 @@ class RateLimitedAxis:
         self.q, self.v = float(q), 0.0
 
     def step(self, goal: float, dt: float) -> float:
-        e = goal - self.q
-        # Fastest velocity that can still stop at the goal.
-        v_des = np.sign(e) * min(self.vmax, np.sqrt(2 * self.amax * abs(e)))
-        dv = np.clip(v_des - self.v, -self.amax * dt, self.amax * dt)
+        e = float(goal - self.q)
+        # Fastest velocity that can still stop at the goal (scalar math: numpy's per-call cost
+        # dominated the substep; the arithmetic is the same).
+        v_des = ((e > 0) - (e < 0)) * min(self.vmax, math.sqrt(2 * self.amax * abs(e)))
+        dv = min(max(v_des - self.v, -self.amax * dt), self.amax * dt)
         self.v += dv
         q_next = self.q + self.v * dt
         if (goal - q_next) * e <= 0:  # would pass the goal: land on it
@@ -50,19 +53,20 @@ class JointTargetController:
         self.torso.reset(state18[TORSO_YAW])
         self.head.reset(state18[HEAD_PITCH])
 
-    def reference_velocity(self) -> tuple[float, float]:
-        """Velocity of the torso-yaw and head-pitch references (rad/s), the drives' velocity targets."""
-        return self.torso.v, self.head.v
-
-    def substep_targets(self, target: np.ndarray):
-        """Yield the 18-D reference for each physics substep of one control step."""
-        start = self.prev.copy()
-        for k in range(1, self.substeps + 1):
-            ref = target.copy()
-            alpha = k / self.substeps
-            for sl in (LEFT_ARM, RIGHT_ARM):
-                ref[sl] = start[sl] + alpha * (target[sl] - start[sl])
-            ref[TORSO_YAW] = self.torso.step(target[TORSO_YAW], self.dt)
-            ref[HEAD_PITCH] = self.head.step(target[HEAD_PITCH], self.dt)
-            yield ref
+    def substep_targets(self, target: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The 18-D reference of each physics substep of one control step, (substeps, 18), and the
+        torso-yaw / head-pitch reference velocities (rad/s) at each, (substeps, 2): the velocity
+        drives' targets."""
+        target = np.asarray(target, float)
+        start = self.prev
+        refs = np.tile(target, (self.substeps, 1))
+        alpha = (np.arange(1, self.substeps + 1) / self.substeps)[:, None]
+        for sl in (LEFT_ARM, RIGHT_ARM):
+            refs[:, sl] = start[sl] + alpha * (target[sl] - start[sl])
+        velocity = np.empty((self.substeps, 2))
+        for k in range(self.substeps):
+            refs[k, TORSO_YAW] = self.torso.step(target[TORSO_YAW], self.dt)
+            refs[k, HEAD_PITCH] = self.head.step(target[HEAD_PITCH], self.dt)
+            velocity[k] = self.torso.v, self.head.v
         self.prev = target.copy()
+        return refs, velocity

@@ -121,10 +121,12 @@ class ActiveArenaSim:
 
     # ---- control -----------------------------------------------------------------------------
     def _ctrl_from_reference(self, ref: np.ndarray, velocity=(0.0, 0.0)) -> np.ndarray:
-        ctrl = np.zeros(self.model.nu)
-        ctrl[self._vel_act] = velocity
-        ctrl[self._act_of_action] = ref
-        ctrl[self._act_of_action[self._grip_idx]] = self._gripper_to_joint(ref[self._grip_idx])
+        """Actuator controls for 18-D references ``ref`` (..., 18) and torso-yaw / head-pitch
+        reference velocities (..., 2)."""
+        ctrl = np.zeros(ref.shape[:-1] + (self.model.nu,))
+        ctrl[..., self._vel_act] = velocity
+        ctrl[..., self._act_of_action] = ref
+        ctrl[..., self._act_of_action[self._grip_idx]] = self._gripper_to_joint(ref[..., self._grip_idx])
         return ctrl
 
     def step(self, action) -> ClipReport:
@@ -141,8 +143,9 @@ class ActiveArenaSim:
                 if self.clip_count == 1
                 else "",
             )
-        for ref in self.controller.substep_targets(a):
-            self.data.ctrl[:] = self._ctrl_from_reference(ref, self.controller.reference_velocity())
+        refs, velocity = self.controller.substep_targets(a)
+        for ctrl in self._ctrl_from_reference(refs, velocity):
+            self.data.ctrl[:] = ctrl
             mujoco.mj_step(self.model, self.data)
         self.last_clip = report
         return report
