@@ -301,3 +301,15 @@ def test_shards_depend_on_the_selection_not_on_workers():
     assert limits == sorted(limits, reverse=True)  # longest tasks start first
     again = EvalPlan.from_json(plan.to_json())
     assert again.shards == plan.shards and again.differences(plan.to_json()) == []
+
+
+def test_policy_counts_stop_at_each_episodes_last_step():
+    """LeRobot's rollout steps a batch until its last env ends: an env that ended at step 1 gets the
+    counts it had then, not the ones its ignored later chunks added."""
+    import torch
+
+    from lerobot_activearena.eval.shard import stats_at_episode_ends
+
+    snapshots = [[{"chunks": t + 1}, {"chunks": t + 1}, {"chunks": 1}] for t in range(4)]
+    done = torch.tensor([[0, 1, 1, 1], [0, 0, 0, 1], [0, 0, 0, 0]], dtype=torch.bool)  # env 2 truncated
+    assert stats_at_episode_ends(snapshots, done) == [{"chunks": 2}, {"chunks": 4}, {"chunks": 1}]

@@ -49,6 +49,15 @@ def _lines(path: Path):
             yield rec
 
 
+def stats_at_episode_ends(snapshots: list[list[dict]], done) -> list[dict]:
+    """Each env's policy counts as they stood after its episode's last step: ``snapshots[t]`` is
+    ``policy.rollout_stats()`` after the action of step t; ``done`` is the rollout's cumulative
+    (envs, steps) done mask. LeRobot's rollout keeps stepping an env that ended until the whole
+    batch has, so the policy's final counts would include those extra chunks."""
+    ends = [int(row.to(int).argmax()) if bool(row.any()) else len(row) - 1 for row in done]
+    return [snapshots[t][b] for b, t in enumerate(ends)]
+
+
 def write_policy_stats(folder: Path, shard: EvalShard, episodes: list[int], stats: list[dict]) -> None:
     """One line per episode of a rollout with the policy's own counts (``policy.rollout_stats()``)."""
     import os
@@ -141,6 +150,11 @@ def run_shard(
         def render(env, frames=frames):
             frames.append(env.envs[0].render() if hasattr(env, "envs") else env.call("render")[0])
 
+        snapshots: list[list[dict]] = []  # the policy's own counts after every step
+
+        def snapshot(policy, snapshots=snapshots):
+            snapshots.append(policy.rollout_stats())
+
         try:
             with torch.no_grad(), torch.autocast(device_type=device.type) if cfg.use_amp else nullcontext():
                 data = lerobot_eval.rollout(
@@ -152,11 +166,15 @@ def run_shard(
                     postprocessor,
                     seeds=[plan.seed_base + k for k in batch],
                     render_callback=render if record else None,
+                    # LeRobot's hook after every select_action (named for world-model latents)
+                    predicted_latents_callback=snapshot
+                    if callable(getattr(policy, "rollout_stats", None))
+                    else None,
                 )
         finally:
             close_envs(envs)
-        if callable(getattr(policy, "rollout_stats", None)):
-            write_policy_stats(folder, shard, batch, policy.rollout_stats())
+        if snapshots:
+            write_policy_stats(folder, shard, batch, stats_at_episode_ends(snapshots, data["done"]))
         if record:
             last = int(torch.argmax(data["done"][0].to(int)))
             path = video_path(run_dir, shard, batch[0])
