@@ -88,12 +88,12 @@ def contacts_with(sim: ActiveArenaSim, body: str):
     attached to it (a bell's plunger, a button's cap)."""
     m, d = sim.model, sim.data
     root = m.body_rootid[m.body(body).id]
-    for c in d.contact[: d.ncon]:
-        b1, b2 = m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]
-        if m.body_rootid[b1] == root and m.body_rootid[b2] != root:
-            yield int(b2), c.pos.copy()
-        elif m.body_rootid[b2] == root and m.body_rootid[b1] != root:
-            yield int(b1), c.pos.copy()
+    bodies = m.geom_bodyid[d.contact.geom]  # (ncon, 2); the contact list's arrays, not its structs
+    mine = m.body_rootid[bodies] == root
+    first, second = mine[:, 0] & ~mine[:, 1], mine[:, 1] & ~mine[:, 0]
+    pos = d.contact.pos
+    for i in np.flatnonzero(first | second):
+        yield int(bodies[i, 1] if first[i] else bodies[i, 0]), pos[i].copy()
 
 
 def touched_by_robot(sim: ActiveArenaSim, body: str) -> bool:
