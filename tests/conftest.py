@@ -106,6 +106,8 @@ def pytest_terminal_summary(terminalreporter):
             per = by_function.setdefault(function, {})
             per[task] = per.get(task, 0.0) + seconds
     per_task = {f: per for f, per in by_function.items() if set(per) == set(tasks)}
+    if not per_task:  # a selection without the per-task tests
+        return
     total = sum(_DURATIONS.values())
     tasked = sum(sum(per.values()) for per in per_task.values())
     costs = dict.fromkeys(tasks, 0.0)
