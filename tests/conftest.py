@@ -10,13 +10,14 @@ if os.environ.get("PYTEST_XDIST_WORKER"):  # one core per worker: torch, BLAS an
     for var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "LP_NUM_THREADS"):
         os.environ.setdefault(var, "1")
 
+# first: pins numpy's BLAS kernels before numpy loads and selects the GL backend before mujoco does
+import lerobot_activearena  # noqa: E402,F401,I001
 import pytest  # noqa: E402
 import torch  # noqa: E402
 
 if os.environ.get("PYTEST_XDIST_WORKER"):
     torch.set_num_threads(1)
 
-import lerobot_activearena  # noqa: E402,F401  (selects the GL backend before mujoco loads)
 import lerobot_env_activearena  # noqa: E402,F401  (registers the env and policy types, as LeRobot's CLIs do)
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"

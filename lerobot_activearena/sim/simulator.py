@@ -22,6 +22,7 @@ from .action import (
     clip_action,
     validate_action,
 )
+from .blas_kernels import kernels_mismatch
 from .camera import cam2world_gl, extrinsic_cv, intrinsics
 from .controller import JointTargetController
 from .gl_backend import rendering_error
@@ -30,10 +31,16 @@ from .scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH, SUBSTEPS, WRIST_HEIGHT, 
 from .visibility import Visibility
 
 log = logging.getLogger(__name__)
+_KERNELS_CHECKED = False  # the BLAS kernel check runs once per process
 
 
 class ActiveArenaSim:
     def __init__(self, model: mujoco.MjModel, info: SceneInfo):
+        global _KERNELS_CHECKED
+        if not _KERNELS_CHECKED:
+            _KERNELS_CHECKED = True
+            if problem := kernels_mismatch():
+                log.warning(problem)
         self.model, self.info = model, info
         self.data = mujoco.MjData(model)
         self.substeps = SUBSTEPS
