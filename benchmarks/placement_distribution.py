@@ -15,6 +15,9 @@ import math
 import os
 from pathlib import Path
 
+import lerobot_activearena  # noqa: F401  (first: pins numpy's BLAS kernels before numpy loads)
+
+# isort: split
 import numpy as np
 
 

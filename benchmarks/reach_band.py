@@ -14,6 +14,9 @@ from __future__ import annotations
 
 import argparse
 
+import lerobot_activearena  # noqa: F401  (first: pins numpy's BLAS kernels before numpy loads)
+
+# isort: split
 import numpy as np
 
 

@@ -11,6 +11,8 @@ from __future__ import annotations
 import argparse
 import os
 
+import lerobot_activearena  # noqa: F401  (first: pins numpy's BLAS kernels before numpy loads)
+
 
 def main() -> None:
     p = argparse.ArgumentParser()
