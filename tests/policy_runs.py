@@ -5,11 +5,16 @@ seed (one short episode each)."""
 import json
 from pathlib import Path
 
+import torch
 from conftest import DATASET_REPO
 from lerobot.configs.default import EvalConfig
 from lerobot.configs.eval import EvalPipelineConfig
 from lerobot.configs.policies import PreTrainedConfig
 from lerobot.configs.train import TrainPipelineConfig
+from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
+from lerobot.datasets.factory import resolve_delta_timestamps
+from lerobot.datasets.lerobot_dataset import LeRobotDataset
+from lerobot.policies.factory import make_policy, make_pre_post_processors
 from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
 from lerobot.scripts.lerobot_train import train as lerobot_train
 
@@ -40,6 +45,28 @@ def preset_config(path: Path, config_cls):
     """A preset file's policy section as ``config_cls`` on the CPU."""
     policy = json.loads(Path(path).read_text())["policy"]
     return config_cls(**{k: v for k, v in policy.items() if k != "type"}, device="cpu")
+
+
+def policy_dataset(cfg, root: Path, meta: LeRobotDatasetMetadata) -> LeRobotDataset:
+    """The builder dataset at ``root`` with ``cfg``'s history frames (``delta_timestamps``)."""
+    return LeRobotDataset(
+        DATASET_REPO, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta)
+    )
+
+
+def build_policy(cfg, root: Path):
+    """``cfg``'s policy (torch seed 0) for the builder dataset at ``root``, its pre- and
+    postprocessor, and that dataset with the policy's history."""
+    meta = LeRobotDatasetMetadata(DATASET_REPO, root=root)
+    torch.manual_seed(0)
+    policy = make_policy(cfg, ds_meta=meta)
+    pre, post = make_pre_post_processors(cfg, dataset_stats=meta.stats)
+    return policy, pre, post, policy_dataset(cfg, root, meta)
+
+
+def collate(ds, pre, indices) -> dict:
+    """Samples ``indices`` of ``ds`` as one preprocessed batch."""
+    return pre(torch.utils.data.default_collate([ds[i] for i in indices]))
 
 
 def train_preset(preset: Path, dataset: Path, vlm: Path, out: Path, *extra: str) -> Path:

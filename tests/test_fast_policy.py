@@ -12,11 +12,10 @@ import torch
 from conftest import DATASET_REPO
 from lerobot.configs.types import NormalizationMode
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
-from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
 from lerobot.utils.constants import ACTION
-from policy_runs import play_both, preset_config, train_preset
+from policy_runs import build_policy, collate, play_both, preset_config, train_preset
 
 from lerobot_activearena.cli.fit_fast_tokenizer import fit
 from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
@@ -69,19 +68,11 @@ def test_one_cross_entropy_over_think_and_action_tokens(tiny_vlm, bell_count_dat
     )
     with pytest.raises(ValueError, match="activearena-fit-fast-tokenizer"):
         make_policy(ActiveArenaFASTConfig(vlm_path=str(tiny_vlm), device="cpu"), ds_meta=meta)
-    torch.manual_seed(0)
-    policy = make_policy(cfg, ds_meta=meta)
+    policy, pre, post, ds = build_policy(cfg, bell_count_dataset)
     text_rows = policy.action_token_base
     assert policy.vlm.get_input_embeddings().weight.shape[0] == text_rows + 2048
     assert policy.vlm.lm_head.weight.shape[0] == text_rows + 2048
-    pre, post = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    ds = LeRobotDataset(
-        DATASET_REPO,
-        root=bell_count_dataset,
-        video_backend="pyav",
-        delta_timestamps=resolve_delta_timestamps(cfg, meta),
-    )
-    batch = pre(torch.utils.data.default_collate([ds[70], ds[len(ds) - 40]]))
+    batch = collate(ds, pre, [70, len(ds) - 40])
     assert batch[ACTION].abs().max() <= 1 + 1e-5  # min-max normalised
     args = policy.training_args(batch)
     seq = policy._assemble(*args)
@@ -120,7 +111,6 @@ def test_one_cross_entropy_over_think_and_action_tokens(tiny_vlm, bell_count_dat
 def test_overfitting_one_sample_decodes_its_chunk(tiny_vlm, bell_count_dataset, action_tokenizer):
     """The whole path works: the cross-entropy falls, and greedy decoding then spells the sample's
     chunk (to the tokenizer's precision) with no failed decode."""
-    meta = LeRobotDatasetMetadata(DATASET_REPO, root=bell_count_dataset)
     cfg = ActiveArenaFASTConfig(
         vlm_path=str(tiny_vlm),
         action_tokenizer_path=str(action_tokenizer),
@@ -130,16 +120,8 @@ def test_overfitting_one_sample_decodes_its_chunk(tiny_vlm, bell_count_dataset, 
         subtask_max_tokens=24,
         max_action_tokens=48,
     )
-    torch.manual_seed(0)
-    policy = make_policy(cfg, ds_meta=meta)
-    pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    ds = LeRobotDataset(
-        DATASET_REPO,
-        root=bell_count_dataset,
-        video_backend="pyav",
-        delta_timestamps=resolve_delta_timestamps(cfg, meta),
-    )
-    batch = pre(torch.utils.data.default_collate([ds[70]]))
+    policy, pre, _, ds = build_policy(cfg, bell_count_dataset)
+    batch = collate(ds, pre, [70])
     opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
     policy.train()
     losses = []

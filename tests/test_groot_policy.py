@@ -7,12 +7,7 @@ import json
 from pathlib import Path
 
 import torch
-from conftest import DATASET_REPO
-from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
-from lerobot.datasets.factory import resolve_delta_timestamps
-from lerobot.datasets.lerobot_dataset import LeRobotDataset
-from lerobot.policies.factory import make_policy, make_pre_post_processors
-from policy_runs import play_both, preset_config, train_preset
+from policy_runs import build_policy, collate, play_both, preset_config, train_preset
 
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY
@@ -43,20 +38,11 @@ def test_the_preset_is_the_papers_head():
 
 
 def test_losses_reach_the_head_and_backbone_and_a_seed_fixes_the_chunk(tiny_vlm, bell_count_dataset):
-    meta = LeRobotDatasetMetadata(DATASET_REPO, root=bell_count_dataset)
     cfg = ActiveArenaGR00TConfig(
         vlm_path=str(tiny_vlm), device="cpu", state_hidden=32, history=4, think="subtask", **TINY_DIT
     )
-    torch.manual_seed(0)
-    policy = make_policy(cfg, ds_meta=meta)
-    pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    ds = LeRobotDataset(
-        DATASET_REPO,
-        root=bell_count_dataset,
-        video_backend="pyav",
-        delta_timestamps=resolve_delta_timestamps(cfg, meta),
-    )
-    batch = pre(torch.utils.data.default_collate([ds[70], ds[len(ds) - 40]]))
+    policy, pre, _, ds = build_policy(cfg, bell_count_dataset)
+    batch = collate(ds, pre, [70, len(ds) - 40])
     assert not hasattr(policy, "action_queries") and not hasattr(policy, "head")
     loss, info = policy.forward(batch)
     assert torch.isfinite(loss) and info["flow_loss"] > 0 and info["lm_loss"] > 0

@@ -14,12 +14,9 @@ import torch
 from lerobot.configs.policies import PreTrainedConfig
 from lerobot.configs.train import TrainPipelineConfig
 from lerobot.configs.types import FeatureType, PolicyFeature
-from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
-from lerobot.datasets.factory import resolve_delta_timestamps
-from lerobot.datasets.lerobot_dataset import LeRobotDataset
-from lerobot.policies.factory import make_policy, make_pre_post_processors
+from lerobot.policies.factory import make_pre_post_processors
 from lerobot.scripts.lerobot_train import train as lerobot_train
-from policy_runs import FIXED, RUNS, play_both, train_preset
+from policy_runs import FIXED, RUNS, build_policy, collate, play_both, train_preset
 
 from lerobot_activearena.annotations.keyframes import motion_keyframes
 from lerobot_activearena.cli.eval import main as activearena_eval
@@ -54,26 +51,13 @@ def root(bell_count_dataset):
 
 
 def _setup(vlm, root, **overrides):
-    meta = LeRobotDatasetMetadata(REPO, root=root)
     cfg = ActiveArenaOFTConfig(vlm_path=str(vlm), device="cpu", state_hidden=32, **overrides)
-    torch.manual_seed(0)
-    policy = make_policy(cfg, ds_meta=meta)
-    pre, post = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    ds = LeRobotDataset(
-        REPO, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta)
-    )
-    return cfg, policy, pre, post, ds
-
-
-def _batch(ds, pre, indices):
-    items = [ds[i] for i in indices]
-    batch = torch.utils.data.default_collate(items)
-    return pre(batch)
+    return cfg, *build_policy(cfg, root)
 
 
 def test_forward_backward_shapes_and_gradients(vlm, root):
     cfg, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="subtask")
-    batch = _batch(ds, pre, [70, len(ds) - 40])
+    batch = collate(ds, pre, [70, len(ds) - 40])
     assert batch[PIXELS].shape[:2] == (2, 5)  # 4 stride-16 history frames + the current one
     assert batch["observation.state"].shape == (2, 5, 18)
     assert batch[THINK_IDS].shape[0] == 2
@@ -91,7 +75,7 @@ def test_forward_backward_shapes_and_gradients(vlm, root):
     assert policy.vlm.get_input_embeddings().weight.grad.abs().sum() > 0  # the LM loss reaches the backbone
     policy.reset()
     with torch.no_grad():
-        assert policy.predict_action_chunk(_batch(ds, pre, [70])).shape == (1, 16, 18)
+        assert policy.predict_action_chunk(collate(ds, pre, [70])).shape == (1, 16, 18)
     groups = policy.get_optim_params()
     assert [g["lr"] for g in groups] == [1e-5, 1e-4]
     assert sum(p.numel() for g in groups for p in g["params"]) == sum(p.numel() for p in policy.parameters())
@@ -99,7 +83,7 @@ def test_forward_backward_shapes_and_gradients(vlm, root):
 
 def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, root, monkeypatch):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none")
-    batch = _batch(ds, pre, [60])
+    batch = collate(ds, pre, [60])
     seen = {}
     real = policy.vlm.model.language_model.forward
 
@@ -136,7 +120,7 @@ def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, r
 
 def test_loss_decreases_when_overfitting_a_fixed_batch(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="instruction")
-    batch = _batch(ds, pre, [20, 90, len(ds) - 30])
+    batch = collate(ds, pre, [20, 90, len(ds) - 30])
     opt = torch.optim.AdamW(policy.parameters(), lr=1e-3)
     losses = []
     for _ in range(30):
@@ -150,7 +134,7 @@ def test_loss_decreases_when_overfitting_a_fixed_batch(vlm, root):
 
 def test_actions_cannot_see_the_think_text(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask")
-    batch = _batch(ds, pre, [40, len(ds) - 10])
+    batch = collate(ds, pre, [40, len(ds) - 10])
     policy.eval()
     with torch.no_grad():
         a_none, _ = policy._encode(*_encode_args(batch))
@@ -186,7 +170,7 @@ def test_keyframe_memory_never_reads_the_future(vlm, root):
     # a training batch with motion memory: history slots hold exactly the retained past frames
     cfg, policy, pre, _, ds = _setup(vlm, root, memory="motion", history=3, think="none")
     t = len(ds) - 60
-    batch = _batch(ds, pre, [t])
+    batch = collate(ds, pre, [t])
     mem = ann.memory_indices(t, "motion", 3)
     assert batch["observation.vlm.frame_valid"][0].tolist() == [False] * (3 - len(mem)) + [True] * (
         len(mem) + 1
@@ -287,7 +271,7 @@ def test_a_wrongly_shaped_state_at_evaluation_is_named(vlm, root):
 
 def test_backbone_matches_qwen3_vl_forward(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="none")
-    batch = _batch(ds, pre, [20, len(ds) - 40])
+    batch = collate(ds, pre, [20, len(ds) - 40])
     with torch.no_grad():
         seq = policy._assemble(*_encode_args(batch))
         ours = policy._backbone(seq)[0].last_hidden_state
@@ -333,7 +317,7 @@ def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
 
 def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=0, think="subtask")
-    batch = _batch(ds, pre, [len(ds) - 20])
+    batch = collate(ds, pre, [len(ds) - 20])
     opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
     for _ in range(150):  # memorise this one sample's subtask text
         loss, _ = policy.forward(batch)
@@ -350,7 +334,7 @@ def test_cached_think_decoding_matches_re_encoding_the_whole_sequence(vlm, root)
     _, policy, pre, _, ds = _setup(
         vlm, root, memory="chunk", history=4, think="subtask", subtask_max_tokens=6
     )
-    batch = _batch(ds, pre, [20, len(ds) - 40])  # 2 and 5 valid frames: sequences of different lengths
+    batch = collate(ds, pre, [20, len(ds) - 40])  # 2 and 5 valid frames: sequences of different lengths
     assert batch["observation.vlm.frame_valid"].sum(1).tolist() == [2, 5]
     policy.eval()
     with torch.no_grad():
@@ -539,7 +523,7 @@ def _changed_fraction(vlm, root, **precision):
     CPU without native bfloat16 each step takes ~10 s)."""
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none", **precision)
     policy.train()
-    batch = _batch(ds, pre, [20])
+    batch = collate(ds, pre, [20])
     before = [p.detach().clone() for p in policy.vlm.parameters()]
     opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
     loss, _ = policy.forward(batch)
@@ -645,7 +629,7 @@ def test_padded_history_frames_are_never_processed(vlm, root):
 
     step._processor.image_processor = Counting()
     try:
-        batch = _batch(ds, pre, [20, len(ds) - 40])  # frame 20: 1 history frame present; later: all 4
+        batch = collate(ds, pre, [20, len(ds) - 40])  # frame 20: 1 history frame present; later: all 4
     finally:
         step._processor.image_processor = real
     valid = batch["observation.vlm.frame_valid"]
@@ -672,7 +656,7 @@ def test_images_are_processed_on_the_policy_device(vlm, root):
     step._processor.image_processor = Recording()
     try:
         step.device = "cuda"
-        _batch(ds, pre, [20])
+        collate(ds, pre, [20])
     finally:
         step._processor.image_processor = real
     expected = torch.device("cuda") if torch.cuda.is_available() else torch.device("cpu")

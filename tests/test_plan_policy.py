@@ -11,10 +11,9 @@ import pytest
 import torch
 from conftest import DATASET_REPO
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
-from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
-from policy_runs import play_both, preset_config, train_preset
+from policy_runs import collate, play_both, policy_dataset, preset_config, train_preset
 
 from lerobot_activearena.annotations.keyframes import planned_memory, retrieval_positions
 from lerobot_activearena.policies.activearena_oft import ActiveArenaOFTConfig
@@ -63,12 +62,6 @@ def test_the_presets_are_the_papers_planner_and_executor():
         ActiveArenaOFTConfig(memory="planned", device="cpu")
 
 
-def _dataset(cfg, meta, root):
-    return LeRobotDataset(
-        DATASET_REPO, root=root, video_backend="pyav", delta_timestamps=resolve_delta_timestamps(cfg, meta)
-    )
-
-
 def test_planner_and_executor_training_inputs(tiny_vlm, bell_count_dataset):
     meta = LeRobotDatasetMetadata(DATASET_REPO, root=bell_count_dataset)
     ann = DatasetAnnotations(bell_count_dataset, DATASET_REPO)
@@ -79,7 +72,7 @@ def test_planner_and_executor_training_inputs(tiny_vlm, bell_count_dataset):
     torch.manual_seed(0)
     planner = make_policy(cfg, ds_meta=meta)
     pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    batch = pre(torch.utils.data.default_collate([_dataset(cfg, meta, bell_count_dataset)[FRAME]]))
+    batch = collate(policy_dataset(cfg, bell_count_dataset, meta), pre, [FRAME])
     assert int(batch[FRAME_VALID][0].sum()) == len(frames) and batch.get("observation.state_token") is None
     seq = planner._assemble(*planner.training_args(batch))
     tok = planner.text_tokenizer
@@ -97,7 +90,7 @@ def test_planner_and_executor_training_inputs(tiny_vlm, bell_count_dataset):
         vlm_path=str(tiny_vlm), device="cpu", state_hidden=32, dataset_root=str(bell_count_dataset)
     )
     pre, _ = make_pre_post_processors(ecfg, dataset_stats=meta.stats)
-    batch = pre(torch.utils.data.default_collate([_dataset(ecfg, meta, bell_count_dataset)[FRAME]]))
+    batch = collate(policy_dataset(ecfg, bell_count_dataset, meta), pre, [FRAME])
     assert int(batch[FRAME_VALID][0].sum()) == len(planned_memory(x, keyframes)) + 1  # retrieved + current
     prompt = tok.decode(batch[PROMPT_IDS][0][batch[PROMPT_MASK][0]].tolist())
     assert prompt.startswith(f'Your task is: "{ann.subtask(FRAME)}"') and "next action" in prompt
@@ -114,7 +107,7 @@ def test_an_overfitted_planner_answers_its_target(tiny_vlm, bell_count_dataset):
     torch.manual_seed(0)
     planner = make_policy(cfg, ds_meta=meta)
     pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
-    batch = pre(torch.utils.data.default_collate([_dataset(cfg, meta, bell_count_dataset)[FRAME]]))
+    batch = collate(policy_dataset(cfg, bell_count_dataset, meta), pre, [FRAME])
     opt = torch.optim.AdamW(planner.parameters(), lr=5e-3)
     planner.train()
     for _ in range(200):
