@@ -12,10 +12,8 @@ import numpy as np
 import pytest
 import torch
 from lerobot.configs.policies import PreTrainedConfig
-from lerobot.configs.train import TrainPipelineConfig
 from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.policies.factory import make_pre_post_processors
-from lerobot.scripts.lerobot_train import train as lerobot_train
 from policy_runs import FIXED, RUNS, build_policy, collate, play_both, train_preset
 
 from lerobot_activearena.annotations.keyframes import motion_keyframes
@@ -470,26 +468,14 @@ def test_the_fixed_preset_learns_the_arms_and_holds_the_view_at_home(vlm, root, 
     through activearena-eval with the fixed-view env config."""
     from lerobot_activearena.sim.embodiment import HOME_HEAD_PITCH, HOME_TORSO_YAW
 
-    train_dir = tmp_path / "train"
-    cfg = TrainPipelineConfig.from_pretrained(
+    ckpt = train_preset(
         CONFIGS / "oft_subtask_action_12_ws_fixed.json",
-        cli_args=[
-            f"--dataset.repo_id={REPO}",
-            f"--dataset.root={root}",
-            f"--policy.vlm_path={vlm}",
-            "--policy.device=cpu",
-            "--policy.state_hidden=32",
-            "--policy.history=2",
-            "--steps=2",
-            "--batch_size=2",
-            "--num_workers=0",
-            "--save_freq=2",
-            "--log_freq=1",
-            f"--output_dir={train_dir}",
-        ],
+        root,
+        vlm,
+        tmp_path / "train",
+        "--policy.state_hidden=32",
+        "--policy.history=2",
     )
-    lerobot_train(cfg)
-    ckpt = train_dir / "checkpoints" / "last" / "pretrained_model"
     policy_cfg = PreTrainedConfig.from_pretrained(ckpt)
     assert policy_cfg.fixed_view and policy_cfg.predicted_action_dim == 16
     policy = ActiveArenaOFTPolicy.from_pretrained(ckpt, config=policy_cfg)
