@@ -107,6 +107,51 @@ def test_lerobot_policy_trained_on_a_builder_dataset_plays_in_activearena_eval(
             assert mine[k][key] == theirs[k][key], (k, key)
 
 
+def test_the_cpu_recipe_trains_act_at_96x128_and_plays_at_that_size(tmp_path):
+    """``datasets_build/cpu_learning.json`` (one bell episode) -> ``act_cpu.json`` through LeRobot's
+    training loop -> activearena-eval with the env rendering at the policy's 96 x 128."""
+    from lerobot.datasets.lerobot_dataset import LeRobotDataset
+
+    from lerobot_activearena.cli.build_dataset import main as build_main
+
+    root = tmp_path / "cpu_data"
+    build_main(
+        ["--recipe", str(BASELINES.parents[2] / "datasets_build" / "cpu_learning.json")]
+        + ["--repo-id", "local/cpu", "--root", str(root), "--tasks", BELL]
+        + ["--episodes", "1", "--workers", "1"]
+    )
+    ds = LeRobotDataset("local/cpu", root=root)
+    assert ds[0]["observation.images.head"].shape == (3, 96, 128)
+    out = tmp_path / "train"
+    args = [
+        f"--dataset.root={root}",
+        "--dataset.repo_id=local/cpu",
+        "--policy.dim_model=32",  # the plumbing, not the policy
+        "--policy.dim_feedforward=64",
+        "--policy.n_heads=2",
+        "--steps=2",
+        "--batch_size=2",
+        "--num_workers=0",
+        "--save_freq=2",
+        f"--output_dir={out}",
+    ]
+    lerobot_train(TrainPipelineConfig.from_pretrained(BASELINES / "act_cpu.json", cli_args=args))
+    ckpt = out / "checkpoints" / "last" / "pretrained_model"
+    assert PreTrainedConfig.from_pretrained(ckpt).input_features["observation.images.head"].shape == (
+        3,
+        96,
+        128,
+    )
+    run = tmp_path / "protocol"
+    common = [f"--policy.path={ckpt}", f"--env.episode_length={EPISODE_LENGTH}", f"--tasks={BELL}"]
+    common += ["--splits=id", "--episodes=1", "--videos=1", f"--out={run}"]
+    with pytest.raises(SystemExit):  # the default 384 x 512 env is refused, naming the fix
+        activearena_eval(common)
+    activearena_eval([*common, "--env.observation_height=96", "--env.observation_width=128"])
+    rec = _records(run / "id" / "episodes")[0]
+    assert rec["steps"] == EPISODE_LENGTH and rec["success"] is False
+
+
 def test_built_in_policy_types_parse_by_type():
     for policy_type in ("act", "diffusion", "smolvla", "pi05"):
         cfg, path = parse_policy([f"--policy.type={policy_type}", "--policy.device=cpu"])
@@ -117,12 +162,22 @@ def test_baseline_presets_parse_with_the_papers_settings():
     import lerobot.policies  # noqa: F401  (registers LeRobot's policy configs, as lerobot-train does)
 
     presets = {p.stem: p for p in BASELINES.glob("*.json")}
-    assert sorted(presets) == ["act", "diffusion", "fastwam", "pi05", "smolvla"]
+    assert sorted(presets) == ["act", "act_cpu", "diffusion", "fastwam", "pi05", "smolvla"]
     cfgs = {
         name: TrainPipelineConfig.from_pretrained(path, cli_args=["--dataset.root=/nonexistent"]).policy
         for name, path in presets.items()
     }
-    assert all(cfg.type == name for name, cfg in cfgs.items())
+    assert all(cfg.type == name.removesuffix("_cpu") for name, cfg in cfgs.items())
+    # the CPU recipe's ACT: 17 M parameters, trained from scratch (backbone at the full learning rate)
+    act_cpu = cfgs["act_cpu"]
+    assert (act_cpu.dim_model, act_cpu.dim_feedforward, act_cpu.n_encoder_layers, act_cpu.chunk_size) == (
+        256,
+        1024,
+        2,
+        16,
+    )
+    assert act_cpu.pretrained_backbone_weights is None
+    assert act_cpu.optimizer_lr_backbone == act_cpu.optimizer_lr == 1e-4
     # pi0.5: head image + 18-D state, the two wrist slots masked, 5 flow-matching steps, from pi05_base
     pi05 = cfgs["pi05"]
     assert (pi05.empty_cameras, pi05.num_inference_steps, str(pi05.pretrained_path)) == (

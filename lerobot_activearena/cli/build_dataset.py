@@ -16,7 +16,7 @@ from ..datasets_build.features import MAX_OBJECTS
 from ..datasets_build.pipeline import build_dataset
 from ..datasets_build.plan import BuildPlan
 from ..datasets_build.recipe import RECIPE_KEYS, load_recipe
-from .args import int_ranges
+from .args import image_size, int_ranges
 
 
 def parser() -> argparse.ArgumentParser:
@@ -50,6 +50,11 @@ def parser() -> argparse.ArgumentParser:
         type=int,
         default=None,
         help="episodes per shard, the unit of resume (default 10)",
+    )
+    p.add_argument(
+        "--image-size",
+        default=None,
+        help="head video HEIGHTxWIDTH, 3:4 (default 384x512, the paper's); rendered at that size",
     )
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
     p.add_argument("--executor", default="local", choices=["local", "slurm"])
@@ -146,6 +151,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         seed_start=pick("seed_start"),
         episodes_per_shard=pick("episodes_per_shard"),
         max_objects=MAX_OBJECTS,
+        image_size=image_size(pick("image_size")),
     )
 
 

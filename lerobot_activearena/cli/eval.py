@@ -125,6 +125,7 @@ def config_file_defaults(paths: list[Path]) -> dict:
 
 def check_features(cfg, env_options: dict, fixed_view: bool) -> None:
     """A pretrained policy's input / output features must be what the activearena env provides."""
+    from lerobot.configs.types import FeatureType
     from lerobot.envs.utils import env_to_policy_features
     from lerobot.utils.constants import ACTION
 
@@ -146,6 +147,12 @@ def check_features(cfg, env_options: dict, fixed_view: bool) -> None:
             problems.append(
                 f"{key} has shape {tuple(have.shape)} in the env, {tuple(feat.shape)} in the policy"
             )
+            if have.type is FeatureType.VISUAL and len(feat.shape) == 3 and feat.shape[0] == 3:
+                _, h, w = feat.shape  # LeRobot's policies hold images channel-first
+                problems.append(
+                    f"the policy was trained on {h}x{w} head images: add "
+                    f"--env.observation_height={h} --env.observation_width={w}"
+                )
     if problems:
         env_list = ", ".join(f"{k} {tuple(v.shape)}" for k, v in provided.items())
         raise ValueError(

@@ -55,11 +55,14 @@ COLUMN_DOCS = {
 # viewers handle 1-D columns only. ``matrix(row, name)`` restores them.
 
 
-def dataset_features(max_objects: int = MAX_OBJECTS) -> dict[str, dict]:
+def dataset_features(
+    max_objects: int = MAX_OBJECTS, image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH)
+) -> dict[str, dict]:
+    """The dataset's features; ``image_size``: the head video's (height, width)."""
     feats: dict[str, dict] = {
         IMAGE_KEY: {
             "dtype": "video",
-            "shape": (HEAD_HEIGHT, HEAD_WIDTH, 3),
+            "shape": (*image_size, 3),
             "names": ["height", "width", "channels"],
         },
         "observation.state": {"dtype": "float32", "shape": (ACTION_DIM,), "names": list(ACTION_NAMES)},

@@ -46,6 +46,7 @@ class BuildShardStep(PipelineStep):
             self.plan.max_objects,
             self.encoder_threads,
             progress=work / "progress" / f"{spec.name}.json",
+            image_size=tuple(self.plan.image_size),
         )
         self.stat_update("episodes_kept", value=len(summary["kept"]))
         self.stat_update("episodes_skipped", value=len(summary["skipped"]))

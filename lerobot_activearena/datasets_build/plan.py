@@ -12,6 +12,8 @@ import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from ..sim.head_camera import validate_head_size
+from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from ..tasks import task_names
 from ..tasks.base import SPLITS
 
@@ -39,6 +41,7 @@ class BuildPlan:
     seed_start: int = 0
     episodes_per_shard: int = 10
     max_objects: int = 16
+    image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH)  # head video (height, width), 3:4
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -54,6 +57,7 @@ class BuildPlan:
             raise ValueError(f"--seeds must be distinct non-negative integers, got {self.seeds}")
         if self.episodes_per_shard < 1:
             raise ValueError(f"--episodes-per-shard must be >= 1, got {self.episodes_per_shard}")
+        self.image_size = validate_head_size(*self.image_size)
         self.tasks = [t for sel in self.tasks for t in task_names(sel)]
         self.shards = self._make_shards()
 
@@ -80,7 +84,7 @@ class BuildPlan:
         from .features import dataset_features  # the feature set is part of a build's identity
 
         d = asdict(self)
-        d["features"] = json.loads(json.dumps(dataset_features(self.max_objects)))
+        d["features"] = json.loads(json.dumps(dataset_features(self.max_objects, self.image_size)))
         d["shards"] = [asdict(s) for s in self.shards]
         return d
 

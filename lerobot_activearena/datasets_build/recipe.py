@@ -17,6 +17,7 @@ RECIPE_KEYS = {
     "seeds": None,
     "seed_start": 0,
     "episodes_per_shard": 10,
+    "image_size": "384x512",  # head video height x width (3:4)
 }
 
 

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
+from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from ..tasks.rollout import EpisodeResult, run_expert_episode
 from .features import frame_row
 
@@ -36,11 +37,18 @@ def episode_keyframes(result: EpisodeResult) -> dict[str, np.ndarray]:
     }
 
 
-def record_episode(task: str, seed: int, split: str) -> RecordedEpisode:
-    """Run the expert and keep the head image of every frame (the frame the annotation describes)."""
+def record_episode(
+    task: str, seed: int, split: str, image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH)
+) -> RecordedEpisode:
+    """Run the expert and keep the head image of every frame (the frame the annotation describes),
+    rendered at ``image_size`` (height, width)."""
     images: list[np.ndarray] = []
     result = run_expert_episode(
-        task, seed, split, on_frame=lambda t, sim, frame, action: images.append(sim.render_head())
+        task,
+        seed,
+        split,
+        on_frame=lambda t, sim, frame, action: images.append(sim.render_head()),
+        image_size=image_size,
     )
     keyframes = episode_keyframes(result) if result.success else {}
     return RecordedEpisode(result, images, keyframes)

@@ -11,6 +11,7 @@ import shutil
 from pathlib import Path
 
 from ..sim.embodiment import ROBOT_TYPE
+from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from .features import FPS, dataset_features
 from .plan import ShardSpec
 from .record import record_episode
@@ -35,6 +36,7 @@ def build_shard(
     max_objects: int,
     encoder_threads: int | None = 1,
     progress: Path | None = None,
+    image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH),
 ) -> dict:
     """Record the shard's episodes; returns (and stores) its summary. Safe to call again: a complete
     shard is returned as is, leftovers of an interrupted attempt are removed first."""
@@ -53,7 +55,7 @@ def build_shard(
     shutil.rmtree(tmp, ignore_errors=True)
     shutil.rmtree(final, ignore_errors=True)
     tmp.parent.mkdir(parents=True, exist_ok=True)
-    features = dataset_features(max_objects)
+    features = dataset_features(max_objects, image_size)
     ds = LeRobotDataset.create(
         f"{repo_id}-{spec.name}",
         fps=FPS,
@@ -71,7 +73,7 @@ def build_shard(
             break
         tried += 1
         try:
-            rec = record_episode(spec.task, seed, split)
+            rec = record_episode(spec.task, seed, split, image_size)
             failure = rec.result.failure
         except Exception as exc:  # e.g. no valid scene for this seed: recorded, never hidden
             rec, failure = None, f"{type(exc).__name__}: {exc}"

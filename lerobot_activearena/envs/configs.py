@@ -12,6 +12,7 @@ from lerobot.envs.utils import freeze_after_episode_end
 from lerobot.utils.constants import ACTION, OBS_ENV_STATE, OBS_IMAGES, OBS_STATE
 
 from ..sim.action import ACTION_DIM
+from ..sim.head_camera import validate_head_size
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..tasks.base import SPLITS
 from .manifests import DEFAULT_SEED_BASE
@@ -24,7 +25,9 @@ class ActiveArenaEnvConfig(EnvConfig):
     ``split``: ``id`` or ``ood``. ``fixed_view``: hold head pitch and torso yaw at home (the
     ActiveArena-Fixed ablation). Episodes play the task's seed manifest in order: episode k of
     lerobot-eval (seed ``seed_base + k``) uses manifest seed k; keep ``seed_base`` equal to
-    lerobot-eval's ``--seed`` (both default to 1000)."""
+    lerobot-eval's ``--seed`` (both default to 1000). ``observation_height`` / ``observation_width``:
+    the head image's size, 3:4 (default the paper's 384 x 512; e.g. 96 x 128 for CPU training),
+    rendered at that size."""
 
     task: str = "all"
     split: str = "id"
@@ -34,6 +37,8 @@ class ActiveArenaEnvConfig(EnvConfig):
     expert_channel: bool = False  # privileged: the scripted expert's next action for `activearena_expert`
     episode_log_dir: str | None = None  # one JSON line per finished episode (failure states, view targets)
     fps: int = CONTROL_HZ
+    observation_height: int = HEAD_HEIGHT
+    observation_width: int = HEAD_WIDTH
     episode_length: int | None = None  # None: each task's own step limit
     render_pixels: bool = (
         True  # false: black head images, for policies that read none (the oracle); videos still render
@@ -56,6 +61,11 @@ class ActiveArenaEnvConfig(EnvConfig):
     def __post_init__(self):
         if self.split not in SPLITS:
             raise ValueError(f"--env.split must be one of {SPLITS}, got {self.split!r}")
+        try:
+            size = validate_head_size(self.observation_height, self.observation_width)
+        except ValueError as exc:
+            raise ValueError(f"--env.observation_height / --env.observation_width: {exc}") from None
+        self.features["pixels/head"] = PolicyFeature(type=FeatureType.VISUAL, shape=(*size, 3))
         if self.expert_channel:
             self.features["environment_state"] = PolicyFeature(type=FeatureType.ENV, shape=(ACTION_DIM,))
             self.features_map["environment_state"] = OBS_ENV_STATE
@@ -71,6 +81,8 @@ class ActiveArenaEnvConfig(EnvConfig):
             "episode_log_dir": self.episode_log_dir,
             "render_pixels": self.render_pixels,
             "max_episode_steps": self.episode_length,
+            "observation_height": self.observation_height,
+            "observation_width": self.observation_width,
         }
 
     def create_envs(

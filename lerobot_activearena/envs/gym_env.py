@@ -14,6 +14,7 @@ import numpy as np
 
 from ..sim import embodiment
 from ..sim.action import ACTION_DIM, HEAD_PITCH, TORSO_YAW, validate_action
+from ..sim.head_camera import validate_head_size
 from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..tasks import get_task
@@ -39,6 +40,8 @@ class ActiveArenaEnv(gym.Env):
         render_mode: str = "rgb_array",
         render_pixels: bool = True,
         max_episode_steps: int | None = None,
+        observation_height: int = HEAD_HEIGHT,
+        observation_width: int = HEAD_WIDTH,
     ):
         """``use_manifest``: reset(seed=s) plays the (s - seed_base)-th seed of the task's evaluation
         manifest (so lerobot-eval's seeds seed_base, seed_base+1, ... give the protocol's episodes in
@@ -50,7 +53,10 @@ class ActiveArenaEnv(gym.Env):
         commanded torso/head targets) to ``<dir>/<task>_<split>_<pid>.jsonl`` for the report.
         ``render_pixels=False``: observations carry a black image (for policies that look at nothing,
         e.g. the validity suite's adversaries); visibility and failure states are still computed.
-        ``max_episode_steps``: the step limit (default: the task's own, the protocol's)."""
+        ``max_episode_steps``: the step limit (default: the task's own, the protocol's).
+        ``observation_height`` x ``observation_width``: the head image's size, 3:4 (default the
+        paper's 384 x 512). The camera renders at that size (nothing is resized); visibility, the
+        failure states and the success checks are the same at every 3:4 size."""
         if split not in SPLITS:
             raise ValueError(f"split must be one of {SPLITS}, got {split!r}")
         self.spec_task = get_task(task)
@@ -61,7 +67,8 @@ class ActiveArenaEnv(gym.Env):
         self.use_manifest, self.seed_base = use_manifest, seed_base
         self.render_mode = render_mode
         self.render_pixels = render_pixels
-        self._black = np.zeros((HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)
+        self.image_size = validate_head_size(observation_height, observation_width)
+        self._black = np.zeros((*self.image_size, 3), np.uint8)
         if max_episode_steps is not None and max_episode_steps < 1:
             raise ValueError(
                 f"max_episode_steps must be >= 1 (or None for the task's limit), got {max_episode_steps}"
@@ -71,9 +78,7 @@ class ActiveArenaEnv(gym.Env):
         )  # read by lerobot-eval
         self.episode: Episode | None = None
         spaces = {
-            "pixels": gym.spaces.Dict(
-                {"head": gym.spaces.Box(0, 255, (HEAD_HEIGHT, HEAD_WIDTH, 3), np.uint8)}
-            ),
+            "pixels": gym.spaces.Dict({"head": gym.spaces.Box(0, 255, (*self.image_size, 3), np.uint8)}),
             "agent_pos": gym.spaces.Box(-np.inf, np.inf, (ACTION_DIM,), np.float32),
         }
         if expert_channel:
@@ -94,7 +99,9 @@ class ActiveArenaEnv(gym.Env):
             scene_seed = int(seed)
         if self.episode is not None:
             self.episode.close()
-        self.episode = Episode(self.spec_task, sample_scene(self.spec_task, scene_seed, self.split))
+        self.episode = Episode(
+            self.spec_task, sample_scene(self.spec_task, scene_seed, self.split), image_size=self.image_size
+        )
         self.task_description = self.scene.instruction
         self._home = self.sim.home_action()
         self._episode_index = None if seed is None else int(seed) - self.seed_base

@@ -26,7 +26,7 @@ from .blas_kernels import kernels_mismatch
 from .camera import cam2world_gl, extrinsic_cv, intrinsics
 from .controller import JointTargetController
 from .gl_backend import rendering_error
-from .head_camera import head_visibility_checker
+from .head_camera import head_visibility_checker, validate_head_size
 from .scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH, SUBSTEPS, WRIST_HEIGHT, WRIST_WIDTH, SceneInfo
 from .visibility import Visibility
 
@@ -35,13 +35,28 @@ _KERNELS_CHECKED = False  # the BLAS kernel check runs once per process
 
 
 class ActiveArenaSim:
-    def __init__(self, model: mujoco.MjModel, info: SceneInfo):
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        info: SceneInfo,
+        image_height: int = HEAD_HEIGHT,
+        image_width: int = HEAD_WIDTH,
+    ):
+        """``image_height`` x ``image_width``: the head image's size (3:4; default the paper's
+        384 x 512). The head camera renders at that size, and its intrinsics, visibility boxes and
+        image points follow it."""
         global _KERNELS_CHECKED
         if not _KERNELS_CHECKED:
             _KERNELS_CHECKED = True
             if problem := kernels_mismatch():
                 log.warning(problem)
         self.model, self.info = model, info
+        self.image_height, self.image_width = validate_head_size(image_height, image_width)
+        glob = model.vis.global_  # the offscreen buffer must hold the largest image rendered
+        glob.offheight, glob.offwidth = (
+            max(glob.offheight, self.image_height),
+            max(glob.offwidth, self.image_width),
+        )
         self.data = mujoco.MjData(model)
         self.substeps = SUBSTEPS
         self.control_dt = 1.0 / CONTROL_HZ
@@ -83,9 +98,11 @@ class ActiveArenaSim:
         self.action_low[self._joint_idx], self.action_high[self._joint_idx] = ranges[:, 0], ranges[:, 1]
         self.controller = JointTargetController(SUBSTEPS, model.opt.timestep)
         self.head_cam_id = model.camera(embodiment.HEAD_CAMERA).id
-        self.head_K = intrinsics(float(model.cam_fovy[self.head_cam_id]), HEAD_WIDTH, HEAD_HEIGHT)
+        self.head_K = intrinsics(float(model.cam_fovy[self.head_cam_id]), self.image_width, self.image_height)
         self._renderers: dict[tuple[int, int], mujoco.Renderer] = {}
-        self.visibility_checker = head_visibility_checker(model, info.objects)
+        self.visibility_checker = head_visibility_checker(
+            model, info.objects, self.image_height, self.image_width
+        )
         self.last_clip: ClipReport | None = None
         self.clip_count = 0
         self.reset()
@@ -168,7 +185,7 @@ class ActiveArenaSim:
         return self._renderers[key]
 
     def render_head(self) -> np.ndarray:
-        r = self._renderer(HEAD_WIDTH, HEAD_HEIGHT)
+        r = self._renderer(self.image_width, self.image_height)
         r.update_scene(self.data, camera=self.head_cam_id)
         return r.render()
 

@@ -14,6 +14,7 @@ import numpy as np
 from ..sim.action import ClipReport
 from ..sim.health import PhysicsHealth
 from ..sim.perception import PerceptionMemory
+from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from .base import Task, TaskScene
 from .success import SuccessMonitor
@@ -32,11 +33,18 @@ def failure_state(success: bool, ever_seen: np.ndarray, visible_now: np.ndarray)
 
 
 class Episode:
-    def __init__(self, task: Task, scene: TaskScene, max_penetration: float | None = None):
+    def __init__(
+        self,
+        task: Task,
+        scene: TaskScene,
+        max_penetration: float | None = None,
+        image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH),
+    ):
         """``max_penetration`` (m): a contact deeper than this also ends the episode as a physics
-        failure (demonstrations must be clean); None: penetration is only tracked."""
+        failure (demonstrations must be clean); None: penetration is only tracked.
+        ``image_size``: the head image's (height, width), 3:4 (``ActiveArenaSim``)."""
         self.task, self.scene = task, scene
-        self.sim = ActiveArenaSim(scene.model, scene.info)
+        self.sim = ActiveArenaSim(scene.model, scene.info, *image_size)
         self.perception = PerceptionMemory(self.sim, len(scene.objects))
         self.monitor = SuccessMonitor(task, self.sim, scene)
         self.health = PhysicsHealth(self.sim.model, self.sim.data)

@@ -20,6 +20,7 @@ from ..expert.context import ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
 from ..sim.health import PENETRATION_LIMIT
 from ..sim.perception import PerceptionMemory
+from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from .base import Task, TaskScene
 from .episode import Episode
@@ -145,14 +146,16 @@ def run_expert_episode(
     seed: int,
     split: str = "id",
     on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None,
+    image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH),
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
-    (e.g. to render video)."""
+    (e.g. to render video). ``image_size``: the head image's (height, width); the annotations'
+    pixel-space fields (boxes, camera intrinsics) follow it."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
-    episode = Episode(task, scene, max_penetration=PENETRATION_LIMIT)
+    episode = Episode(task, scene, max_penetration=PENETRATION_LIMIT, image_size=image_size)
     sim = episode.sim
     driver = ExpertDriver(task, scene, sim, episode.perception)
     frames, actions, states = [], [], []

@@ -1,0 +1,119 @@
+"""`activearena-learning-curve`: for every checkpoint of a lerobot-train run, the open-loop action
+error on held-out episodes and the closed-loop success on the first ID manifest episodes of a task;
+writes ``curve.jsonl`` (one record per checkpoint, resumable) and ``learning_curve.png``.
+
+    activearena-learning-curve outputs/train/act_cpu_click_bell --task click_bell_rotate_view \\
+        --heldout-repo-id local/cpu_click_bell_heldout --heldout-root outputs/datasets/cpu_click_bell_heldout \\
+        --episodes 20 --out outputs/curves/act_cpu_click_bell
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+from pathlib import Path
+
+
+def closed_loop_success(policy_dir: Path, task: str, episodes: int, out: Path) -> dict:
+    """activearena-eval on the task's first ``episodes`` ID manifest episodes, at the checkpoint's
+    image size; resumes an interrupted run."""
+    from ..eval.learning_curve import image_size
+    from .eval import main as activearena_eval
+
+    h, w = image_size(policy_dir)
+    activearena_eval(
+        [
+            f"--policy.path={policy_dir}",
+            "--policy.device=cpu",
+            f"--env.observation_height={h}",
+            f"--env.observation_width={w}",
+            f"--tasks={task}",
+            "--splits=id",
+            f"--episodes={episodes}",
+            "--videos=0",
+            f"--out={out}",
+        ]
+    )
+    info = json.loads((out / "id" / "eval_info.json").read_text())
+    return {"episodes": info["overall"]["n_episodes"], "success": info["overall"]["pc_success"]}
+
+
+def learning_curve(
+    train_dir: Path,
+    task: str,
+    out: Path,
+    heldout: tuple[str, Path] | None = None,
+    episodes: int = 20,
+    every: int = 1,
+) -> list[dict]:
+    """One record per checkpoint (every ``every``-th, always the last): ``{"step", "open_loop",
+    "closed_loop"}``, written to ``out/curve.jsonl`` as each is done; finished ones are kept."""
+    from tqdm import tqdm
+
+    from ..eval.learning_curve import checkpoints, open_loop_error
+
+    out.mkdir(parents=True, exist_ok=True)
+    records_file = out / "curve.jsonl"
+    done = {}
+    if records_file.is_file():
+        for line in records_file.read_text().splitlines():
+            rec = json.loads(line)
+            done[rec["step"]] = rec
+    ckpts = checkpoints(train_dir)
+    ckpts = [c for k, c in enumerate(ckpts) if k % every == every - 1 or k == len(ckpts) - 1]
+    for step, model in tqdm(ckpts, desc="checkpoints", unit="ckpt"):
+        if step in done:
+            continue
+        rec: dict = {"step": step, "task": task}
+        if heldout is not None:
+            rec["open_loop"] = open_loop_error(model, heldout[0], heldout[1])
+        rec["closed_loop"] = closed_loop_success(model, task, episodes, out / f"eval_{step:06d}")
+        done[step] = rec
+        with records_file.open("a") as f:
+            f.write(json.dumps(rec) + "\n")
+    return [done[s] for s in sorted(done)]
+
+
+def main(argv: list[str] | None = None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("train_dir", type=Path, help="a lerobot-train --output_dir (with checkpoints/)")
+    p.add_argument("--task", required=True, help="the task the closed-loop episodes play")
+    p.add_argument(
+        "--episodes", type=int, default=20, help="ID manifest episodes per checkpoint (default 20)"
+    )
+    p.add_argument("--every", type=int, default=1, help="every k-th checkpoint (the last always)")
+    p.add_argument("--heldout-repo-id", default=None, help="a dataset the policy was not trained on")
+    p.add_argument("--heldout-root", type=Path, default=None)
+    p.add_argument("--out", type=Path, required=True)
+    p.add_argument("--title", default=None)
+    args = p.parse_args(argv)
+    if args.episodes < 1 or args.every < 1:
+        p.error("--episodes and --every must be >= 1")
+    if (args.heldout_repo_id is None) != (args.heldout_root is None):
+        p.error("give both --heldout-repo-id and --heldout-root, or neither")
+    logging.basicConfig(level=logging.WARNING)
+    from ..eval.learning_curve import plot_curve
+    from ..tasks import get_task
+
+    try:
+        get_task(args.task)
+        heldout = (args.heldout_repo_id, args.heldout_root) if args.heldout_root else None
+        records = learning_curve(args.train_dir, args.task, args.out, heldout, args.episodes, args.every)
+    except (FileNotFoundError, KeyError, ValueError) as exc:
+        p.error(str(exc))
+    plot_curve(
+        records, args.out / "learning_curve.png", args.title or f"{args.train_dir.name} on {args.task}"
+    )
+    for r in records:
+        ol = r.get("open_loop", {})
+        print(
+            f"step {r['step']:>6}: ID success {r['closed_loop']['success']:5.1f}% "
+            f"({r['closed_loop']['episodes']} episodes)"
+            + (f", held-out |error| {ol['l1']:.4f} (view {ol['l1_view']:.4f})" if ol else "")
+        )
+    print(f"wrote {args.out}/curve.jsonl and {args.out}/learning_curve.png")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,113 @@
+"""Learning curve of a lerobot-train run: its checkpoints, the open-loop action error of one on
+held-out episodes (the chunk a policy predicts from a recorded frame against the chunk the expert
+then executed, in joint units), and the plot of both against the closed-loop success that
+``activearena-learning-curve`` measures with ``activearena-eval``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..sim.action import GRIPPER_INDICES, HEAD_PITCH, TORSO_YAW
+
+# action groups the open-loop error is reported by
+GROUPS = {
+    "arms": [i for i in range(18) if i not in (*GRIPPER_INDICES, TORSO_YAW, HEAD_PITCH)],
+    "grippers": list(GRIPPER_INDICES),
+    "view": [TORSO_YAW, HEAD_PITCH],
+}
+
+
+def checkpoints(train_dir: Path) -> list[tuple[int, Path]]:
+    """``(step, pretrained_model folder)`` of every numbered checkpoint of a lerobot-train run."""
+    out = []
+    for d in sorted((Path(train_dir) / "checkpoints").iterdir()):
+        model = d / "pretrained_model"
+        if d.name.isdigit() and model.is_dir():
+            out.append((int(d.name), model))
+    if not out:
+        raise FileNotFoundError(
+            f"no checkpoints in {train_dir}/checkpoints (is it a lerobot-train output_dir?)"
+        )
+    return out
+
+
+def image_size(policy_dir: Path) -> tuple[int, int]:
+    """(height, width) of the head images a checkpoint was trained on."""
+    from lerobot.configs.policies import PreTrainedConfig
+
+    cfg = PreTrainedConfig.from_pretrained(policy_dir)
+    _, h, w = cfg.input_features["observation.images.head"].shape
+    return int(h), int(w)
+
+
+def open_loop_error(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32) -> dict:
+    """Mean absolute error between the predicted and the recorded action chunk over every frame of a
+    dataset (padded steps past an episode's end excluded), overall and per action group."""
+    import torch
+    from lerobot.configs.policies import PreTrainedConfig
+    from lerobot.datasets.factory import resolve_delta_timestamps
+    from lerobot.datasets.lerobot_dataset import LeRobotDataset, LeRobotDatasetMetadata
+    from lerobot.policies import make_policy, make_pre_post_processors
+
+    cfg = PreTrainedConfig.from_pretrained(policy_dir)
+    cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
+    meta = LeRobotDatasetMetadata(repo_id, root=root)
+    policy = make_policy(cfg, ds_meta=meta)
+    policy.eval()
+    pre, post = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
+    ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    loader = torch.utils.data.DataLoader(ds, batch_size=batch_size, shuffle=False, num_workers=0)
+    total = np.zeros(18)
+    count = np.zeros(18)
+    with torch.no_grad():
+        for batch in loader:
+            obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}
+            obs["task"] = batch["task"]
+            pred = post(policy.predict_action_chunk(pre(obs))).cpu().numpy()
+            target, pad = batch["action"].numpy(), batch["action_is_pad"].numpy()
+            steps = min(pred.shape[1], target.shape[1])
+            valid = ~pad[:, :steps, None]
+            err = np.abs(pred[:, :steps] - target[:, :steps]) * valid
+            total += err.sum(axis=(0, 1))
+            count += np.broadcast_to(valid, err.shape).sum(axis=(0, 1))
+    per_dim = total / np.maximum(count, 1)
+    return {
+        "frames": len(ds),
+        "l1": float(per_dim.mean()),
+        **{f"l1_{name}": float(per_dim[idx].mean()) for name, idx in GROUPS.items()},
+    }
+
+
+def plot_curve(records: list[dict], path: Path, title: str) -> None:
+    """Closed-loop ID success and held-out open-loop error against training steps."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    steps = [r["step"] for r in records]
+    fig, ax = plt.subplots(figsize=(7, 4), dpi=120)
+    success = [r["closed_loop"]["success"] for r in records]
+    n = records[-1]["closed_loop"]["episodes"]
+    ax.plot(steps, success, "o-", color="tab:blue", label=f"ID success ({n} manifest episodes)")
+    ax.set_xlabel("training step")
+    ax.set_ylabel("success (%)", color="tab:blue")
+    ax.set_ylim(-2, 102)
+    ax.grid(alpha=0.3)
+    if all("open_loop" in r for r in records):
+        ax2 = ax.twinx()
+        for name, style in (("l1", "k-"), ("l1_view", "--"), ("l1_arms", ":")):
+            ax2.plot(steps, [r["open_loop"][name] for r in records], style, label=f"held-out {name}")
+        ax2.set_ylabel("open-loop |error| (rad; grippers 0-1)")
+        ax2.set_yscale("log")
+        lines = ax.get_legend_handles_labels()
+        lines2 = ax2.get_legend_handles_labels()
+        ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=8, loc="center right")
+    else:
+        ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
