@@ -18,6 +18,7 @@ from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
 from lerobot.scripts.lerobot_train import train as lerobot_train
 
 from lerobot_activearena.cli.eval import main as activearena_eval, parse_policy
+from lerobot_activearena.cli.learning_curve import main as learning_curve_main
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 
 BASELINES = Path(__file__).resolve().parents[1] / "configs" / "policy" / "baselines"
@@ -150,6 +151,19 @@ def test_the_cpu_recipe_trains_act_at_96x128_and_plays_at_that_size(tmp_path):
     activearena_eval([*common, "--env.observation_height=96", "--env.observation_width=128"])
     rec = _records(run / "id" / "episodes")[0]
     assert rec["steps"] == EPISODE_LENGTH and rec["success"] is False
+
+    # the learning curve of the run: one record per checkpoint, kept when the command is re-run
+    curve = tmp_path / "curve"
+    args = [str(out), f"--task={BELL}", "--episodes=1", f"--out={curve}"]
+    args += ["--heldout-repo-id=local/cpu", f"--heldout-root={root}"]
+    learning_curve_main(args)
+    (rec,) = [json.loads(line) for line in (curve / "curve.jsonl").read_text().splitlines()]
+    assert rec["step"] == 2 and rec["closed_loop"] == {"episodes": 1, "success": 0.0}
+    assert rec["open_loop"]["frames"] == ds.num_frames and rec["open_loop"]["l1"] > 0
+    assert (curve / "learning_curve.png").stat().st_size > 0
+    stamp = (curve / "curve.jsonl").stat().st_mtime_ns
+    learning_curve_main(args)
+    assert (curve / "curve.jsonl").stat().st_mtime_ns == stamp
 
 
 def test_built_in_policy_types_parse_by_type():

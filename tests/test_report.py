@@ -109,6 +109,24 @@ def test_report_tables_match_hand_computed_values(tmp_path):
     assert (tmp_path / "rep" / "per_task.png").stat().st_size > 1000
 
 
+def test_runs_of_one_label_and_split_make_one_row(tmp_path):
+    """A policy trained per task and evaluated per task: one run folder per task, one leaderboard row."""
+    bell = _run(
+        tmp_path / "bell", "id", {("SS", "click_bell_rotate_view"): [True, True, False, True]}, ["DM"]
+    )
+    count = _run(tmp_path / "count", "id", {("MD", "count_target_press_button"): [False] * 4}, ["CO"] * 4)
+    main([f"act={bell}", f"act={count}", "--out", str(tmp_path / "rep")])
+    rows = (tmp_path / "rep" / "leaderboard.csv").read_text().splitlines()
+    assert len(rows) == 2
+    got = dict(zip(rows[0].split(","), rows[1].split(","), strict=True))
+    assert float(got["SS ID"]) == 75.0 and float(got["MD ID"]) == 0.0 and float(got["Avg ID"]) == 37.5
+    fails = (tmp_path / "rep" / "failures.csv").read_text().splitlines()
+    row = dict(zip(fails[0].split(","), fails[1].split(","), strict=True))
+    assert row["failures"] == "5" and float(row["DM %"]) == 20.0 and float(row["CO %"]) == 80.0
+    with pytest.raises(ValueError, match="click_bell_rotate_view in both"):
+        main([f"act={bell}", f"act={bell}", "--out", str(tmp_path / "rep2")])
+
+
 def test_report_needs_a_split_it_can_tell(tmp_path):
     a = _run(tmp_path / "a", "id", {("SS", "click_bell_rotate_view"): [True]}, [])
     for f in (a / "episodes").glob("*"):

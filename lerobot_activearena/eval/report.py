@@ -233,8 +233,35 @@ def _relative(path: str, out: Path) -> str:
     return os.path.relpath(p, out.resolve()) if p.is_absolute() else path
 
 
+def merge_runs(runs: list[Run]) -> list[Run]:
+    """Runs with the same label and split become one (e.g. a policy trained and evaluated per task,
+    one run folder per task); a task evaluated twice under one label and split is refused."""
+    merged: dict[tuple[str, str], Run] = {}
+    for r in runs:
+        key = (r.label, r.split)
+        if key not in merged:
+            merged[key] = r
+            continue
+        m = merged[key]
+        if twice := sorted(set(m.task_success) & set(r.task_success)):
+            raise ValueError(
+                f"{r.label} {r.split}: {', '.join(twice)} in both {m.path} and {r.path}; "
+                "give the runs different labels (label=path)"
+            )
+        merged[key] = Run(
+            r.label,
+            r.split,
+            m.path,
+            {**m.task_success, **r.task_success},
+            {**m.task_category, **r.task_category},
+            {**m.videos, **r.videos},
+            m.episodes + r.episodes,
+        )
+    return list(merged.values())
+
+
 def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0) -> dict:
-    runs = [load_run(s) for s in expand_specs(run_specs)]
+    runs = merge_runs([load_run(s) for s in expand_specs(run_specs)])
     out.mkdir(parents=True, exist_ok=True)
     lb, fl, pt = leaderboard(runs), failure_table(runs), per_task_table(runs)
     write_csv(out / "leaderboard.csv", *lb)
