@@ -465,3 +465,37 @@ def test_slurm_executor_builds_through_array_jobs_and_a_dependent_merge(tmp_path
     assert f"--dependency=afterok:{shards['job']}" in merge["args"]
     meta = LeRobotDatasetMetadata("local/slurm", root=tmp_path / "slurm")
     assert meta.total_episodes == 2 and [e["seed"] for e in _episodes(tmp_path / "slurm")] == [0, 1]
+
+
+def test_a_recorded_episode_replayed_through_the_env_is_the_same_episode(bell_count_dataset, expert_episode):
+    """What a policy learns from is what the env shows: frame t of the dataset holds the state and
+    the head image the env shows before action t, and action t is the expert's command there. The
+    expert's actions replayed through the gym env at the episode's seed give the same episode; the
+    stored float32 actions (what any policy outputs) still solve it, within 2 steps of the record
+    (the rounding, ~1e-8 rad, moves the gripper's contact with the bell by up to 0.03 rad)."""
+    from lerobot_activearena.envs.gym_env import ActiveArenaEnv
+
+    ds = LeRobotDataset(DATASET_REPO, root=bell_count_dataset)
+    episodes = [json.loads(line) for line in (bell_count_dataset / "meta/activearena/episodes.jsonl").open()]
+    for ep in episodes:
+        start = ds.meta.episodes["dataset_from_index"][ep["episode_index"]]
+        frames = [ds[start + t] for t in range(ep["length"])]
+        expert = expert_episode(ep["task"], ep["seed"], ep["split"])
+        stored = np.stack([f["action"].numpy() for f in frames])
+        np.testing.assert_array_equal(stored, expert.actions.astype(np.float32))
+        env = ActiveArenaEnv(ep["task"], split=ep["split"], use_manifest=False)
+        obs, _ = env.reset(seed=ep["seed"])
+        for t, frame in enumerate(frames):
+            np.testing.assert_array_equal(obs["agent_pos"], frame["observation.state"].numpy())
+            image = frame["observation.images.head"].permute(1, 2, 0).numpy() * 255
+            assert np.abs(image - obs["pixels"]["head"]).mean() < 4.0, (ep["task"], t)  # AV1 loss only
+            obs, _, terminated, _, info = env.step(expert.actions[t])
+            assert info["is_success"] == (t == ep["length"] - 1), (ep["task"], t)
+        assert terminated
+        obs, _ = env.reset(seed=ep["seed"])
+        for t in range(env._max_episode_steps):
+            obs, _, terminated, truncated, info = env.step(stored[min(t, len(stored) - 1)])
+            if terminated or truncated:
+                break
+        assert info["is_success"] and abs(t + 1 - ep["length"]) <= 2, (ep["task"], t + 1, ep["length"])
+        env.close()
