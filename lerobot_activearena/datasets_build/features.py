@@ -7,7 +7,7 @@ import numpy as np
 
 from ..annotations.schema import FRAME_FIELDS
 from ..sim.action import ACTION_DIM, ACTION_NAMES
-from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
+from ..sim.scene import CONTROL_HZ, HEAD_SIZE
 
 FPS = CONTROL_HZ
 MAX_OBJECTS = 16  # object-mask width; slots past a task's object count hold MASK_PAD
@@ -56,7 +56,7 @@ COLUMN_DOCS = {
 
 
 def dataset_features(
-    max_objects: int = MAX_OBJECTS, image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH)
+    max_objects: int = MAX_OBJECTS, image_size: tuple[int, int] = HEAD_SIZE
 ) -> dict[str, dict]:
     """The dataset's features; ``image_size``: the head video's (height, width)."""
     feats: dict[str, dict] = {

@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from ..sim.head_camera import validate_head_size
-from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+from ..sim.scene import HEAD_SIZE
 from ..tasks import task_names
 from ..tasks.base import SPLITS
 
@@ -41,7 +41,7 @@ class BuildPlan:
     seed_start: int = 0
     episodes_per_shard: int = 10
     max_objects: int = 16
-    image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH)  # head video (height, width), 3:4
+    image_size: tuple[int, int] = HEAD_SIZE  # head video (height, width), 3:4
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):

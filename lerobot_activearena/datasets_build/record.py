@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
-from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+from ..sim.scene import HEAD_SIZE
 from ..tasks.rollout import EpisodeResult, run_expert_episode
 from .features import frame_row
 
@@ -38,7 +38,7 @@ def episode_keyframes(result: EpisodeResult) -> dict[str, np.ndarray]:
 
 
 def record_episode(
-    task: str, seed: int, split: str, image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH)
+    task: str, seed: int, split: str, image_size: tuple[int, int] = HEAD_SIZE
 ) -> RecordedEpisode:
     """Run the expert and keep the head image of every frame (the frame the annotation describes),
     rendered at ``image_size`` (height, width)."""

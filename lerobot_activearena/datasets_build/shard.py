@@ -11,7 +11,7 @@ import shutil
 from pathlib import Path
 
 from ..sim.embodiment import ROBOT_TYPE
-from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+from ..sim.scene import HEAD_SIZE
 from .features import FPS, dataset_features
 from .plan import ShardSpec
 from .record import record_episode
@@ -36,7 +36,7 @@ def build_shard(
     max_objects: int,
     encoder_threads: int | None = 1,
     progress: Path | None = None,
-    image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH),
+    image_size: tuple[int, int] = HEAD_SIZE,
 ) -> dict:
     """Record the shard's episodes; returns (and stores) its summary. Safe to call again: a complete
     shard is returned as is, leftovers of an interrupted attempt are removed first."""

@@ -9,11 +9,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..sim.action import GRIPPER_INDICES, HEAD_PITCH, TORSO_YAW
+from ..sim.action import ACTION_DIM, GRIPPER_INDICES, HEAD_PITCH, TORSO_YAW
 
 # action groups the open-loop error is reported by
 GROUPS = {
-    "arms": [i for i in range(18) if i not in (*GRIPPER_INDICES, TORSO_YAW, HEAD_PITCH)],
+    "arms": [i for i in range(ACTION_DIM) if i not in (*GRIPPER_INDICES, TORSO_YAW, HEAD_PITCH)],
     "grippers": list(GRIPPER_INDICES),
     "view": [TORSO_YAW, HEAD_PITCH],
 }
@@ -59,8 +59,8 @@ def open_loop_error(policy_dir: Path, repo_id: str, root: Path, batch_size: int 
     pre, post = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
     ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
     loader = torch.utils.data.DataLoader(ds, batch_size=batch_size, shuffle=False, num_workers=0)
-    total = np.zeros(18)
-    count = np.zeros(18)
+    total = np.zeros(ACTION_DIM)
+    count = np.zeros(ACTION_DIM)
     with torch.no_grad():
         for batch in loader:
             obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}

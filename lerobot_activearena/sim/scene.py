@@ -16,6 +16,7 @@ from .workspace import Workspace, add_workspace, fan_workspace
 CONTROL_HZ = 15
 SUBSTEPS = 32  # physics steps per control step: dt = 1/480 s
 HEAD_WIDTH, HEAD_HEIGHT = 512, 384
+HEAD_SIZE = (HEAD_HEIGHT, HEAD_WIDTH)  # the paper's head image (height, width)
 WRIST_WIDTH, WRIST_HEIGHT = 320, 240
 WRIST_FOVY = 37.0
 

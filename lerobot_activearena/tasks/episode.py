@@ -14,7 +14,7 @@ import numpy as np
 from ..sim.action import ClipReport
 from ..sim.health import PhysicsHealth
 from ..sim.perception import PerceptionMemory
-from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+from ..sim.scene import HEAD_SIZE
 from ..sim.simulator import ActiveArenaSim
 from .base import Task, TaskScene
 from .success import SuccessMonitor
@@ -38,7 +38,7 @@ class Episode:
         task: Task,
         scene: TaskScene,
         max_penetration: float | None = None,
-        image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH),
+        image_size: tuple[int, int] = HEAD_SIZE,
     ):
         """``max_penetration`` (m): a contact deeper than this also ends the episode as a physics
         failure (demonstrations must be clean); None: penetration is only tracked.

@@ -20,7 +20,7 @@ from ..expert.context import ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
 from ..sim.health import PENETRATION_LIMIT
 from ..sim.perception import PerceptionMemory
-from ..sim.scene import HEAD_HEIGHT, HEAD_WIDTH
+from ..sim.scene import HEAD_SIZE
 from ..sim.simulator import ActiveArenaSim
 from .base import Task, TaskScene
 from .episode import Episode
@@ -146,7 +146,7 @@ def run_expert_episode(
     seed: int,
     split: str = "id",
     on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None,
-    image_size: tuple[int, int] = (HEAD_HEIGHT, HEAD_WIDTH),
+    image_size: tuple[int, int] = HEAD_SIZE,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
