@@ -192,3 +192,26 @@ def test_report_html_is_self_contained_and_renders_in_a_headless_browser(tmp_pat
     state = open_page(alone)
     assert all(ok and w > 500 for ok, w, _ in state["images"])
     assert sum(r >= 2 and w == 64 for r, w, _, _ in state["videos"]) == 3  # the linked one is not here
+
+
+def test_exported_records_rebuild_the_same_table_without_videos(tmp_path):
+    """--export-records copies what a committed table needs (run.json, policy config, eval_info,
+    episode logs) and nothing else; the table built from the copies equals the original's."""
+    run = tmp_path / "runs" / "act_bell"
+    _run(run / "id", "id", {("SS", "click_bell_rotate_view"): [True, False, True]}, ["CR"])
+    (run / "policy").mkdir()
+    (run / "policy" / "config.json").write_text('{"type": "act"}')
+    (run / "run.json").write_text(json.dumps({"label": "act", "splits": ["id"]}))
+    (run / "checkpoint.safetensors").write_bytes(b"weights")
+    main([str(run), "--out", str(tmp_path / "rep"), "--export-records", str(tmp_path / "records")])
+    copy = tmp_path / "records" / "act_bell"
+    files = sorted(str(f.relative_to(copy)) for f in copy.rglob("*") if f.is_file())
+    assert files == ["id/episodes/log.jsonl", "id/eval_info.json", "policy/config.json", "run.json"]
+    assert "video_paths" not in (copy / "id" / "eval_info.json").read_text()
+    main([str(copy), "--out", str(tmp_path / "rep2")])
+    for table in ("leaderboard.csv", "failures.csv", "per_task.csv"):
+        assert (tmp_path / "rep2" / table).read_text() == (tmp_path / "rep" / table).read_text()
+    with pytest.raises(FileExistsError, match="remove it to export"):
+        main([str(run), "--out", str(tmp_path / "rep3"), "--export-records", str(tmp_path / "records")])
+    with pytest.raises(ValueError, match="no run.json"):
+        main([str(run / "id"), "--out", str(tmp_path / "rep4"), "--export-records", str(tmp_path / "r2")])

@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..eval.report import build_report
+from ..eval.report import build_report, export_records
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -27,10 +27,21 @@ def main(argv: list[str] | None = None) -> None:
         default=64.0,
         help="embed rollout videos in report.html up to this many MB in total, link the rest (default 64)",
     )
+    p.add_argument(
+        "--export-records",
+        type=Path,
+        metavar="DIR",
+        help="also copy each activearena-eval run's small records (run.json, policy config, eval_info.json "
+        "without video paths, episode logs; no checkpoints or videos) to DIR/<run folder>, to commit",
+    )
     args = p.parse_args(argv)
     if args.inline_video_mb < 0:
         p.error(f"--inline-video-mb must be >= 0, got {args.inline_video_mb}")
     info = build_report(args.runs, args.out, args.inline_video_mb)["html"]
+    if args.export_records:
+        folders = [Path(s.rpartition("=")[2]) for s in args.runs]
+        for target in export_records(list(dict.fromkeys(folders)), args.export_records):
+            print(f"records: {target}")
     print(
         f"wrote {args.out}/report.html ({info['embedded']} videos embedded, {info['linked']} linked), "
         "report.md, leaderboard.csv, failures.csv, per_task.csv, leaderboard.png, per_task.png"

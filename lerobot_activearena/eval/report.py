@@ -12,6 +12,7 @@ import csv
 import json
 import math
 import os
+import shutil
 from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -311,3 +312,35 @@ def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0)
         out, sections, videos, lambda x, h: _fmt(x, 2 if "(deg)" in h else 1), inline_video_mb
     )
     return {"leaderboard": lb, "failures": fl, "per_task": pt, "html": html_info}
+
+
+def export_records(run_dirs: list[Path], dest: Path) -> list[Path]:
+    """The small records behind a table, to commit beside it: per activearena-eval run folder its
+    ``run.json``, ``policy/config.json`` and per split ``eval_info.json`` (video paths removed: the
+    videos stay behind) and ``episodes/*.jsonl``; no checkpoints, no videos. Copies go to
+    ``dest/<run folder name>``, which must not exist yet."""
+    written = []
+    for run_dir in run_dirs:
+        run_dir = Path(run_dir)
+        if not (run_dir / "run.json").is_file():
+            raise ValueError(f"{run_dir}: no run.json; --export-records takes activearena-eval run folders")
+        target = dest / run_dir.name
+        if target.exists():
+            raise FileExistsError(f"{target} exists; remove it to export {run_dir} again")
+        plan = json.loads((run_dir / "run.json").read_text())
+        target.mkdir(parents=True)
+        shutil.copy2(run_dir / "run.json", target / "run.json")
+        if (run_dir / "policy" / "config.json").is_file():
+            (target / "policy").mkdir()
+            shutil.copy2(run_dir / "policy" / "config.json", target / "policy" / "config.json")
+        for split in plan["splits"]:
+            info = json.loads((run_dir / split / "eval_info.json").read_text())
+            for entry in info.get("per_task", []):
+                entry["metrics"].pop("video_paths", None)
+            info.get("overall", {}).pop("video_paths", None)
+            (target / split / "episodes").mkdir(parents=True)
+            (target / split / "eval_info.json").write_text(json.dumps(info, indent=2))
+            for log in sorted((run_dir / split / "episodes").glob("*.jsonl")):
+                shutil.copy2(log, target / split / "episodes" / log.name)
+        written.append(target)
+    return written
