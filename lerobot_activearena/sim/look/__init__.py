@@ -1,0 +1,2 @@
+"""How scenes look (appearance only, never physics): procedural textures, materials, the room and
+its light."""
