@@ -1,0 +1,79 @@
+"""The scene look's building blocks: tabletop slab, materials, lighting (appearance only)."""
+
+import mujoco
+import numpy as np
+import pytest
+
+from lerobot_activearena.sim.look import draw_look
+from lerobot_activearena.sim.look.lighting import ID_LIGHTING, OOD_KELVIN, kelvin_to_rgb
+from lerobot_activearena.sim.look.materials import (
+    ID_MATERIALS,
+    add_surface_material,
+    id_families,
+    ood_families,
+)
+from lerobot_activearena.sim.look.room import add_room, add_sky
+from lerobot_activearena.sim.look.tabletop import add_tabletop_visual, tabletop_mesh
+from lerobot_activearena.sim.workspace import fan_workspace, two_level_workspace
+
+
+@pytest.mark.parametrize("workspace", [fan_workspace, two_level_workspace])
+def test_tabletop_slab_is_closed_outward_facing_and_inside_the_level(workspace):
+    for lv in workspace().levels:
+        v, f, n, uv = tabletop_mesh(lv)
+        r = np.hypot(v[:, 0], v[:, 1])
+        assert r.min() >= lv.inner_radius - 1e-9 and r.max() <= lv.outer_radius + 1e-9
+        assert v[:, 2].min() >= lv.top_z - lv.thickness - 1e-9 and v[:, 2].max() <= lv.top_z + 1e-9
+        a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+        geometric = np.cross(b - a, c - a)
+        geometric /= np.linalg.norm(geometric, axis=1, keepdims=True)
+        for k in range(3):  # every triangle faces the way its vertices' normals say
+            assert np.all(np.einsum("ij,ij->i", geometric, n[f[:, k]]) > 0.999)
+        # closed: the signed volume (divergence theorem) is the slab's, to the chords' approximation
+        volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0
+        exact = np.radians(lv.span_deg) / 2 * (lv.outer_radius**2 - lv.inner_radius**2) * lv.thickness
+        assert volume == pytest.approx(exact, rel=0.01)
+        assert np.array_equal(uv, v[:, :2])
+
+
+def test_look_compiles_into_a_scene_and_the_room_has_no_contacts():
+    spec = mujoco.MjSpec()
+    look = draw_look("ood", np.random.default_rng(3))
+    for role in ("table", "floor", "wall"):
+        add_surface_material(spec, role, getattr(look, role), texture_px=64, uniform=role != "table")
+    add_sky(spec)
+    add_room(spec, "wall", "wall")
+    body = spec.worldbody.add_body()
+    body.name = "fan_level_0"
+    add_tabletop_visual(spec, body, fan_workspace().levels[0], "fan_top_0", "table")
+    model = spec.compile()
+    walls = [model.geom(g).id for g in ("wall_front", "wall_back", "wall_left", "wall_right", "ceiling")]
+    walls.append(model.geom("fan_top_0").id)
+    assert np.all(model.geom_contype[walls] == 0) and np.all(model.geom_conaffinity[walls] == 0)
+
+
+def test_id_looks_come_from_a_fixed_set_and_ood_from_held_out_families():
+    assert id_families().isdisjoint(ood_families())
+    rng = np.random.default_rng(0)
+    id_looks = [draw_look("id", rng) for _ in range(40)]
+    assert all(look.lighting == ID_LIGHTING for look in id_looks)
+    for role in ("table", "floor", "wall"):
+        assert {getattr(look, role) for look in id_looks} == set(ID_MATERIALS[role])
+    ood = [draw_look("ood", rng) for _ in range(40)]
+    for look in ood:
+        assert not {look.table.family, look.floor.family, look.wall.family} & id_families()
+        lt = look.lighting
+        assert lt.elevation_deg < ID_LIGHTING.elevation_deg
+        assert any(lo <= lt.kelvin <= hi for lo, hi in OOD_KELVIN)
+        assert abs(lt.intensity - ID_LIGHTING.intensity) > 0.1
+        assert abs(lt.ambient - ID_LIGHTING.ambient) > 0.05
+    assert draw_look("ood", np.random.default_rng(7)) == draw_look("ood", np.random.default_rng(7))
+
+
+def test_colour_temperature_runs_from_warm_to_cold():
+    warm, neutral, cold = kelvin_to_rgb(2700), kelvin_to_rgb(6500), kelvin_to_rgb(10000)
+    assert warm[0] == 1.0 and warm[2] < 0.5
+    assert min(neutral) > 0.9
+    assert cold[2] == 1.0 and cold[0] < 0.85
+    with pytest.raises(ValueError, match="1500-15000 K"):
+        kelvin_to_rgb(500)
