@@ -77,3 +77,39 @@ def test_colour_temperature_runs_from_warm_to_cold():
     assert cold[2] == 1.0 and cold[0] < 0.85
     with pytest.raises(ValueError, match="1500-15000 K"):
         kelvin_to_rgb(500)
+
+
+def _faces_agree_with_normals(mesh, min_dot: float):
+    a, b, c = (mesh.vertices[mesh.faces[:, k]] for k in range(3))
+    geometric = np.cross(b - a, c - a)
+    keep = np.linalg.norm(geometric, axis=1) > 1e-12
+    geometric = geometric[keep] / np.linalg.norm(geometric[keep], axis=1, keepdims=True)
+    return all(
+        np.all(np.einsum("ij,ij->i", geometric, mesh.normals[mesh.faces[keep, k]]) > min_dot) for k in range(3)
+    )
+
+
+def test_lathed_and_extruded_meshes_are_closed_and_outward_facing():
+    from lerobot_activearena.sim.look.meshes import extrude, lathe
+
+    r, h = 0.033, 0.12
+    can = lathe([(0, 0), (r, 0), (r, h), (0, h)], segments=64)
+    polygon_area = 64 / 2 * r * r * np.sin(2 * np.pi / 64)
+    assert can.volume() == pytest.approx(polygon_area * h, rel=1e-6)
+    lo, hi = can.bounds()
+    assert np.allclose(lo, [-r, -r, 0], atol=1e-12) and np.allclose(hi, [r, r, h], atol=1e-12)
+    assert _faces_agree_with_normals(can, 0.99)  # all edges of a can are creases: flat normals
+    assert can.texcoords.min() >= 0 and can.texcoords.max() <= 1
+    # a bell: a curved profile is shaded smooth, so normals only roughly follow each face
+    t = np.linspace(0, np.pi / 2, 12)
+    bell = lathe([(0, 0), *zip(0.04 * np.cos(t) + 1e-3, 0.05 * np.sin(t), strict=True), (0, 0.05)])
+    assert bell.volume() > 0 and _faces_agree_with_normals(bell, 0.8)
+    # an L-shaped (non-convex) outline
+    outline = [(0, 0), (0.1, 0), (0.1, 0.03), (0.04, 0.03), (0.04, 0.08), (0, 0.08)]
+    block = extrude(outline, 0.02)
+    assert block.volume() == pytest.approx((0.1 * 0.03 + 0.04 * 0.05) * 0.02, rel=1e-9)
+    assert _faces_agree_with_normals(block, 0.99)
+    with pytest.raises(ValueError, match="counter-clockwise"):
+        extrude(outline[::-1], 0.02)
+    with pytest.raises(ValueError, match="r >= 0"):
+        lathe([(-0.01, 0), (0.02, 0.1)])
