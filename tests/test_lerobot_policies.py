@@ -158,12 +158,20 @@ def test_the_cpu_recipe_trains_act_at_96x128_and_plays_at_that_size(tmp_path):
     args += ["--heldout-repo-id=local/cpu", f"--heldout-root={root}"]
     learning_curve_main(args)
     (rec,) = [json.loads(line) for line in (curve / "curve.jsonl").read_text().splitlines()]
-    assert rec["step"] == 2 and rec["closed_loop"] == {"episodes": 1, "success": 0.0}
+    assert rec["step"] == 2 and rec["closed_loop"] == {"episodes": 1, "success": 0.0, "indices": "0-0"}
     assert rec["open_loop"]["frames"] == ds.num_frames and rec["open_loop"]["l1"] > 0
     assert (curve / "learning_curve.png").stat().st_size > 0
     stamp = (curve / "curve.jsonl").stat().st_mtime_ns
     learning_curve_main(args)
     assert (curve / "curve.jsonl").stat().st_mtime_ns == stamp
+    with pytest.raises(SystemExit):  # validation episodes are never mixed into a curve of others
+        learning_curve_main([*args, "--validation"])
+    # choosing a checkpoint: the episodes after the protocol's 50, never the protocol's own
+    val = tmp_path / "val"
+    learning_curve_main([str(out), f"--task={BELL}", "--episodes=1", f"--out={val}", "--validation"])
+    (rec,) = [json.loads(line) for line in (val / "curve.jsonl").read_text().splitlines()]
+    assert rec["closed_loop"]["indices"] == "50-50"
+    assert list(_records(val / "eval_000002" / "id" / "episodes")) == [50]
 
 
 def test_built_in_policy_types_parse_by_type():

@@ -1,6 +1,8 @@
 """`activearena-learning-curve`: for every checkpoint of a lerobot-train run, the open-loop action
-error on held-out episodes and the closed-loop success on the first ID manifest episodes of a task;
-writes ``curve.jsonl`` (one record per checkpoint, resumable) and ``learning_curve.png``.
+error on held-out episodes and the closed-loop success on the first ID manifest episodes of a task
+(with ``--validation``: on the manifest's episodes after the protocol's 50, to choose a checkpoint
+without touching the protocol's); writes ``curve.jsonl`` (one record per checkpoint, resumable) and
+``learning_curve.png``.
 
     activearena-learning-curve outputs/train/act_cpu_click_bell --task click_bell_rotate_view \\
         --heldout-repo-id local/cpu_click_bell_heldout --heldout-root outputs/datasets/cpu_click_bell_heldout \\
@@ -15,9 +17,9 @@ import logging
 from pathlib import Path
 
 
-def closed_loop_success(policy_dir: Path, task: str, episodes: int, out: Path) -> dict:
-    """activearena-eval on the task's first ``episodes`` ID manifest episodes, at the checkpoint's
-    image size; resumes an interrupted run."""
+def closed_loop_success(policy_dir: Path, task: str, episodes: int, out: Path, first: int = 0) -> dict:
+    """activearena-eval on ``episodes`` ID manifest episodes from index ``first``, at the
+    checkpoint's image size; resumes an interrupted run."""
     from ..eval.learning_curve import image_size
     from .eval import main as activearena_eval
 
@@ -30,13 +32,17 @@ def closed_loop_success(policy_dir: Path, task: str, episodes: int, out: Path) -
             f"--env.observation_width={w}",
             f"--tasks={task}",
             "--splits=id",
-            f"--episodes={episodes}",
+            f"--episode-indices={first}-{first + episodes - 1}",
             "--videos=0",
             f"--out={out}",
         ]
     )
     info = json.loads((out / "id" / "eval_info.json").read_text())
-    return {"episodes": info["overall"]["n_episodes"], "success": info["overall"]["pc_success"]}
+    return {
+        "episodes": info["overall"]["n_episodes"],
+        "success": info["overall"]["pc_success"],
+        "indices": f"{first}-{first + episodes - 1}",
+    }
 
 
 def learning_curve(
@@ -46,12 +52,23 @@ def learning_curve(
     heldout: tuple[str, Path] | None = None,
     episodes: int = 20,
     every: int = 1,
+    validation: bool = False,
 ) -> list[dict]:
     """One record per checkpoint (every ``every``-th, always the last): ``{"step", "open_loop",
-    "closed_loop"}``, written to ``out/curve.jsonl`` as each is done; finished ones are kept."""
+    "closed_loop"}``, written to ``out/curve.jsonl`` as each is done; finished ones are kept.
+    ``validation``: the closed-loop episodes start after the protocol's (manifest index 50)."""
     from tqdm import tqdm
 
+    from ..envs.manifests import MANIFEST_SIZE, PROTOCOL_EPISODES
     from ..eval.learning_curve import checkpoints, open_loop_error
+
+    first = PROTOCOL_EPISODES if validation else 0
+    if first + episodes > MANIFEST_SIZE:
+        raise ValueError(
+            f"{episodes} episodes from manifest index {first} pass the manifest's {MANIFEST_SIZE}; "
+            f"use --episodes <= {MANIFEST_SIZE - first}"
+        )
+    indices = f"{first}-{first + episodes - 1}"
 
     out.mkdir(parents=True, exist_ok=True)
     records_file = out / "curve.jsonl"
@@ -59,6 +76,12 @@ def learning_curve(
     if records_file.is_file():
         for line in records_file.read_text().splitlines():
             rec = json.loads(line)
+            had = rec["closed_loop"].get("indices", f"0-{rec['closed_loop']['episodes'] - 1}")
+            if had != indices:
+                raise ValueError(
+                    f"{records_file} holds closed-loop results on manifest episodes {had}, not {indices}; "
+                    "use another --out (or the same --episodes / --validation as before)"
+                )
             done[rec["step"]] = rec
     ckpts = checkpoints(train_dir)
     ckpts = [c for k, c in enumerate(ckpts) if k % every == every - 1 or k == len(ckpts) - 1]
@@ -68,7 +91,7 @@ def learning_curve(
         rec: dict = {"step": step, "task": task}
         if heldout is not None:
             rec["open_loop"] = open_loop_error(model, heldout[0], heldout[1])
-        rec["closed_loop"] = closed_loop_success(model, task, episodes, out / f"eval_{step:06d}")
+        rec["closed_loop"] = closed_loop_success(model, task, episodes, out / f"eval_{step:06d}", first)
         done[step] = rec
         with records_file.open("a") as f:
             f.write(json.dumps(rec) + "\n")
@@ -83,6 +106,11 @@ def main(argv: list[str] | None = None) -> None:
         "--episodes", type=int, default=20, help="ID manifest episodes per checkpoint (default 20)"
     )
     p.add_argument("--every", type=int, default=1, help="every k-th checkpoint (the last always)")
+    p.add_argument(
+        "--validation",
+        action="store_true",
+        help="closed loop on the manifest's ID episodes after the protocol's 50 (to choose a checkpoint)",
+    )
     p.add_argument("--heldout-repo-id", default=None, help="a dataset the policy was not trained on")
     p.add_argument("--heldout-root", type=Path, default=None)
     p.add_argument("--out", type=Path, required=True)
@@ -99,7 +127,9 @@ def main(argv: list[str] | None = None) -> None:
     try:
         get_task(args.task)
         heldout = (args.heldout_repo_id, args.heldout_root) if args.heldout_root else None
-        records = learning_curve(args.train_dir, args.task, args.out, heldout, args.episodes, args.every)
+        records = learning_curve(
+            args.train_dir, args.task, args.out, heldout, args.episodes, args.every, args.validation
+        )
     except (FileNotFoundError, KeyError, ValueError) as exc:
         p.error(str(exc))
     plot_curve(
@@ -112,6 +142,13 @@ def main(argv: list[str] | None = None) -> None:
             f"({r['closed_loop']['episodes']} episodes)"
             + (f", held-out |error| {ol['l1']:.4f} (view {ol['l1_view']:.4f})" if ol else "")
         )
+    best = max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))
+    where = "validation" if args.validation else "ID"
+    indices = best["closed_loop"].get("indices", f"0-{best['closed_loop']['episodes'] - 1}")
+    print(
+        f"best on {where} episodes {indices}: step {best['step']} "
+        f"({best['closed_loop']['success']:.1f}%)"
+    )
     print(f"wrote {args.out}/curve.jsonl and {args.out}/learning_curve.png")
 
 

@@ -90,8 +90,9 @@ def plot_curve(records: list[dict], path: Path, title: str) -> None:
     steps = [r["step"] for r in records]
     fig, ax = plt.subplots(figsize=(7, 4), dpi=120)
     success = [r["closed_loop"]["success"] for r in records]
-    n = records[-1]["closed_loop"]["episodes"]
-    ax.plot(steps, success, "o-", color="tab:blue", label=f"ID success ({n} manifest episodes)")
+    last = records[-1]["closed_loop"]
+    indices = last.get("indices", f"0-{last['episodes'] - 1}")
+    ax.plot(steps, success, "o-", color="tab:blue", label=f"ID success (manifest episodes {indices})")
     ax.set_xlabel("training step")
     ax.set_ylabel("success (%)", color="tab:blue")
     ax.set_ylim(-2, 102)
