@@ -52,7 +52,9 @@ def _cumulative(stats: pstats.Stats, suffix: str, name: str) -> float:
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--tasks", default="click_bell_rotate_view,place_shoe_rotate_view,count_target_press_button")
+    p.add_argument(
+        "--tasks", default="click_bell_rotate_view,place_shoe_rotate_view,count_target_press_button"
+    )
     p.add_argument("--episodes", type=int, default=3)
     args = p.parse_args()
     for task in args.tasks.split(","):

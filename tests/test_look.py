@@ -85,7 +85,8 @@ def _faces_agree_with_normals(mesh, min_dot: float):
     keep = np.linalg.norm(geometric, axis=1) > 1e-12
     geometric = geometric[keep] / np.linalg.norm(geometric[keep], axis=1, keepdims=True)
     return all(
-        np.all(np.einsum("ij,ij->i", geometric, mesh.normals[mesh.faces[keep, k]]) > min_dot) for k in range(3)
+        np.all(np.einsum("ij,ij->i", geometric, mesh.normals[mesh.faces[keep, k]]) > min_dot)
+        for k in range(3)
     )
 
 

@@ -145,10 +145,7 @@ def main(argv: list[str] | None = None) -> None:
     best = max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))
     where = "validation" if args.validation else "ID"
     indices = best["closed_loop"].get("indices", f"0-{best['closed_loop']['episodes'] - 1}")
-    print(
-        f"best on {where} episodes {indices}: step {best['step']} "
-        f"({best['closed_loop']['success']:.1f}%)"
-    )
+    print(f"best on {where} episodes {indices}: step {best['step']} ({best['closed_loop']['success']:.1f}%)")
     print(f"wrote {args.out}/curve.jsonl and {args.out}/learning_curve.png")
 
 

@@ -72,7 +72,10 @@ def lathe(profile, segments: int = 32, crease_deg: float = 40.0) -> MeshData:
             if rb > 0:
                 faces.append((a + j, b + j + 1, b + j))
     return MeshData(
-        np.concatenate(verts), np.asarray(faces, np.int32), _unit(np.concatenate(normals)), np.concatenate(uvs)
+        np.concatenate(verts),
+        np.asarray(faces, np.int32),
+        _unit(np.concatenate(normals)),
+        np.concatenate(uvs),
     )
 
 
@@ -126,7 +129,7 @@ def extrude(outline, height: float, crease_deg: float = 40.0) -> MeshData:
     for k in range(n):  # walls: one quad per edge
         k1 = (k + 1) % n
         ns = []
-        for p, nb in ((k, k - 1), (k1, k1)):  # smooth with the neighbouring edge unless a crease
+        for nb in (k - 1, k1):  # smooth with the neighbouring edge unless a crease
             nb %= n
             ns.append(_unit(edge_n[k] + edge_n[nb]) if edge_n[k] @ edge_n[nb] >= cos_crease else edge_n[k])
         start = sum(len(v) for v in verts)
@@ -142,9 +145,15 @@ def extrude(outline, height: float, crease_deg: float = 40.0) -> MeshData:
         verts.append(np.column_stack([poly, np.full(n, z)]))
         normals.append(np.tile([0.0, 0.0, sign], (n, 1)))
         uvs.append(poly.copy())
-        faces += [(start + a, start + b, start + c) if sign > 0 else (start + a, start + c, start + b) for a, b, c in tris]
+        faces += [
+            (start + a, start + b, start + c) if sign > 0 else (start + a, start + c, start + b)
+            for a, b, c in tris
+        ]
     return MeshData(
-        np.concatenate(verts), np.asarray(faces, np.int32), _unit(np.concatenate(normals)), np.concatenate(uvs)
+        np.concatenate(verts),
+        np.asarray(faces, np.int32),
+        _unit(np.concatenate(normals)),
+        np.concatenate(uvs),
     )
 
 

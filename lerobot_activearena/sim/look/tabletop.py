@@ -44,7 +44,10 @@ def tabletop_mesh(lv: FanLevel, angular_segments: int = 36, radial_segments: int
         a = 0.5 * (ang[k] + ang[k + 1])
         out = (math.cos(a), math.sin(a), 0.0)
         seg = slice(k, k + 2)
-        for r, normal, flip in ((lv.outer_radius, out, False), (lv.inner_radius, tuple(-c for c in out), True)):
+        for r, normal, flip in (
+            (lv.outer_radius, out, False),
+            (lv.inner_radius, tuple(-c for c in out), True),
+        ):
             lo, hi = ring(r, z0)[seg], ring(r, z1)[seg]
             _quad_strip(lo, hi, normal, verts, normals, faces, flip)
     for a, sign in ((ang[0], -1.0), (ang[-1], 1.0)):  # the two straight ends

@@ -143,9 +143,11 @@ def terrazzo(rng, size, rgb, chips: int = 140):
         r = rng.uniform(1.0, 0.025 * size)
         dy = np.minimum(np.abs(y - cy), size - np.abs(y - cy))
         dx = np.minimum(np.abs(x - cx), size - np.abs(x - cx))
-        out[dy**2 + dx**2 < r**2] = _shade(rgb, rng.uniform(0.35, 0.8)) if rng.random() < 0.7 else palette[
-            int(rng.integers(len(palette)))
-        ]
+        out[dy**2 + dx**2 < r**2] = (
+            _shade(rgb, rng.uniform(0.35, 0.8))
+            if rng.random() < 0.7
+            else palette[int(rng.integers(len(palette)))]
+        )
     return out
 
 
