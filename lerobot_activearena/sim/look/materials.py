@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from ..assets.base import add_texture_material
 from .textures import FAMILIES, Rgb, make_texture
 
 
@@ -106,17 +107,9 @@ def add_surface_material(
     texture coordinates uniform in space (one tile covers ``tile_m`` metres on any face); otherwise
     for meshes whose texture coordinates are in metres."""
     rgb = make_texture(material.family, material.seed, material.rgb, texture_px)
-    tex = spec.add_texture()
-    tex.name = f"{name}_tex"
-    tex.type = mujoco.mjtTexture.mjTEXTURE_2D
-    tex.width = tex.height = texture_px
-    tex.nchannel = 3
-    tex.data = np.ascontiguousarray(rgb).tobytes()
-    mat = spec.add_material()
-    mat.name = name
-    mat.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = tex.name
-    mat.texuniform = uniform
-    mat.texrepeat = (1.0 / material.tile_m, 1.0 / material.tile_m)
+    repeat = 1.0 / material.tile_m
+    add_texture_material(spec, name, rgb, texrepeat=(repeat, repeat), texuniform=uniform)
+    mat = spec.material(name)
     mat.specular = material.specular
     mat.shininess = material.shininess
     mat.reflectance = 0.0

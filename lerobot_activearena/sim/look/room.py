@@ -7,6 +7,8 @@ from dataclasses import dataclass
 
 import mujoco
 
+from ..assets.base import add_geom
+
 ROOM_GROUP = 0  # rendered by default
 
 
@@ -25,14 +27,17 @@ ROOM = RoomSize()
 
 
 def _visual_box(spec: mujoco.MjSpec, name: str, pos, half, material: str) -> None:
-    g = spec.worldbody.add_geom()
-    g.name = name
-    g.type = mujoco.mjtGeom.mjGEOM_BOX
-    g.pos, g.size = pos, half
-    g.material = material
-    g.contype = g.conaffinity = 0
+    g = add_geom(
+        spec.worldbody,
+        mujoco.mjtGeom.mjGEOM_BOX,
+        half,
+        pos,
+        (1, 1, 1, 1),
+        name=name,
+        material=material,
+        collide=False,
+    )
     g.group = ROOM_GROUP
-    g.mass = 0.0
 
 
 def add_room(spec: mujoco.MjSpec, wall_material: str, ceiling_material: str, room: RoomSize = ROOM) -> None:
