@@ -3,7 +3,9 @@
 Prints the physics rate through ``sim.step`` (as a ratio to bare ``mj_step``), head RGB render rate, visibility rate and annotated control steps per second
 (physics for 1/15 s + 512x384 RGB + visibility of every object). Target: >= 40 annotated steps/s.
 
-    MUJOCO_GL=egl python benchmarks/sim_throughput.py [--steps 150] [--cores 1]
+    MUJOCO_GL=egl python benchmarks/sim_throughput.py [--steps 150] [--cores 1] [--shadows]
+
+``--shadows``: the key light casts shadows (off in every scene the benchmark ships; docs/sim.md).
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ def main() -> None:
     p.add_argument("--cores", type=int, default=1, help="CPU cores to pin to (llvmpipe threads follow)")
     p.add_argument("--objects", type=int, default=25)
     p.add_argument("--no-sleep", action="store_true", help="keep every object awake (MuJoCo sleeping off)")
+    p.add_argument("--shadows", action="store_true", help="the key light casts shadows")
+    p.add_argument("--shadow-size", type=int, default=None, help="shadow map size (default: the scene's)")
     args = p.parse_args()
     os.sched_setaffinity(0, set(range(args.cores)))
     os.environ.setdefault("LP_NUM_THREADS", "0" if args.cores == 1 else str(args.cores))
@@ -35,6 +39,10 @@ def main() -> None:
     builder = reference_scene(0, n_objects=args.objects)
     if args.no_sleep:
         builder.spec.option.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_SLEEP)
+    if args.shadows:
+        builder.spec.light("key_light").castshadow = True
+    if args.shadow_size:
+        builder.spec.visual.quality.shadowsize = args.shadow_size
     model, info = builder.compile()
     sim = ActiveArenaSim(model, info)
     home = sim.home_action()
@@ -77,7 +85,8 @@ def main() -> None:
     annotated = args.steps / (time.perf_counter() - t)
     print(
         f"scene: robot + fan table + {len(info.objects)} objects, nbody={model.nbody}, ngeom={model.ngeom}; "
-        f"cores={args.cores}, MUJOCO_GL={os.environ.get('MUJOCO_GL')}, sleeping={'off' if args.no_sleep else 'on'}"
+        f"cores={args.cores}, MUJOCO_GL={os.environ.get('MUJOCO_GL')}, sleeping={'off' if args.no_sleep else 'on'}, "
+        f"shadows={'on' if args.shadows else 'off'}"
     )
     print(
         f"mj_step:                     {phys:8.0f} steps/s  (timestep {model.opt.timestep * 1000:.3f} ms, "

@@ -4,7 +4,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from lerobot_activearena.sim.look import draw_look
+from lerobot_activearena.sim.look import DEFAULT_LOOK, draw_look
 from lerobot_activearena.sim.look.lighting import ID_LIGHTING, OOD_KELVIN, kelvin_to_rgb
 from lerobot_activearena.sim.look.materials import (
     ID_MATERIALS,
@@ -114,3 +114,54 @@ def test_lathed_and_extruded_meshes_are_closed_and_outward_facing():
         extrude(outline[::-1], 0.02)
     with pytest.raises(ValueError, match="r >= 0"):
         lathe([(-0.01, 0), (0.02, 0.1)])
+
+
+def _seen_ids(model, data, cam: str, size=(96, 128)) -> np.ndarray:
+    """Per pixel, the geom the head camera sees (-1: nothing, the void)."""
+    with mujoco.Renderer(model, *size) as r:
+        r.enable_segmentation_rendering()
+        r.update_scene(data, camera=cam)
+        return r.render()[..., 0]
+
+
+@pytest.mark.parametrize("workspace", ["fan", "two_level"])
+@pytest.mark.parametrize("split", ["id", "ood"])
+def test_no_view_the_robot_can_take_shows_the_void(workspace, split):
+    """Torso yaw and head pitch at their limits (and home): every pixel is a wall, the floor, the
+    ceiling, the table, the robot or an object, never the empty background."""
+    from lerobot_activearena.sim import embodiment
+    from lerobot_activearena.sim.scene import SceneBuilder
+    from lerobot_activearena.sim.workspace import WORKSPACES
+
+    look = draw_look(split, np.random.default_rng(11))
+    model, _ = SceneBuilder(workspace=WORKSPACES[workspace](), look=look).compile()
+    data = mujoco.MjData(model)
+    yaw, pitch = model.joint(embodiment.TORSO_YAW_JOINT), model.joint(embodiment.HEAD_PITCH_JOINT)
+    for y in (*yaw.range, embodiment.HOME_TORSO_YAW):
+        for p in (*pitch.range, embodiment.HOME_HEAD_PITCH):
+            data.qpos[yaw.qposadr[0]], data.qpos[pitch.qposadr[0]] = y, p
+            mujoco.mj_forward(model, data)
+            void = int((_seen_ids(model, data, embodiment.HEAD_CAMERA) < 0).sum())
+            assert void == 0, f"yaw {y:.2f}, pitch {p:.2f}: {void} pixels of void"
+
+
+def test_the_look_never_moves_an_object(monkeypatch):
+    """The look is drawn from a stream of its own: an OOD scene with the ID look instead has the
+    same objects at the same poses."""
+    from lerobot_activearena.tasks import draft as draft_module, get_task
+    from lerobot_activearena.tasks.sampling import sample_scene
+
+    task = get_task("place_a2b_left_rotate_view")
+
+    def poses(scene):
+        return {
+            o.name: (o.category, *np.round(scene.model.body(o.body).pos, 9))
+            for o in scene.info.objects + scene.info.clutter
+        }
+
+    drawn = [sample_scene(task, seed, "ood") for seed in range(3)]
+    monkeypatch.setattr(draft_module, "draw_look", lambda split, rng: DEFAULT_LOOK)
+    plain = [sample_scene(task, seed, "ood") for seed in range(3)]
+    for a, b in zip(drawn, plain, strict=True):
+        assert poses(a) == poses(b) and a.params == b.params
+        assert not np.array_equal(a.model.light("key_light").diffuse, b.model.light("key_light").diffuse)

@@ -9,7 +9,7 @@ import pytest
 from lerobot_activearena.sim.assets import ASSETS
 from lerobot_activearena.tasks import CATEGORIES, TASKS, get_task, task_names
 from lerobot_activearena.tasks.base import TaskScene
-from lerobot_activearena.tasks.draft import SceneDraft
+from lerobot_activearena.tasks.draft import SamplingError, SceneDraft, id_clutter_pool
 from lerobot_activearena.tasks.sampling import derived_rng, principle_violations, sample_scene
 
 FIRST_FIVE = {
@@ -79,20 +79,22 @@ def test_id_clutter_uses_only_distractors_and_ood_changes_the_look_and_density()
         looks_id.append(_look(sid))
         looks_ood.append(_look(sood))
     assert np.mean(n_ood) > np.mean(n_id)
-    assert all(np.allclose(looks_id[0], lk) for lk in looks_id), "ID scenes must keep the default look"
-    assert len({tuple(np.round(lk, 4)) for lk in looks_ood}) == len(looks_ood), "OOD looks must vary per seed"
+    assert len({lk[0] for lk in looks_id}) == 1, "ID scenes share one light"
+    assert len(set(looks_id)) < len(looks_id), "ID scenes draw from a small fixed set of materials"
+    assert len(set(looks_ood)) == len(looks_ood), "OOD looks must vary per seed"
+    assert not {lk[0] for lk in looks_ood} & {lk[0] for lk in looks_id}
 
 
-def _look(scene):
-    """Light intensity/direction, floor pattern colours and tabletop colour of a compiled scene."""
+def _look(scene) -> tuple[bytes, bytes]:
+    """(key light, surface textures) of a compiled scene, as bytes."""
     m = scene.model
     light = m.light("key_light")
-    floor = np.ravel(m.mat_texrepeat[int(np.ravel(m.geom("floor").matid)[0])])
-    table = m.geom_rgba[np.flatnonzero(m.geom_bodyid == m.body("fan_level_0").id)[0]]
-    tex = m.tex_data[m.tex_adr[m.tex("floor_checker").id] : m.tex_adr[m.tex("floor_checker").id] + 6].astype(
-        float
+    lighting = np.concatenate([np.ravel(light.diffuse), np.ravel(light.dir), m.vis.headlight.ambient])
+    textures = b"".join(
+        m.tex_data[m.tex_adr[m.tex(name).id] : m.tex_adr[m.tex(name).id] + 3 * 64].tobytes()
+        for name in ("table", "floor", "wall")
     )
-    return np.concatenate([np.ravel(light.diffuse), np.ravel(light.dir), floor, np.ravel(table), tex])
+    return np.round(lighting, 6).tobytes(), textures
 
 
 def test_principle_check_rejects_a_bell_in_plain_view():
@@ -240,3 +242,29 @@ def test_docs_tables_cover_the_registry():
     assert expert == {(n, s) for n in names for s in ("id", "ood")}, expert ^ {
         (n, s) for n in names for s in ("id", "ood")
     }
+
+
+def test_id_clutter_never_uses_a_category_that_some_task_uses():
+    """Over every task's scenes: what a task places is a task category, and ID clutter is drawn from
+    distractors whose family no task category shares (the paper's restricted ID pool)."""
+    task_families = {ASSETS[c].family for c in ASSETS if ASSETS[c].role == "task"}
+    pool = set(id_clutter_pool())
+    assert pool and not {ASSETS[c].family for c in pool} & task_families
+    placed_by_tasks = set()
+    for name in task_names("all"):
+        task = get_task(name)
+        for seed in range(12):
+            draft = SceneDraft("id", derived_rng(name, seed, "id", 0), task.workspace)
+            try:
+                task.layout(draft)
+            except SamplingError:
+                continue
+            draft.add_clutter()
+            placed = {o.category for o in draft.builder.info.objects}
+            assert all(ASSETS[c].role == "task" for c in placed), (
+                f"{name} places a non-task category: {placed}"
+            )
+            clutter = {o.category for o in draft.builder.info.clutter}
+            assert clutter <= pool, f"{name} seed {seed}: ID clutter {clutter - pool} is not in the ID pool"
+            placed_by_tasks |= placed
+    assert {"toy_car", "mouse", "shoe", "bell"} <= placed_by_tasks

@@ -1,4 +1,4 @@
-"""Assemble a scene with MjSpec: physics options, floor, lights, robot, workspace and objects."""
+"""Assemble a scene with MjSpec: physics options, the room and its light, robot, workspace and objects."""
 
 from __future__ import annotations
 
@@ -8,10 +8,12 @@ import mujoco
 import numpy as np
 
 from . import embodiment
-from .appearance import DEFAULT_APPEARANCE, Appearance, table_texture
 from .assets import ObjectInfo, build_asset
-from .assets.base import add_texture_material
-from .workspace import Workspace, add_workspace, fan_workspace
+from .look import CEILING, DEFAULT_LOOK, Look
+from .look.materials import add_surface_material
+from .look.room import add_room, add_sky
+from .look.tabletop import add_tabletop_visual
+from .workspace import COLLISION_ONLY_GROUP, Workspace, add_workspace, fan_workspace
 
 CONTROL_HZ = 15
 SUBSTEPS = 32  # physics steps per control step: dt = 1/480 s
@@ -40,18 +42,19 @@ class SceneBuilder:
         workspace: Workspace | None = None,
         wrist_cameras: bool = False,
         shadows: bool = False,
-        appearance: Appearance | None = None,
+        look: Look | None = None,
     ):
-        """``shadows`` costs ~5x in CPU rendering (llvmpipe), so it is off by default."""
+        """``look``: the room's materials and light (appearance only; ``sim/look``). ``shadows``:
+        the key light casts shadows (costs render time on a CPU, see docs/sim.md)."""
         self.workspace = workspace or fan_workspace()
         self.shadows = shadows
-        self.appearance = appearance or DEFAULT_APPEARANCE
+        self.look = look or DEFAULT_LOOK
         self.spec = mujoco.MjSpec()
         self.spec.modelname = "activearena"
         self._set_options()
         self._add_environment()
         add_workspace(self.spec, self.workspace)
-        self._style_tabletop()
+        self._dress_tabletop()
         robot = embodiment.add_robot(self.spec)
         self.info = SceneInfo(self.workspace, robot, wrist_cameras=wrist_cameras)
         for cam in embodiment.WRIST_CAMERAS.values():
@@ -79,55 +82,42 @@ class SceneBuilder:
         self.spec.stat.center = (0.0, 0.4, 0.9)
         vis.map.znear = 0.1 / self.spec.stat.extent  # 0.1 m
         vis.map.zfar = 100.0 / self.spec.stat.extent  # 100 m
-        amb = self.appearance.ambient
+        amb = self.look.lighting.ambient
         vis.headlight.ambient = (amb, amb, amb)
-        vis.headlight.diffuse = (0.25, 0.25, 0.25)
+        vis.headlight.diffuse = (0.15, 0.15, 0.15)  # a little fill from the camera
         vis.headlight.specular = (0.0, 0.0, 0.0)
 
     def _add_environment(self) -> None:
-        spec = self.spec
-        tex = spec.add_texture()
-        tex.name = "floor_checker"
-        tex.type = mujoco.mjtTexture.mjTEXTURE_2D
-        tex.builtin = mujoco.mjtBuiltin.mjBUILTIN_CHECKER
-        look = self.appearance
-        tex.rgb1, tex.rgb2 = look.floor_rgb1, look.floor_rgb2
-        tex.width = tex.height = 256
-        mat = spec.add_material()
-        mat.name = "floor"
-        mat.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = "floor_checker"
-        mat.texrepeat = (look.floor_repeat, look.floor_repeat)
+        """Floor (the collision plane, textured), walls, ceiling, sky and the key light."""
+        spec, look = self.spec, self.look
+        add_surface_material(spec, "floor", look.floor)
+        add_surface_material(spec, "wall", look.wall)
+        add_surface_material(spec, "ceiling", CEILING)
         floor = spec.worldbody.add_geom()
         floor.name = "floor"
         floor.type = mujoco.mjtGeom.mjGEOM_PLANE
         floor.size = (6, 6, 0.1)
         floor.material = "floor"
         floor.contype = floor.conaffinity = 1
+        add_room(spec, "wall", "ceiling")
+        add_sky(spec)
         light = spec.worldbody.add_light()
         light.name = "key_light"
         light.type = mujoco.mjtLightType.mjLIGHT_DIRECTIONAL
-        light.pos = (0.5, -1.0, 3.0)
-        light.dir = np.asarray(look.light_dir) / np.linalg.norm(look.light_dir)
-        light.diffuse = (look.light_diffuse, look.light_diffuse, look.light_diffuse * 0.96)
+        light.pos = (0.0, 0.0, 2.6)
+        light.dir = look.lighting.direction
+        light.diffuse = look.lighting.diffuse
         light.specular = (0.05, 0.05, 0.05)
         light.castshadow = self.shadows
 
-    def _style_tabletop(self) -> None:
-        look = self.appearance
-        material = None
-        if look.table_texture_seed is not None:
-            material = add_texture_material(
-                self.spec,
-                "tabletop_grain",
-                table_texture(look.table_texture_seed, look.table_rgba[:3]),
-                texrepeat=(4, 4),
-                texuniform=True,
-            )
+    def _dress_tabletop(self) -> None:
+        """The collision patches hide; a textured slab of the same outline shows each level."""
+        add_surface_material(self.spec, "table", self.look.table, uniform=False)
         for g in self.spec.geoms:
             if g.material == "tabletop":
-                g.rgba = look.table_rgba if material is None else (1, 1, 1, 1)
-                if material:
-                    g.material = material
+                g.group = COLLISION_ONLY_GROUP
+        for idx, lv in enumerate(self.workspace.levels):
+            add_tabletop_visual(self.spec, self.spec.body(f"fan_level_{idx}"), lv, f"fan_top_{idx}", "table")
 
     def add_object(
         self,

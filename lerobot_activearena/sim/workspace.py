@@ -2,7 +2,8 @@
 
 The robot base sits at the world origin facing +y; angles are robot-centric, measured in the
 horizontal plane from +x, so 90 deg is straight ahead. Tabletops are built from convex annular-sector
-prisms that serve as both the visual and the collision surface.
+prisms, the collision surface; a scene hides them and shows a textured slab of the same outline
+(``look/tabletop.py``).
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ import numpy as np
 WORLD_CONTYPE, WORLD_CONAFFINITY = 1, 1
 TABLE_RGBA = (0.62, 0.52, 0.42, 1.0)
 TABLE_TOP = 0.74  # m: height of the lower fan's top
+COLLISION_ONLY_GROUP = 3  # geoms that collide but are not drawn (as the robot's collision shapes)
 
 
 @dataclass(frozen=True)

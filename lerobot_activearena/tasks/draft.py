@@ -15,8 +15,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..sim.appearance import random_appearance
 from ..sim.assets import ASSETS, categories
+from ..sim.look import draw_look
 from ..sim.scene import SceneBuilder
 from ..sim.workspace import TABLE_TOP, WORKSPACES
 
@@ -37,6 +37,13 @@ SIDE_ANGLES = {"right": (20.0, 90.0), "left": (90.0, 160.0)}
 # Out of the home view candidates (paper's release: |theta - 90| in [38.5, 70] deg); each placement
 # is then checked against the home camera's projection.
 HIDDEN_ANGLES = {"right": (20.0, 51.5), "left": (128.5, 160.0)}
+
+
+def id_clutter_pool() -> list[str]:
+    """ID clutter: distractors whose family is no task category's (the paper: the ID pool excludes
+    every category that some task uses, near-duplicates included)."""
+    task_families = {ASSETS[c].family for c in categories("task")}
+    return [c for c in categories("distractor") if ASSETS[c].family not in task_families]
 
 
 class SamplingError(RuntimeError):
@@ -125,8 +132,9 @@ class SceneDraft:
 
     def __init__(self, split: str, rng: np.random.Generator, workspace: str = "fan"):
         self.split, self.rng = split, rng
-        appearance = random_appearance(rng) if split == "ood" else None
-        self.builder = SceneBuilder(workspace=WORKSPACES[workspace](), appearance=appearance)
+        # The look comes from a stream of its own: appearance never moves an object.
+        self.look = draw_look(split, rng.spawn(1)[0])
+        self.builder = SceneBuilder(workspace=WORKSPACES[workspace](), look=self.look)
         self.workspace = self.builder.workspace
         self.discs: list[tuple[np.ndarray, float, int]] = []  # (xy, radius, level) kept clear
         self.labels: list[str] = []
@@ -259,7 +267,7 @@ class SceneDraft:
         fitted."""
         ood = self.split == "ood"
         present = {ASSETS[o.category].family for o in self.builder.info.objects} | self.clutter_excluded
-        pool = [c for c in categories(None if ood else "distractor") if ASSETS[c].family not in present]
+        pool = [c for c in (categories() if ood else id_clutter_pool()) if ASSETS[c].family not in present]
         if self.workspace.two_level:
             lower, upper = TWO_LEVEL_CLUTTER
             plan = [

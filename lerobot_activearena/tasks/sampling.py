@@ -1,8 +1,10 @@
 """Scene sampling from (task, seed, split) with the design-principle checks and deterministic retries.
 
 ID: task objects plus a few static distractors from the distractor pool (no category that any task
-uses). OOD: random appearance (floor, tabletop, light) and denser clutter from the full pool,
-excluding families already in the scene, so other tasks' objects appear as distractors.
+uses), in one of a few fixed looks (table, floor and wall materials; one light). OOD: held-out
+materials and lighting (``sim/look``) and denser clutter from the full pool, excluding families
+already in the scene, so other tasks' objects appear as distractors. The look is drawn from a
+stream of its own, so it never moves an object.
 """
 
 from __future__ import annotations

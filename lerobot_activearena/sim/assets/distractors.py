@@ -1,5 +1,7 @@
 """Distractor pool: everyday objects that no task uses (ID clutter draws only from these). Families
 group near-duplicates so OOD scenes never hold two of a kind (e.g. an orange and the yellow ball).
+The toy car and the bread loaf are built here too but are task objects of ``place_a2b_*`` (role
+``"task"``): only OOD clutter, drawn from the full pool, may show them.
 
 None of these resembles a task category: no cups, bottles, cans, plain blocks, printed food boxes,
 plates or mouse-like ellipsoids. Most are a few primitives; the donut, scissors rings, pencil and
@@ -49,11 +51,12 @@ def _pick(palette, amount=0.05):
     return lambda rng: _jitter(palette[int(rng.integers(len(palette)))], rng, amount)
 
 
-def _simple(category, footprint, family, parts, mass, colors=None, functional=None):
-    """Register a distractor made of ``parts`` (see ``shapes.compound``); part colours given as
+def _simple(category, footprint, family, parts, mass, colors=None, functional=None, role="distractor"):
+    """Register an object made of ``parts`` (see ``shapes.compound``); part colours given as
     'main' are replaced by the ``rgba`` parameter, randomised by ``colors(rng)``. A callable part
     ``fn(spec, name)`` returns a part built at build time (meshes need the object's name).
-    ``functional``: its metadata where a task uses it (a grasp)."""
+    ``functional``: its metadata where a task uses it (a grasp); ``role="task"`` where some task
+    names the category (ID clutter never uses it)."""
     default = (0.7, 0.7, 0.7, 1) if colors is None else colors(np.random.default_rng(0))
 
     def build(spec, name, pos, yaw=0.0, rgba=default):
@@ -66,7 +69,7 @@ def _simple(category, footprint, family, parts, mass, colors=None, functional=No
     register_asset(
         category,
         footprint,
-        "distractor",
+        role,
         family,
         randomize=(lambda rng: {"rgba": colors(rng)}) if colors else None,
     )(build)
@@ -270,6 +273,7 @@ _simple(
         ],
     ],
     0.3,
+    role="task",  # place_a2b_*'s reference object
 )
 _simple(
     "donut",
@@ -392,6 +396,7 @@ _simple(
     _pick(PLASTICS[:8]),
     # Held across its 6 cm body, low enough that the palm clears the cabin (place_a2b_*).
     functional=Functional(grasp=((0.0, 0.0, 0.035),), grasp_axis=(0.0, 1.0, 0.0)),
+    role="task",
 )
 _simple(
     "rubber_duck",

@@ -11,7 +11,7 @@ import mujoco
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from ..appearance import table_texture
+from ..look.textures import make_texture
 from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
 from .functional import Container, Functional, InfoFace, Press, Support, ToolHead
 from .registry import register_asset
@@ -245,7 +245,7 @@ def add_rubiks_cube(spec, name, pos, yaw=0.0, half=0.028):
 
 @register_asset("wooden_block", footprint=0.05, role="task")
 def add_wooden_block(spec, name, pos, yaw=0.0, half=(0.045, 0.03, 0.025)):
-    mat = add_texture_material(spec, f"{name}_wood", table_texture(11, (0.72, 0.52, 0.3), 64))
+    mat = add_texture_material(spec, f"{name}_wood", make_texture("wood", 11, (0.72, 0.52, 0.3), 64))
     return compound(
         spec,
         name,

@@ -11,6 +11,8 @@ import numpy as np
 from .lighting import ID_LIGHTING, Lighting, draw_lighting
 from .materials import ID_MATERIALS, SurfaceMaterial, draw_material
 
+CEILING = SurfaceMaterial("plaster", (0.93, 0.92, 0.9), 41, 2.0, 0.0, 0.0)  # every scene's
+
 
 @dataclass(frozen=True)
 class Look:
@@ -32,4 +34,4 @@ def draw_look(split: str, rng: np.random.Generator) -> Look:
     )
 
 
-__all__ = ["DEFAULT_LOOK", "Look", "draw_look"]
+__all__ = ["CEILING", "DEFAULT_LOOK", "Look", "draw_look"]

@@ -9,6 +9,7 @@ visible seams. The same (family, seed, base colour) always gives the same pixels
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import lru_cache
 
 import numpy as np
 
@@ -188,10 +189,18 @@ FAMILIES: dict[str, Callable] = {
 
 
 def make_texture(family: str, seed: int, rgb: Rgb, size: int = 256) -> np.ndarray:
-    """An (size, size, 3) uint8 seamless tile of ``family`` around the base colour ``rgb`` (0-1)."""
+    """An (size, size, 3) uint8 seamless tile of ``family`` around the base colour ``rgb`` (0-1),
+    read-only (cached: every ID scene reuses the same few)."""
     if family not in FAMILIES:
         raise ValueError(f"unknown texture family {family!r}; choose from {sorted(FAMILIES)}")
     if size < 32 or size & (size - 1):
         raise ValueError(f"texture size must be a power of two >= 32, got {size}")
+    return _texture(family, int(seed), tuple(float(c) for c in rgb), int(size))
+
+
+@lru_cache(maxsize=64)
+def _texture(family: str, seed: int, rgb: Rgb, size: int) -> np.ndarray:
     out = FAMILIES[family](np.random.default_rng(seed), size, rgb)
-    return (np.clip(out, 0.0, 1.0) * 255 + 0.5).astype(np.uint8)
+    img = (np.clip(out, 0.0, 1.0) * 255 + 0.5).astype(np.uint8)
+    img.flags.writeable = False
+    return img
