@@ -27,6 +27,7 @@ from .camera import cam2world_gl, extrinsic_cv, intrinsics
 from .controller import JointTargetController
 from .gl_backend import rendering_error
 from .head_camera import head_visibility_checker, validate_head_size
+from .look.dress import scene_option
 from .scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH, SUBSTEPS, WRIST_HEIGHT, WRIST_WIDTH, SceneInfo
 from .visibility import Visibility
 
@@ -58,6 +59,7 @@ class ActiveArenaSim:
             max(glob.offwidth, self.image_width),
         )
         self.data = mujoco.MjData(model)
+        self._draw = scene_option()  # dressed looks drawn, the shapes they replace hidden
         self.substeps = SUBSTEPS
         self.control_dt = 1.0 / CONTROL_HZ
         if abs(model.opt.timestep * SUBSTEPS - self.control_dt) > 1e-9:
@@ -186,14 +188,14 @@ class ActiveArenaSim:
 
     def render_head(self) -> np.ndarray:
         r = self._renderer(self.image_width, self.image_height)
-        r.update_scene(self.data, camera=self.head_cam_id)
+        r.update_scene(self.data, camera=self.head_cam_id, scene_option=self._draw)
         return r.render()
 
     def render_wrist(self, side: str) -> np.ndarray:
         if not self.info.wrist_cameras:
             raise ValueError("wrist cameras are off; build the scene with SceneBuilder(wrist_cameras=True)")
         r = self._renderer(WRIST_WIDTH, WRIST_HEIGHT)
-        r.update_scene(self.data, camera=embodiment.WRIST_CAMERAS[side])
+        r.update_scene(self.data, camera=embodiment.WRIST_CAMERAS[side], scene_option=self._draw)
         return r.render()
 
     def head_camera(self) -> dict[str, np.ndarray]:

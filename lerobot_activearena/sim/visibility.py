@@ -19,7 +19,9 @@ from .camera import extrinsic_cv, intrinsics, project
 
 VISIBLE_THRESHOLD = 0.4
 SAMPLES_PER_GEOM = 26
-_RENDERED_GROUPS = np.array([1, 1, 1, 0, 0, 0], dtype=np.uint8)
+# Rays hit objects' shapes, the robot's visual geoms and the room, never a dressed look's meshes
+# (look/dress.py), so what counts as visible does not depend on how things are drawn.
+_RAY_GROUPS = np.array([1, 1, 1, 0, 0, 0], dtype=np.uint8)
 _CUBE = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
 
 
@@ -152,7 +154,7 @@ class VisibilityChecker:
                     data,
                     cam,
                     vec.reshape(-1),
-                    _RENDERED_GROUPS,
+                    _RAY_GROUPS,
                     1,
                     self.exclude_body,
                     geomid,
@@ -203,5 +205,5 @@ def surface_point_visible(
     if z[0] <= 0.1 or not (0 <= uv[0, 0] < width and 0 <= uv[0, 1] < height):
         return False
     geomid = np.array([-1], np.int32)
-    mujoco.mj_ray(model, data, cam, -to_cam / dist, _RENDERED_GROUPS, 1, exclude_body, geomid)
+    mujoco.mj_ray(model, data, cam, -to_cam / dist, _RAY_GROUPS, 1, exclude_body, geomid)
     return int(geomid[0]) == geom

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import mujoco
 
+from ..look.dress import dress
+from . import dressing
 from .base import ObjectInfo, add_geom as _geom, free_body as _free_body
 from .functional import Functional
 from .registry import register_asset
@@ -14,7 +16,7 @@ def add_can(
     spec, name, pos, yaw=0.0, radius=0.033, height=0.12, mass=0.3, rgba=(0.75, 0.1, 0.1, 1)
 ) -> ObjectInfo:
     b = _free_body(spec, name, pos, yaw)
-    _geom(
+    shell = _geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius, height / 2, 0),
@@ -23,7 +25,7 @@ def add_can(
         mass,
         f"{name}_body",
     )
-    _geom(
+    lid = _geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius * 0.85, 0.004, 0),
@@ -31,6 +33,7 @@ def add_can(
         (0.8, 0.8, 0.82, 1),
         0.0,
     )
+    dress(spec, b, name, [shell, lid], dressing.can(radius, height, rgba))
     return ObjectInfo(
         name, "can", name, (radius, radius, height / 2 + 0.004), (0, 0, height / 2 + 0.004), mass
     )
@@ -67,7 +70,7 @@ def add_bottle(
 ) -> ObjectInfo:
     b = _free_body(spec, name, pos, yaw)
     body_h = height * 0.72
-    _geom(
+    shell = _geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius, body_h / 2, 0),
@@ -77,7 +80,7 @@ def add_bottle(
         f"{name}_body",
     )
     neck_h = height - body_h
-    _geom(
+    neck = _geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius * 0.4, neck_h / 2, 0),
@@ -85,6 +88,7 @@ def add_bottle(
         (0.9, 0.9, 0.9, 1),
         mass * 0.1,
     )
+    dress(spec, b, name, [shell, neck], dressing.bottle(radius, height, body_h, rgba))
     # Held by the neck, just above the shoulder: the palm clears the cap.
     return ObjectInfo(
         name,

@@ -11,7 +11,9 @@ import mujoco
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
+from ..look.dress import dress
 from ..look.textures import make_texture
+from . import dressing
 from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
 from .functional import Container, Functional, InfoFace, Press, Support, ToolHead
 from .registry import register_asset
@@ -42,6 +44,12 @@ XAXIS_90 = quat_axis_angle([1, 0, 0], np.pi / 2)
 
 def _rgba(rgb, a=1.0):
     return (*rgb, a)
+
+
+def _dress_parts(spec, name: str, n_parts: int, parts) -> None:
+    """Dress a ``compound`` object: its first ``n_parts`` parts drawn as ``parts`` instead."""
+    replaces = [spec.geom(f"{name}_body")] + [spec.geom(f"{name}_part{k}") for k in range(1, n_parts)]
+    dress(spec, spec.body(name), name, replaces, parts)
 
 
 def _color(rng, lo=0.15, hi=0.9):
@@ -200,7 +208,7 @@ def add_switch(spec, name, pos, yaw=0.0, rgba=(0.92, 0.92, 0.9, 1)):
     "pill_bottle", footprint=0.03, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.5, 0.95))}
 )
 def add_pill_bottle(spec, name, pos, yaw=0.0, rgba=(0.95, 0.6, 0.15, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "pill_bottle",
@@ -213,6 +221,8 @@ def add_pill_bottle(spec, name, pos, yaw=0.0, rgba=(0.95, 0.6, 0.15, 1)):
         ],
         0.08,
     )
+    _dress_parts(spec, name, 2, dressing.pill_bottle(_rgba(rgba[:3], 1.0)))
+    return info
 
 
 def _facelets(size=96) -> np.ndarray:
@@ -339,7 +349,7 @@ def add_container(spec, name, pos, yaw=0.0, lid=(0.2, 0.6, 0.3, 1)):
     "plate", footprint=0.1, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.7, 0.98))}
 )
 def add_plate(spec, name, pos, yaw=0.0, rgba=(0.96, 0.96, 0.94, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "plate",
@@ -353,6 +363,8 @@ def add_plate(spec, name, pos, yaw=0.0, rgba=(0.96, 0.96, 0.94, 1)):
         0.3,
         functional=Functional(support=Support(0.014, (0.08, 0.08), "disc")),
     )
+    _dress_parts(spec, name, 3, dressing.plate(rgba))
+    return info
 
 
 @register_asset(

@@ -7,6 +7,8 @@ import mujoco
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
+from ..look.dress import dress
+from . import dressing
 from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
 from .functional import Functional, InfoFace, Press, Support
 from .registry import register_asset
@@ -49,7 +51,7 @@ def add_bell(
     gripper: ``radius`` <= 0.045)."""
     b = free_body(spec, name, pos, yaw)
     base_mass = 0.45 * (radius / 0.05) ** 2
-    add_geom(
+    base = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius, 0.008, 0),
@@ -58,7 +60,7 @@ def add_bell(
         base_mass,
         f"{name}_body",
     )
-    add_geom(
+    dome = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_ELLIPSOID,
         (radius * 0.85, radius * 0.85, 0.035),
@@ -98,6 +100,7 @@ def add_bell(
         0.005,
         f"{name}_cap",
     )
+    dress(spec, b, name, [base, dome], dressing.bell(radius, rgba, base_rgba))
     top = 0.067
     return ObjectInfo(
         name,
@@ -121,7 +124,7 @@ def add_bell(
 def add_cup(spec, name, pos, yaw=0.0, radius=0.034, height=0.09, rgba=(0.9, 0.9, 0.92, 1)):
     """Cup: cylinder body, dark inside disc at the rim (reads as empty), side handle."""
     b = free_body(spec, name, pos, yaw)
-    add_geom(
+    shell = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius, height / 2, 0),
@@ -130,7 +133,7 @@ def add_cup(spec, name, pos, yaw=0.0, radius=0.034, height=0.09, rgba=(0.9, 0.9,
         0.12,
         f"{name}_body",
     )
-    add_geom(
+    inside = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius * 0.85, 0.0008, 0),
@@ -138,6 +141,7 @@ def add_cup(spec, name, pos, yaw=0.0, radius=0.034, height=0.09, rgba=(0.9, 0.9,
         (0.25, 0.22, 0.2, 1),
         collide=False,
     )
+    dress(spec, b, name, [shell, inside], dressing.cup(radius, height, rgba))
     add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_CAPSULE,

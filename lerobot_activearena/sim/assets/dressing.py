@@ -1,0 +1,110 @@
+"""How task objects look: lathed meshes for the round ones (``look/dress.py`` draws them in place
+of the primitives that collide). Each function returns the parts for one object's parameters; every
+part stays inside the object's collision extents (``tests/test_dressing.py``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..look.dress import Dress
+from ..look.meshes import lathe
+
+METAL = (0.78, 0.78, 0.8, 1.0)
+DARK = (0.12, 0.12, 0.13, 1.0)
+
+
+def _arc(
+    r: float, z0: float, height: float, n: int = 10, start_deg: float = 0.0
+) -> list[tuple[float, float]]:
+    """Quarter ellipse from (r, z0) up to the axis at z0 + height."""
+    phi = np.radians(np.linspace(start_deg, 90.0, n))
+    pts = [(r * np.cos(p), z0 + height * np.sin(p)) for p in phi]
+    return [(max(float(x), 0.0), float(z)) for x, z in pts[:-1]] + [(0.0, z0 + height)]
+
+
+def bell(radius: float, rgba, base_rgba) -> list[Dress]:
+    """A desk bell: a bevelled base and a dome up to the plunger (z 0.051)."""
+    base = [(0.0, 0.0), (radius, 0.0), (radius, 0.012), (0.95 * radius, 0.016), (0.0, 0.016)]
+    dome = [(0.0, 0.016), *_arc(0.85 * radius, 0.016, 0.035, 12)]
+    return [Dress(lathe(base), base_rgba), Dress(lathe(dome), rgba)]
+
+
+def cup(radius: float, height: float, rgba) -> list[Dress]:
+    """An open cup: rounded foot, thin rim, a hollow inside down to its floor."""
+    wall = 0.1 * radius
+    profile = [
+        (0.0, 0.0),
+        (0.9 * radius, 0.0),
+        (radius, 0.006),
+        (radius, height),
+        (radius - wall, height),
+        (radius - wall, 0.012),
+        (0.0, 0.012),
+    ]
+    return [Dress(lathe(profile), rgba)]
+
+
+def can(radius: float, height: float, rgba) -> list[Dress]:
+    """A drink can: a body with rolled edges and a metal top with its rim (to ``height`` + 8 mm)."""
+    body = [
+        (0.0, 0.0),
+        (0.88 * radius, 0.0),
+        (radius, 0.01),
+        (radius, height - 0.008),
+        (0.9 * radius, height),
+        (0.0, height),
+    ]
+    top = [
+        (0.0, height),
+        (0.9 * radius, height),
+        (0.85 * radius, height + 0.008),
+        (0.8 * radius, height + 0.008),
+        (0.78 * radius, height + 0.004),
+        (0.0, height + 0.004),
+    ]
+    return [Dress(lathe(body), rgba), Dress(lathe(top), METAL)]
+
+
+def bottle(radius: float, height: float, body_height: float, rgba) -> list[Dress]:
+    """A bottle: body, rounded shoulder into the neck (0.4 of the radius), a white cap."""
+    neck = 0.4 * radius
+    shoulder = body_height - 0.25 * radius
+    cap_z = height - 0.02
+    body = [
+        (0.0, 0.0),
+        (0.9 * radius, 0.0),
+        (radius, 0.008),
+        (radius, shoulder),
+        *[
+            (
+                neck + (radius - neck) * float(np.cos(p)),
+                shoulder + (body_height + 0.02 - shoulder) * float(np.sin(p)),
+            )
+            for p in np.radians(np.linspace(20.0, 90.0, 6))
+        ],
+        (neck, cap_z),
+        (0.0, cap_z),
+    ]
+    cap = [(0.0, cap_z), (1.05 * neck, cap_z), (1.05 * neck, height - 0.002), (neck, height), (0.0, height)]
+    return [Dress(lathe(body), rgba), Dress(lathe(cap), (0.95, 0.95, 0.95, 1.0))]
+
+
+def plate(rgba) -> list[Dress]:
+    """A plate: a foot, a bevelled rim, the flat well where things are set (z 0.014)."""
+    profile = [
+        (0.0, 0.0),
+        (0.06, 0.0),
+        (0.065, 0.006),
+        (0.09, 0.011),
+        (0.095, 0.0135),
+        (0.092, 0.014),
+        (0.0, 0.014),
+    ]
+    return [Dress(lathe(profile, segments=48), rgba)]
+
+
+def pill_bottle(rgba) -> list[Dress]:
+    """A pill bottle: rounded body, a ribbed white cap (z 0.07-0.088)."""
+    body = [(0.0, 0.0), (0.02, 0.0), (0.022, 0.003), (0.022, 0.068), (0.019, 0.07), (0.0, 0.07)]
+    cap = [(0.0, 0.07), (0.024, 0.07), (0.024, 0.086), (0.022, 0.088), (0.0, 0.088)]
+    return [Dress(lathe(body), rgba), Dress(lathe(cap), (0.96, 0.96, 0.96, 1.0))]
