@@ -56,7 +56,7 @@ def test_every_dressed_part_stays_inside_its_objects_collision_extents():
                 f"{category}: {model.geom(g).name} reaches {out * 1000:.1f} mm past its collision box"
             )
         assert any(model.geom_group[g] == SHAPE_GROUP for g in geoms), f"{category}: no primitive was hidden"
-    assert {"bell", "cup", "can", "bottle", "plate", "pill_bottle"} <= set(dressed)
+    assert {"bell", "cup", "can", "bottle", "plate", "pill_bottle", "mouse", "shoe"} <= set(dressed)
 
 
 def _undressed(monkeypatch):
@@ -73,7 +73,9 @@ def _episode(task, seed):
     return r.success, h.hexdigest()
 
 
-@pytest.mark.parametrize("task", ["click_bell_rotate_view", "place_container_plate_rotate_view"])
+@pytest.mark.parametrize(
+    "task", ["click_bell_rotate_view", "place_container_plate_rotate_view", "place_shoe_rotate_view"]
+)
 def test_a_dressed_look_changes_no_state_action_or_annotation(task, monkeypatch):
     """The expert's episode (states, actions, every annotation, visibility included) is
     bit-identical with the meshes drawn or the primitives drawn instead."""

@@ -84,7 +84,7 @@ class SceneBuilder:
         vis.map.zfar = 100.0 / self.spec.stat.extent  # 100 m
         amb = self.look.lighting.ambient
         vis.headlight.ambient = (amb, amb, amb)
-        vis.headlight.diffuse = (0.15, 0.15, 0.15)  # a little fill from the camera
+        vis.headlight.diffuse = (0.05, 0.05, 0.05)  # a little fill from the camera
         vis.headlight.specular = (0.0, 0.0, 0.0)
 
     def _add_environment(self) -> None:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..look.dress import Dress
-from ..look.meshes import lathe
+from ..look.meshes import lathe, scaled
 
 METAL = (0.78, 0.78, 0.8, 1.0)
 DARK = (0.12, 0.12, 0.13, 1.0)
@@ -108,3 +108,21 @@ def pill_bottle(rgba) -> list[Dress]:
     body = [(0.0, 0.0), (0.02, 0.0), (0.022, 0.003), (0.022, 0.068), (0.019, 0.07), (0.0, 0.07)]
     cap = [(0.0, 0.07), (0.024, 0.07), (0.024, 0.086), (0.022, 0.088), (0.0, 0.088)]
     return [Dress(lathe(body), rgba), Dress(lathe(cap), (0.96, 0.96, 0.96, 1.0))]
+
+
+def mouse(rgba) -> list[Dress]:
+    """A computer mouse: an oval dome, flat underneath, 11 x 6.4 x 3.6 cm (its ellipsoid's box)."""
+    dome = [(0.0, 0.0), (0.9, 0.0), (1.0, 0.12), *_arc(0.98, 0.2, 0.8, 12, 12.0)]
+    return [Dress(scaled(lathe(dome, segments=40), 0.055, 0.032, 0.036), rgba)]
+
+
+def shoe(rgba, sole_rgba=(0.95, 0.95, 0.93, 1.0)) -> list[Dress]:
+    """A shoe: a rounded sole, an oval upper over the toes and the vamp, an open heel counter."""
+    sole = [(0.0, 0.0), (0.97, 0.0), (1.0, 0.4), (0.97, 1.0), (0.0, 1.0)]
+    upper = [(0.0, 0.0), *_arc(1.0, 0.0, 1.0, 12)]
+    heel = [(0.0, 0.0), (1.0, 0.0), (1.0, 0.8), (0.92, 1.0), (0.75, 1.0), (0.75, 0.45), (0.0, 0.45)]  # open
+    return [
+        Dress(scaled(lathe(sole, segments=40), 0.12, 0.04, 0.016), sole_rgba),
+        Dress(scaled(lathe(upper, segments=40), 0.09, 0.036, 0.05), rgba, pos=(0.01, 0.0, 0.016)),
+        Dress(scaled(lathe(heel, segments=32), 0.035, 0.036, 0.064), rgba, pos=(-0.08, 0.0, 0.016)),
+    ]

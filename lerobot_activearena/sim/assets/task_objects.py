@@ -403,7 +403,7 @@ def add_fan(spec, name, pos, yaw=0.0, rgba=(0.2, 0.5, 0.85, 1)):
     "mouse", footprint=0.045, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.05, 0.9))}
 )
 def add_mouse(spec, name, pos, yaw=0.0, rgba=(0.12, 0.12, 0.14, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "mouse",
@@ -422,6 +422,8 @@ def add_mouse(spec, name, pos, yaw=0.0, rgba=(0.12, 0.12, 0.14, 1)):
         0.09,
         functional=Functional(grasp_axis=(0.0, 1.0, 0.0)),  # across its width
     )
+    _dress_parts(spec, name, 1, dressing.mouse(rgba))
+    return info
 
 
 @register_asset("electronic_scale", footprint=0.08, role="task")
@@ -470,7 +472,7 @@ def add_display_stand(spec, name, pos, yaw=0.0, rgba=(0.9, 0.9, 0.92, 1)):
     "shoe", footprint=0.08, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.1, 0.9))}
 )
 def add_shoe(spec, name, pos, yaw=0.0, rgba=(0.75, 0.2, 0.2, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "shoe",
@@ -484,6 +486,8 @@ def add_shoe(spec, name, pos, yaw=0.0, rgba=(0.75, 0.2, 0.2, 1)):
         0.3,
         functional=Functional(grasp_axis=(0.0, 1.0, 0.0)),  # across its width
     )
+    _dress_parts(spec, name, 3, dressing.shoe(rgba))
+    return info
 
 
 @register_asset(

@@ -79,6 +79,15 @@ def lathe(profile, segments: int = 32, crease_deg: float = 40.0) -> MeshData:
     )
 
 
+def scaled(mesh: MeshData, sx: float, sy: float, sz: float = 1.0) -> MeshData:
+    """``mesh`` stretched along its axes (a lathed dome becomes an oval one: a mouse, a shoe's
+    upper); normals follow the inverse transpose, texture coordinates stay."""
+    if min(sx, sy, sz) <= 0:
+        raise ValueError(f"scale factors must be > 0, got {(sx, sy, sz)}")
+    s = np.array([sx, sy, sz])
+    return MeshData(mesh.vertices * s, mesh.faces, _unit(mesh.normals / s), mesh.texcoords)
+
+
 def _triangulate(poly: np.ndarray) -> list[tuple[int, int, int]]:
     """Ear clipping of a simple counter-clockwise polygon."""
     idx = list(range(len(poly)))
