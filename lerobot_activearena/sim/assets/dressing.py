@@ -5,9 +5,11 @@ part stays inside the object's collision extents (``tests/test_dressing.py``).""
 from __future__ import annotations
 
 import numpy as np
+from PIL import Image, ImageDraw, ImageFont
 
 from ..look.dress import Dress
 from ..look.meshes import lathe, scaled
+from .base import add_texture_material
 
 METAL = (0.78, 0.78, 0.8, 1.0)
 DARK = (0.12, 0.12, 0.13, 1.0)
@@ -44,8 +46,23 @@ def cup(radius: float, height: float, rgba) -> list[Dress]:
     return [Dress(lathe(profile), rgba)]
 
 
-def can(radius: float, height: float, rgba) -> list[Dress]:
-    """A drink can: a body with rolled edges and a metal top with its rim (to ``height`` + 8 mm)."""
+def label(spec, name: str, rgba, text: str, band: tuple[float, float], size=(256, 128)) -> str:
+    """A wrap-around label material for a lathed body (u: once around, v: along the profile from the
+    bottom): the object's colour, a white band over ``band`` (v range) with ``text`` twice round."""
+    img = Image.new("RGB", size, tuple(int(255 * c) for c in rgba[:3]))
+    draw = ImageDraw.Draw(img)
+    y0, y1 = (int(size[1] * (1.0 - v)) for v in band[::-1])  # drawn upright, then turned (below)
+    draw.rectangle([0, y0, size[0], y1], fill=(245, 245, 240))
+    font = ImageFont.load_default(size=max(8, int(0.7 * (y1 - y0))))
+    for u in (0.25, 0.75):
+        draw.text((u * size[0], 0.5 * (y0 + y1)), text, fill=(30, 30, 35), font=font, anchor="mm")
+    # MuJoCo reads image row 0 at v = 0 (the profile's bottom): flip the upright drawing.
+    return add_texture_material(spec, f"{name}_label", np.asarray(img.transpose(Image.FLIP_TOP_BOTTOM)))
+
+
+def can(spec, name: str, radius: float, height: float, rgba) -> list[Dress]:
+    """A drink can: a body with rolled edges and a printed label, and a metal top with its rim (to
+    ``height`` + 8 mm)."""
     body = [
         (0.0, 0.0),
         (0.88 * radius, 0.0),
@@ -62,11 +79,13 @@ def can(radius: float, height: float, rgba) -> list[Dress]:
         (0.78 * radius, height + 0.004),
         (0.0, height + 0.004),
     ]
-    return [Dress(lathe(body), rgba), Dress(lathe(top), METAL)]
+    material = label(spec, name, rgba, "FIZZ", (0.45, 0.6))
+    return [Dress(lathe(body), material=material), Dress(lathe(top), METAL)]
 
 
-def bottle(radius: float, height: float, body_height: float, rgba) -> list[Dress]:
-    """A bottle: body, rounded shoulder into the neck (0.4 of the radius), a white cap."""
+def bottle(spec, name: str, radius: float, height: float, body_height: float, rgba) -> list[Dress]:
+    """A bottle: body with a printed label, rounded shoulder into the neck (0.4 of the radius), a
+    white cap."""
     neck = 0.4 * radius
     shoulder = body_height - 0.25 * radius
     cap_z = height - 0.02
@@ -86,7 +105,8 @@ def bottle(radius: float, height: float, body_height: float, rgba) -> list[Dress
         (0.0, cap_z),
     ]
     cap = [(0.0, cap_z), (1.05 * neck, cap_z), (1.05 * neck, height - 0.002), (neck, height), (0.0, height)]
-    return [Dress(lathe(body), rgba), Dress(lathe(cap), (0.95, 0.95, 0.95, 1.0))]
+    material = label(spec, name, rgba, "AQUA", (0.3, 0.45))
+    return [Dress(lathe(body), material=material), Dress(lathe(cap), (0.95, 0.95, 0.95, 1.0))]
 
 
 def plate(rgba) -> list[Dress]:

@@ -33,7 +33,7 @@ def add_can(
         (0.8, 0.8, 0.82, 1),
         0.0,
     )
-    dress(spec, b, name, [shell, lid], dressing.can(radius, height, rgba))
+    dress(spec, b, name, [shell, lid], dressing.can(spec, name, radius, height, rgba))
     return ObjectInfo(
         name, "can", name, (radius, radius, height / 2 + 0.004), (0, 0, height / 2 + 0.004), mass
     )
@@ -88,7 +88,7 @@ def add_bottle(
         (0.9, 0.9, 0.9, 1),
         mass * 0.1,
     )
-    dress(spec, b, name, [shell, neck], dressing.bottle(radius, height, body_h, rgba))
+    dress(spec, b, name, [shell, neck], dressing.bottle(spec, name, radius, height, body_h, rgba))
     # Held by the neck, just above the shoulder: the palm clears the cap.
     return ObjectInfo(
         name,
