@@ -56,7 +56,18 @@ def test_every_dressed_part_stays_inside_its_objects_collision_extents():
                 f"{category}: {model.geom(g).name} reaches {out * 1000:.1f} mm past its collision box"
             )
         assert any(model.geom_group[g] == SHAPE_GROUP for g in geoms), f"{category}: no primitive was hidden"
-    assert {"bell", "cup", "can", "bottle", "plate", "pill_bottle", "mouse", "shoe"} <= set(dressed)
+    assert {
+        "bell",
+        "cup",
+        "can",
+        "bottle",
+        "plate",
+        "pill_bottle",
+        "mouse",
+        "shoe",
+        "seal",
+        "coaster",
+    } <= set(dressed)
 
 
 def _undressed(monkeypatch):

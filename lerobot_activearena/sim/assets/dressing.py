@@ -146,3 +146,47 @@ def shoe(rgba, sole_rgba=(0.95, 0.95, 0.93, 1.0)) -> list[Dress]:
         Dress(scaled(lathe(upper, segments=40), 0.09, 0.036, 0.05), rgba, pos=(0.01, 0.0, 0.016)),
         Dress(scaled(lathe(heel, segments=32), 0.035, 0.036, 0.064), rgba, pos=(-0.08, 0.0, 0.016)),
     ]
+
+
+def seal_handle(rgba) -> list[Dress]:
+    """A rubber stamp's turned handle: a collar on the base, a waist, a round knob (to z 0.103)."""
+    profile = [
+        (0.0, 0.02),
+        (0.012, 0.02),
+        (0.012, 0.028),
+        (0.009, 0.04),
+        (0.009, 0.06),
+        (0.011, 0.068),
+        *_arc(0.018, 0.085, 0.018, 8, -60.0),
+    ]
+    return [Dress(lathe(profile), rgba)]
+
+
+def display_stand(rgba) -> list[Dress]:
+    """A pedestal: a bevelled foot, a slim column, the flat top things stand on (z 0.08)."""
+    profile = [
+        (0.0, 0.0),
+        (0.045, 0.0),
+        (0.045, 0.008),
+        (0.036, 0.012),
+        (0.012, 0.014),
+        (0.012, 0.07),
+        (0.048, 0.072),
+        (0.05, 0.075),
+        (0.05, 0.08),
+        (0.0, 0.08),
+    ]
+    return [Dress(lathe(profile, segments=40), rgba)]
+
+
+def coaster(radius: float, rgba) -> list[Dress]:
+    """A coaster: a disc with a rounded edge (its cork insert stays drawn on top)."""
+    profile = [
+        (0.0, 0.0),
+        (0.96 * radius, 0.0),
+        (radius, 0.002),
+        (radius, 0.005),
+        (0.97 * radius, 0.006),
+        (0.0, 0.006),
+    ]
+    return [Dress(lathe(profile, segments=40), rgba)]

@@ -46,9 +46,9 @@ def _rgba(rgb, a=1.0):
     return (*rgb, a)
 
 
-def _dress_parts(spec, name: str, n_parts: int, parts) -> None:
-    """Dress a ``compound`` object: its first ``n_parts`` parts drawn as ``parts`` instead."""
-    replaces = [spec.geom(f"{name}_body")] + [spec.geom(f"{name}_part{k}") for k in range(1, n_parts)]
+def _dress_parts(spec, name: str, replaced: range | tuple[int, ...], parts) -> None:
+    """Dress a ``compound`` object: its parts ``replaced`` (indices) drawn as ``parts`` instead."""
+    replaces = [spec.geom(f"{name}_body" if k == 0 else f"{name}_part{k}") for k in replaced]
     dress(spec, spec.body(name), name, replaces, parts)
 
 
@@ -221,7 +221,7 @@ def add_pill_bottle(spec, name, pos, yaw=0.0, rgba=(0.95, 0.6, 0.15, 1)):
         ],
         0.08,
     )
-    _dress_parts(spec, name, 2, dressing.pill_bottle(_rgba(rgba[:3], 1.0)))
+    _dress_parts(spec, name, range(2), dressing.pill_bottle(_rgba(rgba[:3], 1.0)))
     return info
 
 
@@ -363,7 +363,7 @@ def add_plate(spec, name, pos, yaw=0.0, rgba=(0.96, 0.96, 0.94, 1)):
         0.3,
         functional=Functional(support=Support(0.014, (0.08, 0.08), "disc")),
     )
-    _dress_parts(spec, name, 3, dressing.plate(rgba))
+    _dress_parts(spec, name, range(3), dressing.plate(rgba))
     return info
 
 
@@ -422,7 +422,7 @@ def add_mouse(spec, name, pos, yaw=0.0, rgba=(0.12, 0.12, 0.14, 1)):
         0.09,
         functional=Functional(grasp_axis=(0.0, 1.0, 0.0)),  # across its width
     )
-    _dress_parts(spec, name, 1, dressing.mouse(rgba))
+    _dress_parts(spec, name, range(1), dressing.mouse(rgba))
     return info
 
 
@@ -452,7 +452,7 @@ def add_electronic_scale(spec, name, pos, yaw=0.0):
 
 @register_asset("display_stand", footprint=0.05, role="task")
 def add_display_stand(spec, name, pos, yaw=0.0, rgba=(0.9, 0.9, 0.92, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "display_stand",
@@ -466,6 +466,8 @@ def add_display_stand(spec, name, pos, yaw=0.0, rgba=(0.9, 0.9, 0.92, 1)):
         0.3,
         functional=Functional(support=Support(0.08, (0.05, 0.05), "disc")),
     )
+    _dress_parts(spec, name, range(3), dressing.display_stand(rgba))
+    return info
 
 
 @register_asset(
@@ -486,7 +488,7 @@ def add_shoe(spec, name, pos, yaw=0.0, rgba=(0.75, 0.2, 0.2, 1)):
         0.3,
         functional=Functional(grasp_axis=(0.0, 1.0, 0.0)),  # across its width
     )
-    _dress_parts(spec, name, 3, dressing.shoe(rgba))
+    _dress_parts(spec, name, range(3), dressing.shoe(rgba))
     return info
 
 
@@ -494,7 +496,7 @@ def add_shoe(spec, name, pos, yaw=0.0, rgba=(0.75, 0.2, 0.2, 1)):
     "seal", footprint=0.04, role="task", randomize=lambda rng: {"rgba": _rgba(_color(rng, 0.2, 0.9))}
 )
 def add_seal(spec, name, pos, yaw=0.0, rgba=(0.55, 0.25, 0.15, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "seal",
@@ -508,6 +510,8 @@ def add_seal(spec, name, pos, yaw=0.0, rgba=(0.55, 0.25, 0.15, 1)):
         0.12,
         functional=Functional(grasp=((0.0, 0.0, 0.06),)),
     )
+    _dress_parts(spec, name, (1, 2), dressing.seal_handle(rgba))
+    return info
 
 
 @register_asset(

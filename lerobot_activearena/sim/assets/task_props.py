@@ -161,7 +161,7 @@ def add_cup(spec, name, pos, yaw=0.0, radius=0.034, height=0.09, rgba=(0.9, 0.9,
 )
 def add_coaster(spec, name, pos, yaw=0.0, radius=0.052, rgba=(0.55, 0.2, 0.7, 1)):
     b = free_body(spec, name, pos, yaw)
-    add_geom(
+    disc = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
         (radius, 0.003, 0),
@@ -171,6 +171,7 @@ def add_coaster(spec, name, pos, yaw=0.0, radius=0.052, rgba=(0.55, 0.2, 0.7, 1)
         f"{name}_body",
         friction=(1.2, 0.01, 0.001),
     )
+    dress(spec, b, name, [disc], dressing.coaster(radius, rgba))
     add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_CYLINDER,
