@@ -9,6 +9,7 @@ import pytest
 
 from lerobot_activearena.sim.assets import ASSETS, build_asset, categories
 from lerobot_activearena.sim.assets.task_objects import date_label_image
+from lerobot_activearena.sim.look.dress import DRESS_GROUP
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 
@@ -138,8 +139,17 @@ def test_geometry_is_cheap_and_collision_shapes_are_simple():
     for k, cat in enumerate(sorted(ASSETS)):
         build_asset(spec, cat, f"g_{cat}", (0.3 * (k % 10), 0.3 * (k // 10), 0))
     model = spec.compile()
-    assert model.nmesh == 0 or model.mesh_vertnum.max() < 200
     colliding = (model.geom_contype != 0) | (model.geom_conaffinity != 0)
+    meshes = model.geom_type == mujoco.mjtGeom.mjGEOM_MESH
+    assert np.all(model.mesh_vertnum[model.geom_dataid[meshes & colliding]] < 200), (
+        "collision meshes stay coarse"
+    )
+    # Drawn-only looks (sim/look/dress.py) may be finer, within a render budget per object.
+    drawn = meshes & (model.geom_group == DRESS_GROUP)
+    triangles = np.bincount(
+        model.geom_bodyid[drawn], model.mesh_facenum[model.geom_dataid[drawn]], model.nbody
+    )
+    assert drawn.any() and triangles.max() <= 2500, f"{triangles.max()} drawn triangles on one object"
     assert set(model.geom_type[colliding].tolist()) <= ALLOWED_COLLISION
     per_object = np.bincount(model.geom_bodyid, minlength=model.nbody)
     assert per_object.max() <= 16, "too many geoms on one object"
