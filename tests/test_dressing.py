@@ -85,7 +85,14 @@ def _episode(task, seed):
 
 
 @pytest.mark.parametrize(
-    "task", ["click_bell_rotate_view", "place_container_plate_rotate_view", "place_shoe_rotate_view"]
+    "task",
+    [
+        "click_bell_rotate_view",  # bell
+        "place_empty_cup_rotate_view",  # cup, coaster
+        "place_container_plate_rotate_view",  # plate
+        "place_shoe_rotate_view",  # shoe
+        "stamp_seal_rotate_view",  # seal
+    ],
 )
 def test_a_dressed_look_changes_no_state_action_or_annotation(task, monkeypatch):
     """The expert's episode (states, actions, every annotation, visibility included) is
