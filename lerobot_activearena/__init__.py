@@ -1,8 +1,9 @@
 """ActiveArena for LeRobot: active-perception manipulation benchmark on MuJoCo.
 
 Importing the package selects MuJoCo's GL backend (it reads ``MUJOCO_GL`` once, at its first
-import) and registers the gymnasium IDs ``ActiveArena/<task>-v0`` (``envs/gym_ids.py``); sim-only
-workers pay for neither torch nor LeRobot. The LeRobot types (the
+import; an explicit ``MUJOCO_GL`` wins) and registers the gymnasium IDs ``ActiveArena/<task>-v0``
+from a static table (``envs/gym_ids.py``): it loads neither the tasks, MuJoCo, mink, torch nor
+LeRobot, and leaves numpy's BLAS alone (episode producers pin its kernels: ``sim/blas_kernels.py``). The LeRobot types (the
 ``activearena`` env and the project's policies) are registered by the discovery shim
 ``lerobot_env_activearena``, which LeRobot's CLIs import (``register_third_party_plugins``).
 """

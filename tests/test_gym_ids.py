@@ -13,7 +13,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import lerobot_activearena  # noqa: F401  (registers the IDs)
-from lerobot_activearena.envs.gym_ids import gym_id
+from lerobot_activearena.envs.gym_ids import STEP_LIMITS, gym_id
 from lerobot_activearena.tasks import get_task, task_names
 
 
@@ -22,6 +22,39 @@ def test_every_task_has_an_id_with_its_step_limit():
     assert ids == {gym_id(t) for t in task_names("all")}
     for task in task_names("all"):
         assert gym.spec(gym_id(task)).max_episode_steps == get_task(task).max_episode_steps
+
+
+def test_the_static_table_is_the_task_registry():
+    """The IDs are registered from a table so that importing the package stays cheap; it must
+    name every task with its step limit."""
+    assert {t: get_task(t).max_episode_steps for t in task_names("all")} == STEP_LIMITS
+
+
+def _python(code: str) -> subprocess.CompletedProcess:
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    return out
+
+
+def test_importing_the_package_loads_no_task_simulator_or_ik():
+    out = _python(
+        "import sys, lerobot_activearena, gymnasium as gym; "
+        "heavy = ('mujoco', 'mink', 'torch', 'lerobot', 'lerobot_activearena.tasks', 'lerobot_activearena.sim.scene'); "
+        "print(sorted(m for m in heavy if m in sys.modules), "
+        "sum(s.startswith('ActiveArena/') for s in gym.registry))"
+    )
+    assert out.stdout.split() == ["[]", str(len(STEP_LIMITS))]
+
+
+def test_gymnasium_first_then_the_package_runs_an_episode_without_a_warning():
+    """A gymnasium user's normal order (gymnasium loads numpy before the package)."""
+    out = _python(
+        "import gymnasium as gym; import lerobot_activearena; "
+        "env = gym.make('ActiveArena/click_bell_rotate_view-v0'); env.reset(seed=0); "
+        "env.step(env.unwrapped.sim.home_action()); env.close(); print('ok')"
+    )
+    assert out.stdout.split()[-1] == "ok"
+    assert "warn" not in out.stderr.lower(), out.stderr[-2000:]
 
 
 def _one_task_per_workspace() -> list[str]:

@@ -1,4 +1,4 @@
-"""Pin numpy's OpenBLAS to one kernel family, so episodes are bit-identical across x86-64 CPUs.
+"""Run numpy's OpenBLAS on one kernel family, so episodes are bit-identical across x86-64 CPUs.
 
 OpenBLAS picks its kernels by CPU when numpy loads it (Haswell, SkylakeX, Zen, ...), and their
 results differ in the last bits. The expert's IK (mink: small matrix products in numpy) carries
@@ -6,8 +6,10 @@ that into its joint targets and contact-rich motion amplifies it: on an AVX-512 
 100 ID manifest episodes averaged 133.1 expert frames against the shipped manifest's 133.0, and
 133.0 again with Haswell's kernels: the shipped manifests were made with Haswell's.
 
-OpenBLAS reads ``OPENBLAS_CORETYPE`` once, at load, so the package sets it on import, before numpy
-loads, where the CPU runs Haswell's kernels (AVX2 and FMA) and the user has not chosen one.
+Where episodes are produced (``sample_scene``, ``ActiveArenaSim``) ``use_pinned_kernels`` switches
+the loaded OpenBLAS to Haswell's kernels through its own dynamic-arch entry points (the same
+selection OpenBLAS makes at load from ``OPENBLAS_CORETYPE``), so it holds whatever was imported
+first; importing the package changes nothing.
 """
 
 from __future__ import annotations
@@ -16,10 +18,13 @@ import ctypes
 import os
 import platform
 import sys
+import threading
 from pathlib import Path
 
 KERNELS = "Haswell"  # the family the shipped artefacts were made with
 _NEEDS = ("avx2", "fma")
+_LOCK = threading.Lock()
+_PINNED = False
 
 
 def _cpu_flags() -> set[str]:
@@ -36,46 +41,76 @@ def cpu_runs_pinned_kernels() -> bool:
     return platform.machine().lower() in ("x86_64", "amd64") and set(_NEEDS) <= _cpu_flags()
 
 
-def pin_blas_kernels() -> str | None:
-    """Set ``OPENBLAS_CORETYPE`` to ``KERNELS`` unless it is set, the machine is not x86-64, or its
-    CPU lacks AVX2/FMA; return the value in force (None: OpenBLAS chooses)."""
-    if "OPENBLAS_CORETYPE" in os.environ:
-        return os.environ["OPENBLAS_CORETYPE"]
-    if not cpu_runs_pinned_kernels():
+def _openblas() -> ctypes.CDLL | None:
+    """numpy's OpenBLAS (the handle numpy loaded), or None: numpy is not loaded or uses another BLAS."""
+    numpy = sys.modules.get("numpy")
+    if numpy is None:
         return None
-    os.environ["OPENBLAS_CORETYPE"] = KERNELS
-    return KERNELS
+    for path in sorted((Path(numpy.__file__).parent.parent / "numpy.libs").glob("libscipy_openblas*")):
+        return ctypes.CDLL(str(path))
+    return None
 
 
 def openblas_kernels() -> str | None:
     """The kernel family numpy's OpenBLAS runs in this process (None: numpy is not loaded, or uses
     another BLAS)."""
-    numpy = sys.modules.get("numpy")
-    if numpy is None:
+    lib = _openblas()
+    if lib is None:
         return None
-    for path in sorted((Path(numpy.__file__).parent.parent / "numpy.libs").glob("libscipy_openblas*")):
-        lib = ctypes.CDLL(str(path))  # already loaded by numpy: the same handle
-        for name in (
-            "scipy_openblas_get_corename64_",
-            "scipy_openblas_get_corename",
-            "openblas_get_corename",
-        ):
-            fn = getattr(lib, name, None)
-            if fn is not None:
-                fn.restype = ctypes.c_char_p
-                return fn().decode().strip()
+    for name in ("scipy_openblas_get_corename64_", "scipy_openblas_get_corename", "openblas_get_corename"):
+        fn = getattr(lib, name, None)
+        if fn is not None:
+            fn.restype = ctypes.c_char_p
+            return fn().decode().strip()
     return None
 
 
-def kernels_mismatch() -> str | None:
-    """Why this process's episodes may differ in the last bits from the shipped artefacts (numpy's
-    OpenBLAS loaded before the package pinned its kernels), or None."""
-    want, have = os.environ.get("OPENBLAS_CORETYPE"), openblas_kernels()
-    if not want or not have or have.lower() == want.lower():
-        return None
-    return (
-        f"numpy's OpenBLAS runs {have} kernels, not {want}: numpy was loaded before lerobot_activearena, "
-        f"so episodes are valid but not bit-identical to the ones behind the shipped seed manifests "
-        f"(made with {KERNELS}'s). Import lerobot_activearena before numpy, or start Python with "
-        f"OPENBLAS_CORETYPE={want}."
-    )
+def switch_kernels(kernels: str) -> str:
+    """Make numpy's OpenBLAS run ``kernels`` from now on (OpenBLAS's own selection: forget the chosen
+    family, choose again from ``OPENBLAS_CORETYPE``); processes started later inherit the choice.
+    Call it while no other thread is inside BLAS. Returns the family in force."""
+    import numpy  # noqa: F401  (loads OpenBLAS if nothing has yet)
+
+    lib = _openblas()
+    quit_, init = (getattr(lib, n, None) for n in ("gotoblas_dynamic_quit", "gotoblas_dynamic_init"))
+    if quit_ is None or init is None:
+        raise RuntimeError(
+            "numpy's BLAS is not a dynamic-arch OpenBLAS (the numpy wheels' own), so its kernels cannot be "
+            f"switched to {kernels}; start Python with OPENBLAS_CORETYPE={kernels} instead."
+        )
+    os.environ["OPENBLAS_CORETYPE"] = kernels
+    with _LOCK:
+        quit_()
+        init()
+    have = openblas_kernels()
+    if (have or "").lower() != kernels.lower():
+        raise RuntimeError(
+            f"OpenBLAS runs {have} kernels after switching to {kernels}: not a family it knows"
+        )
+    return have
+
+
+def use_pinned_kernels() -> str | None:
+    """Run ``KERNELS`` on x86-64 CPUs with AVX2 and FMA unless the user chose a family
+    (``OPENBLAS_CORETYPE``); return the family in force (None: numpy's BLAS is not OpenBLAS). Cheap
+    after the first call: the episode producers call it every time."""
+    global _PINNED
+    if _PINNED:
+        return KERNELS
+    have = openblas_kernels() if "numpy" in sys.modules else None
+    chosen = os.environ.get("OPENBLAS_CORETYPE")
+    if chosen is not None and chosen.lower() != KERNELS.lower():
+        return have  # the user's choice, made before numpy loaded
+    if not cpu_runs_pinned_kernels():
+        return have
+    if have is None:
+        import numpy  # noqa: F401
+
+        have = openblas_kernels()
+        if have is None:
+            return None
+    if have.lower() != KERNELS.lower():
+        have = switch_kernels(KERNELS)
+    os.environ["OPENBLAS_CORETYPE"] = KERNELS  # worker processes load the same family
+    _PINNED = True
+    return have

@@ -22,7 +22,7 @@ from .action import (
     clip_action,
     validate_action,
 )
-from .blas_kernels import kernels_mismatch
+from .blas_kernels import use_pinned_kernels
 from .camera import cam2world_gl, extrinsic_cv, intrinsics
 from .controller import JointTargetController
 from .gl_backend import rendering_error
@@ -32,7 +32,6 @@ from .scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH, SUBSTEPS, WRIST_HEIGHT, 
 from .visibility import Visibility
 
 log = logging.getLogger(__name__)
-_KERNELS_CHECKED = False  # the BLAS kernel check runs once per process
 
 
 class ActiveArenaSim:
@@ -46,11 +45,7 @@ class ActiveArenaSim:
         """``image_height`` x ``image_width``: the head image's size (3:4; default the paper's
         384 x 512). The head camera renders at that size, and its intrinsics, visibility boxes and
         image points follow it."""
-        global _KERNELS_CHECKED
-        if not _KERNELS_CHECKED:
-            _KERNELS_CHECKED = True
-            if problem := kernels_mismatch():
-                log.warning(problem)
+        use_pinned_kernels()  # the same BLAS kernels on every x86-64 CPU (sim/blas_kernels.py)
         self.model, self.info = model, info
         self.image_height, self.image_width = validate_head_size(image_height, image_width)
         glob = model.vis.global_  # the offscreen buffer must hold the largest image rendered

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..expert.kinematics import side_reachable, top_down_reachable
 from ..sim import embodiment
+from ..sim.blas_kernels import use_pinned_kernels
 from ..sim.head_camera import head_visibility_checker, search_views
 from ..sim.simulator import ActiveArenaSim
 from .base import SPLITS, Task, TaskScene
@@ -104,6 +105,7 @@ def sample_scene(task: Task, seed: int, split: str = "id") -> TaskScene:
     principles hold (deterministic: the same inputs give the same scene)."""
     if split not in SPLITS:
         raise ValueError(f"split must be one of {SPLITS}, got {split!r}")
+    use_pinned_kernels()  # the same BLAS kernels on every x86-64 CPU (sim/blas_kernels.py)
     reasons = []
     for attempt in range(MAX_ATTEMPTS):
         draft = SceneDraft(split, derived_rng(task.name, seed, split, attempt), task.workspace)
