@@ -3,7 +3,7 @@
 
     python benchmarks/validity.py --workers 2 --out outputs/validity_bench [--ood]
 
-Prints the Markdown table of ``lerobot_activearena.eval.validity`` (also written to
+Prints the Markdown table of ``lerobot_activearena.validity.suite`` (also written to
 ``<out>/validity.md`` / ``.csv``) and the throughput of the episodes this call ran: episodes/hour
 over all workers, and seconds per episode per adversary. Resumable: a re-run with the same --out
 only runs the missing episodes.
@@ -27,9 +27,15 @@ def main() -> None:
     p.add_argument("--out", type=Path, default=Path("outputs/validity_bench"))
     args = p.parse_args()
     os.environ.setdefault("MUJOCO_GL", "egl")
-    from lerobot_activearena.eval.adversaries import ADVERSARIES
-    from lerobot_activearena.eval.validity import load_all_records, missed, run_suite, summarise, write_report
     from lerobot_activearena.tasks import task_names
+    from lerobot_activearena.validity.adversaries import ADVERSARIES
+    from lerobot_activearena.validity.suite import (
+        load_all_records,
+        missed,
+        run_suite,
+        summarise,
+        write_report,
+    )
 
     before = set(load_all_records(args.out))
     splits = ("id", "ood") if args.ood else ("id",)

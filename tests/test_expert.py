@@ -107,7 +107,7 @@ def test_count_expert_counts_what_it_saw(episodes):
 
 def test_search_never_finds_an_object_outside_every_view():
     """The expert searches with the camera: an object behind the robot is never 'found'."""
-    from lerobot_activearena.expert import primitives
+    from lerobot_activearena.expert import view_moves
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
     from lerobot_activearena.expert.kinematics import shared_kinematics
     from lerobot_activearena.sim.perception import PerceptionMemory
@@ -122,7 +122,7 @@ def test_search_never_finds_an_object_outside_every_view():
     ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, ["hidden_block"], rec, ik, gaze)
     rec.observe()
-    gen = primitives.search(ctx, 0)
+    gen = view_moves.search(ctx, 0)
     with pytest.raises(ExpertError, match="not found in any search sector"):
         for a in gen:
             sim.step(a)
@@ -159,7 +159,7 @@ def test_same_seed_same_actions_and_annotations_across_processes(expert_episode)
 
 
 def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
-    from lerobot_activearena.expert import primitives
+    from lerobot_activearena.expert import view_moves
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
     from lerobot_activearena.expert.kinematics import shared_kinematics
     from lerobot_activearena.sim.perception import PerceptionMemory
@@ -171,9 +171,9 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
     ik, gaze = shared_kinematics()
     ctx = ExpertContext(sim, [], PerceptionMemory(sim, 0), ik, gaze)
     acts = np.array(
-        list(primitives.move_torso_to(ctx, 1.1))
-        + list(primitives.move_head(ctx, -0.5))
-        + list(primitives.move_torso(ctx, -2.0))
+        list(view_moves.move_torso_to(ctx, 1.1))
+        + list(view_moves.move_head(ctx, -0.5))
+        + list(view_moves.move_torso(ctx, -2.0))
     )
     dt = 1 / 15
     v = np.abs(np.diff(acts[:, 16:18], axis=0)) / dt
@@ -183,7 +183,7 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
     np.testing.assert_allclose(acts[:, :16], acts[:1, :16].repeat(len(acts), 0))
     with pytest.raises(ExpertError, match="has not been seen"):
         ctx.objects = ["ghost"]
-        list(primitives.look_at_object(ctx, 0))
+        list(view_moves.look_at_object(ctx, 0))
 
 
 def test_pick_and_place_carries_to_a_spot_and_names_bad_arguments(monkeypatch):
@@ -218,7 +218,7 @@ def test_a_trailing_retreat_runs_alongside_and_guards_its_arm():
     """``retreat(trailing=True)``: the arm goes home over the frames the script spends on the other
     arm; commanding it meanwhile is an error; ``halt`` stops it where it is; ``await_trailing``
     waits for the rest."""
-    from lerobot_activearena.expert import primitives
+    from lerobot_activearena.expert import arm_paths, motion, skills
     from lerobot_activearena.expert.context import ExpertContext, ExpertError
     from lerobot_activearena.expert.kinematics import shared_kinematics
     from lerobot_activearena.expert.motion import arm_of
@@ -234,29 +234,29 @@ def test_a_trailing_retreat_runs_alongside_and_guards_its_arm():
     def context_with_left_arm_out():
         ctx = ExpertContext(sim, [], PerceptionMemory(sim, 0), ik, gaze)
         out = HOME_ARM["left"] + 0.4
-        acts = list(primitives.move_arm_joint(ctx, "left", out, max_vel=2.0))
+        acts = list(arm_paths.move_arm_joint(ctx, "left", out, max_vel=2.0))
         np.testing.assert_allclose(arm_of(acts[-1], "left"), out)
         return ctx, out
 
     ctx, out = context_with_left_arm_out()
-    assert list(primitives.retreat(ctx, "left", trailing=True)) == []  # no frame of its own
+    assert list(skills.retreat(ctx, "left", trailing=True)) == []  # no frame of its own
     with pytest.raises(ExpertError, match="trailing motion"):
-        next(primitives.move_arm_joint(ctx, "left", out))
+        next(arm_paths.move_arm_joint(ctx, "left", out))
     right_goal = HOME_ARM["right"] - 0.3
-    acts = np.array(list(primitives.move_arm_joint(ctx, "right", right_goal, max_vel=1.0)))
+    acts = np.array(list(arm_paths.move_arm_joint(ctx, "right", right_goal, max_vel=1.0)))
     left = np.array([arm_of(a, "left") for a in acts])
     assert np.abs(np.diff(left, axis=0)).max() > 0, "the left arm moves while the right one does"
     np.testing.assert_allclose(arm_of(acts[-1], "right"), right_goal)
-    list(primitives.await_trailing(ctx))
+    list(motion.await_trailing(ctx))
     np.testing.assert_allclose(arm_of(ctx.action, "left"), HOME_ARM["left"])
     assert not ctx.trailing
 
     ctx, out = context_with_left_arm_out()
-    list(primitives.retreat(ctx, "left", trailing=True))
-    list(primitives.hold(ctx, 3))
-    primitives.halt(ctx, "left")
+    list(skills.retreat(ctx, "left", trailing=True))
+    list(motion.hold(ctx, 3))
+    motion.halt(ctx, "left")
     stopped = arm_of(ctx.action, "left")
     assert 0 < np.abs(stopped - out).max() < np.abs(HOME_ARM["left"] - out).max()
-    list(primitives.hold(ctx, 3))
+    list(motion.hold(ctx, 3))
     np.testing.assert_allclose(arm_of(ctx.action, "left"), stopped)  # halted: it stays
-    list(primitives.move_arm_joint(ctx, "left", out))  # and is free to command again
+    list(arm_paths.move_arm_joint(ctx, "left", out))  # and is free to command again

@@ -1,6 +1,6 @@
 """The package's layers point one way:
 
-    sim <- annotations <- expert <- tasks <- envs / datasets_build / eval / policies <- cli
+    sim <- annotations <- expert <- tasks <- envs / datasets_build / eval / validity / policies <- cli
 
 Every import in the package (module level, inside functions and under TYPE_CHECKING) is read from
 the source; a module may import its own layer and the layers below, never one above (type-only
@@ -24,6 +24,7 @@ LAYERS = {  # rank: a module may import ranks <= its own
     "envs": 4,
     "datasets_build": 4,
     "eval": 4,
+    "validity": 4,  # adversaries and the suite that runs them
     "policies": 4,
     "cli": 5,
 }

@@ -12,13 +12,14 @@ from conftest import expert_task_params
 
 from lerobot_activearena.cli.validity import main as validity_main
 from lerobot_activearena.envs.manifests import EVAL_SEED_START
-from lerobot_activearena.eval.adversaries import (
+from lerobot_activearena.tasks import task_names
+from lerobot_activearena.validity.adversaries import (
     ADVERSARIES,
     VALIDITY_SEED_BASE,
     check_outside_manifests,
     run_episode,
 )
-from lerobot_activearena.eval.validity import (
+from lerobot_activearena.validity.suite import (
     TARGETS,
     records_path,
     run_suite,
@@ -26,7 +27,6 @@ from lerobot_activearena.eval.validity import (
     targets_met,
     write_report,
 )
-from lerobot_activearena.tasks import task_names
 
 TASKS = task_names("all")
 # held random targets reach further than a new random target every step (which jitters around

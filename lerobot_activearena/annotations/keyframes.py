@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..sim.action import ACTION_NAMES
+from ..sim.action import ACTION_NAMES, CONTROL_HZ
 
 CHUNK = 16
 STRIDE = 16
@@ -24,7 +24,7 @@ ROTATION_MAX_GAP = 5  # still frames merged into one rotation; one more confirms
 EEF_TURN_DEG = 40.0
 EEF_STOP = 0.001  # m/s
 MOTION_DEDUP = 5  # a candidate closer than this to the previous kept keyframe is dropped
-FPS = 15
+FPS = CONTROL_HZ
 
 
 def chunk_keyframes(length: int, chunk: int = CHUNK) -> np.ndarray:

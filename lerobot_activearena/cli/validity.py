@@ -17,8 +17,8 @@ import json
 import os
 from pathlib import Path
 
-from ..eval.adversaries import ADVERSARIES, VALIDITY_SEED_BASE
-from ..eval.validity import RECORDS, missed, run_suite, summarise, write_report
+from ..validity.adversaries import ADVERSARIES, VALIDITY_SEED_BASE
+from ..validity.suite import RECORDS, missed, run_suite, summarise, write_report
 
 
 def _list(text: str) -> list[str]:

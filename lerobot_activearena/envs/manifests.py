@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-MANIFEST_DIR = Path(__file__).with_name("manifests")
+MANIFEST_DIR = Path(__file__).with_name("seed_manifests")  # one JSON per task
 EVAL_SEED_START = 100_000
 MANIFEST_SIZE = 100
 PROTOCOL_EPISODES = 50

@@ -104,7 +104,7 @@ class ExpertContext:
         return self.action.copy()
 
     def require_idle(self, side: str) -> None:
-        """Raise if the ``side`` arm is still making a trailing motion (``primitives.await_trailing``)."""
+        """Raise if the ``side`` arm is still making a trailing motion (``motion.await_trailing``)."""
         if side in self.trailing:
             raise ExpertError(
                 f"the {side} arm is commanded while its trailing motion runs: await or halt it first"

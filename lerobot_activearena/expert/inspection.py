@@ -19,7 +19,7 @@ from ..annotations.schema import CAMERA_INSPECT, STAGE_ANCHOR, STAGE_SEARCH
 from ..sim import embodiment
 from ..sim.head_camera import hidden_face_visible
 from ..sim.workspace import TABLE_TOP
-from . import primitives, routines
+from . import arm_paths, motion, routines, skills, view_moves
 from .context import ExpertContext, ExpertError
 from .ik import grasp_rotation, rot_z
 
@@ -84,7 +84,7 @@ def _grasp_for_turn(
     inspection point: the first whose carry and whole turn IK can follow (the angles of
     ``turn_angles`` in order of obliqueness, then the points in order)."""
     _, body_rot = ctx.pose(i)
-    grasp = primitives.grasp_point(ctx, i)
+    grasp = skills.grasp_point(ctx, i)
     path = [grasp + [0, 0, 0.12], grasp, grasp + [0, 0, lift]]
     # Exactly facing the camera from any point beats an oblique view from a preferred one.
     ranked = sorted(
@@ -94,19 +94,19 @@ def _grasp_for_turn(
     for _, _, point, angle, sign in ((*c, g) for c in ranked for g in (1.0, -1.0)):
         rot = grasp_rotation([0, 0, -1], sign * body_rot[:, 1])
         try:
-            q = primitives.arm_of(ctx.action, side)
+            q = motion.arm_of(ctx.action, side)
             for pos in path:
-                q = primitives.solve_ik(ctx, side, q, pos, rot)
+                q = arm_paths.solve_ik(ctx, side, q, pos, rot)
             # The carry to the inspection point and the turn, as carry_and_turn will follow them.
             top = path[-1]
             for frac in np.linspace(0.0, 1.0, 13)[1:]:
-                q = primitives.solve_ik(
+                q = arm_paths.solve_ik(
                     ctx,
                     side,
                     q,
                     top + frac * (point - top),
                     rot_z(frac * angle) @ rot,
-                    max_step=primitives.MAX_PATH_STEP,
+                    max_step=arm_paths.MAX_PATH_STEP,
                 )
             return sign * body_rot[:, 1], angle, point
         except ExpertError:
@@ -120,9 +120,9 @@ def pick_for_inspection(
     """Find object ``i``, face it and pick it with a grasp the wrist can turn: ``turn = yield from ...``.
     ``fine_print``: the face must be read in detail; turn it where the camera sees it most frontally."""
     side = yield from routines.find_and_face(ctx, i)
-    points = inspect_points(ctx, side, float(primitives.grasp_point(ctx, i)[2]) - ctx.bottom_z(i), fine_print)
+    points = inspect_points(ctx, side, float(skills.grasp_point(ctx, i)[2]) - ctx.bottom_z(i), fine_print)
     closing, angle, point = _grasp_for_turn(ctx, side, i, points, lift)
-    yield from primitives.pick(ctx, side, i, closing=closing, lift=lift, flip_ok=False)
+    yield from skills.pick(ctx, side, i, closing=closing, lift=lift, flip_ok=False)
     return Turn(side, point, angle)
 
 
@@ -131,16 +131,16 @@ def show_hidden_face(ctx: ExpertContext, turn: Turn, i: int):
     sees its information face (the information-revealing action); raises if it never does."""
     it = ctx.intent
     it.stage, it.info_complete, it.focus = STAGE_SEARCH, False, i
-    turn.q_before = primitives.arm_of(ctx.action, turn.side).copy()
-    yield from primitives.carry_and_turn(ctx, turn.side, turn.point, turn.angle)
+    turn.q_before = motion.arm_of(ctx.action, turn.side).copy()
+    yield from skills.carry_and_turn(ctx, turn.side, turn.point, turn.angle)
     it.stage = STAGE_ANCHOR
     yaw, pitch = ctx.gaze.aim(ctx.center(i), ctx.yaw, ctx.pitch, fix_yaw=True)
-    yield from primitives.move_head_torso_to(ctx, yaw, pitch, CAMERA_INSPECT)
+    yield from view_moves.move_head_torso_to(ctx, yaw, pitch, CAMERA_INSPECT)
     info = ctx.obj(i)
     for _ in range(FACE_WAIT):
         if hidden_face_visible(ctx.sim.model, ctx.sim.data, info):
             break
-        yield from primitives.hold(ctx, 1)
+        yield from motion.hold(ctx, 1)
     else:
         raise ExpertError(f"the hidden face of {ctx.objects[i]} never came into view")
     it.info_complete = True
@@ -153,7 +153,7 @@ def show_hidden_face(ctx: ExpertContext, turn: Turn, i: int):
             "head_pitch": round(ctx.pitch, 4),
         }
     )
-    yield from primitives.hold(ctx, 3)
+    yield from motion.hold(ctx, 3)
 
 
 def record_reading(ctx: ExpertContext, i: int, reading, decision: str) -> None:
@@ -168,6 +168,6 @@ def record_reading(ctx: ExpertContext, i: int, reading, decision: str) -> None:
 def restore_pose(ctx: ExpertContext, turn: Turn, i: int):
     """Turn the carried object back to its picked orientation (placement-ready): the arm returns
     to its joints before the turn."""
-    primitives.start_action(ctx, {i})
+    skills.start_action(ctx, {i})
     ctx.intent.carried = {i}
-    yield from primitives.move_arm_joint(ctx, turn.side, turn.q_before, max_vel=1.5)
+    yield from arm_paths.move_arm_joint(ctx, turn.side, turn.q_before, max_vel=1.5)

@@ -1,14 +1,20 @@
-"""Time profiles: turn a goal into a sequence of 15 Hz 18-D actions."""
+"""Time profiles: turn a goal into a sequence of 15 Hz 18-D actions, or wait (``hold``, ``await_trailing``, ``halt``)."""
 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..sim.action import LEFT_ARM, LEFT_GRIPPER, RIGHT_ARM, RIGHT_GRIPPER
+from ..sim.action import CONTROL_HZ, LEFT_ARM, LEFT_GRIPPER, RIGHT_ARM, RIGHT_GRIPPER
 
-CONTROL_DT = 1.0 / 15
+if TYPE_CHECKING:
+    from .context import ExpertContext
+
+CONTROL_DT = 1.0 / CONTROL_HZ
+Actions = Iterator[np.ndarray]  # what the expert's moves yield: one 18-D action per control step
 
 
 def interpolate_joints(
@@ -70,3 +76,19 @@ def arm_of(action: np.ndarray, side: str) -> np.ndarray:
 
 def gripper_index(side: str) -> int:
     return LEFT_GRIPPER if side == "left" else RIGHT_GRIPPER
+
+
+def hold(ctx: ExpertContext, steps: int) -> Actions:
+    for _ in range(steps):
+        yield ctx.emit()
+
+
+def await_trailing(ctx: ExpertContext, side: str | None = None) -> Actions:
+    """Hold until the ``side`` arm's trailing motion (None: every arm's) has ended."""
+    while (side in ctx.trailing) if side is not None else ctx.trailing:
+        yield ctx.emit()
+
+
+def halt(ctx: ExpertContext, side: str) -> None:
+    """Stop the ``side`` arm's trailing motion where it is (it is needed again: no need to go home)."""
+    ctx.trailing.pop(side, None)

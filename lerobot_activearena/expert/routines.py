@@ -10,7 +10,7 @@ from collections.abc import Generator
 import numpy as np
 
 from ..sim.workspace import TABLE_TOP
-from . import primitives
+from . import arm_paths, motion, skills, view_moves
 from .context import ExpertContext
 
 
@@ -20,9 +20,9 @@ def find_and_face(
     """Search for object ``i`` (from memory or by sector sweep), choose the arm (``side``, or the one
     on the object's half of the fan; with a known destination ``then``, the half of the midpoint)
     and turn the torso so the object sits in front of it. Returns the arm: ``side = yield from ...``."""
-    yield from primitives.search(ctx, i, center=False)
-    side = side or primitives.arm_for(ctx.memory[i], then)
-    yield from primitives.face_for_arm(ctx, ctx.memory[i], side)
+    yield from view_moves.search(ctx, i, center=False)
+    side = side or skills.arm_for(ctx.memory[i], then)
+    yield from view_moves.face_for_arm(ctx, ctx.memory[i], side)
     return side
 
 
@@ -50,13 +50,13 @@ def press_point(ctx: ExpertContext, i: int) -> np.ndarray:
 
 def press_object(ctx: ExpertContext, side: str, i: int, depth: float):
     """Closed fingertips pressed ``depth`` m into object ``i``'s press point, then lifted off."""
-    yield from primitives.press(ctx, side, press_point(ctx, i), depth=depth, targets={i})
+    yield from skills.press(ctx, side, press_point(ctx, i), depth=depth, targets={i})
 
 
 def finish(ctx: ExpertContext, side: str, hold: int = 3):
     """Return the arm home with the gripper open, then hold still."""
-    yield from primitives.retreat(ctx, side)
-    yield from primitives.hold(ctx, hold)
+    yield from skills.retreat(ctx, side)
+    yield from motion.hold(ctx, hold)
 
 
 GRASP_ACROSS = ("box", "radial")
@@ -100,7 +100,7 @@ def pick_and_place(
     point the gripper comes in, how high above the set-down pose it carries the object in.
     ``face_robot``: set ``obj`` down with its ``functional.front`` towards the robot's base.
     ``carry_in``: pull the held object in to this distance from the robot's base before the torso
-    turns (a long object swings wide). ``straight_approach``: see ``primitives.pick``. ``set_down``: a
+    turns (a long object swings wide). ``straight_approach``: see ``skills.pick``. ``set_down``: a
     function of the destination's centre giving the table point (x, y) to set ``obj`` down at instead
     of the destination's top (placing beside it). Returns the arm."""
     if (dest is None) == (spot is None):
@@ -109,27 +109,27 @@ def pick_and_place(
         raise ValueError(f"grasp_across must be one of {GRASP_ACROSS}, got {grasp_across!r}")
     with ctx.subtask(subtasks[0]):
         side = yield from find_and_face(ctx, obj, side)
-        closing = primitives.radial_tangent(ctx.center(obj)) if grasp_across == "radial" else None
-        yield from primitives.pick(
+        closing = arm_paths.radial_tangent(ctx.center(obj)) if grasp_across == "radial" else None
+        yield from skills.pick(
             ctx, side, obj, closing=closing, lift=lift, approach=approach, straight_approach=straight_approach
         )
     with ctx.subtask(subtasks[1]):
         if carry_in is not None:
-            yield from primitives.pull_in(ctx, side, carry_in)
+            yield from skills.pull_in(ctx, side, carry_in)
         if dest is not None:
             yield from find_and_face(ctx, dest, side)
-            primitives.start_action(ctx, {obj, dest})
+            skills.start_action(ctx, {obj, dest})
             if set_down is None:
                 target, z = ctx.center(dest)[:2], surface_z(ctx, dest)
             else:  # beside the destination: turn to the spot
                 target, z = np.asarray(set_down(ctx.center(dest)), float)[:2], TABLE_TOP
-                yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)
+                yield from view_moves.face_for_arm(ctx, np.array([*target, z]), side)
         else:
             target, z = np.asarray(spot, float)[:2], float(spot[2]) if len(spot) > 2 else TABLE_TOP
-            yield from primitives.face_for_arm(ctx, np.array([*target, z]), side)
-            primitives.start_action(ctx, {obj})
+            yield from view_moves.face_for_arm(ctx, np.array([*target, z]), side)
+            skills.start_action(ctx, {obj})
         yaw = facing_robot_yaw(ctx.obj(obj), target) if face_robot else None
-        yield from primitives.place(ctx, side, obj, target, z + above, obj_yaw=yaw, hover=hover)
+        yield from skills.place(ctx, side, obj, target, z + above, obj_yaw=yaw, hover=hover)
         if finish_after:
             yield from finish(ctx, side)
     return side

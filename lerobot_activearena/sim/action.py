@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+CONTROL_HZ = 15  # actions are commanded (and frames recorded) at the paper's 15 Hz
 ACTION_DIM = 18
 LEFT_ARM = slice(0, 7)
 LEFT_GRIPPER = 7

@@ -8,6 +8,7 @@ import mujoco
 import numpy as np
 
 from . import embodiment
+from .action import CONTROL_HZ
 from .assets import ObjectInfo, build_asset
 from .look import CEILING, DEFAULT_LOOK, Look
 from .look.materials import add_surface_material
@@ -15,7 +16,6 @@ from .look.room import add_room, add_sky
 from .look.tabletop import add_tabletop_visual
 from .workspace import COLLISION_ONLY_GROUP, Workspace, add_workspace, fan_workspace
 
-CONTROL_HZ = 15
 SUBSTEPS = 32  # physics steps per control step: dt = 1/480 s
 HEAD_WIDTH, HEAD_HEIGHT = 512, 384
 HEAD_SIZE = (HEAD_HEIGHT, HEAD_WIDTH)  # the paper's head image (height, width)

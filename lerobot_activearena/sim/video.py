@@ -8,9 +8,11 @@ import av
 import numpy as np
 from PIL import Image, ImageDraw
 
+from .action import CONTROL_HZ
+
 
 class Mp4Writer:
-    def __init__(self, path: str | Path, fps: int = 15, crf: int = 23):
+    def __init__(self, path: str | Path, fps: int = CONTROL_HZ, crf: int = 23):
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._container = av.open(str(self.path), mode="w")

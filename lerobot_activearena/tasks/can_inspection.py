@@ -8,7 +8,7 @@ asset parameters), and maps what the expert read to the area (``area_for``).
 
 from __future__ import annotations
 
-from ..expert import inspection, primitives, routines
+from ..expert import inspection, routines, skills
 from ..sim.embodiment import ARMS
 from . import predicates
 from .base import Task
@@ -79,9 +79,9 @@ class InspectCanTask(Task):
         with ctx.subtask(4):
             target = ctx.idx(area)
             yield from routines.find_and_face(ctx, target, turn.side)
-            primitives.start_action(ctx, {can, target})
+            skills.start_action(ctx, {can, target})
             ctx.intent.carried = {can}
-            yield from primitives.place(
+            yield from skills.place(
                 ctx, turn.side, can, ctx.center(target)[:2], ctx.top_z(target), yaw_free=True
             )
             yield from routines.finish(ctx, turn.side)

@@ -7,7 +7,7 @@ expert counts what it has seen (``count_seen``); buttons, checks and the press c
 
 from __future__ import annotations
 
-from ..expert import primitives, routines
+from ..expert import routines, view_moves
 from ..expert.context import ExpertError
 from ..sim.embodiment import ARMS
 from . import predicates
@@ -68,7 +68,7 @@ class CountAndPressTask(Task):
     def expert(self, ctx, scene):
         candidates = [i for i, n in enumerate(ctx.objects) if not n.startswith("button_")]
         with ctx.subtask(1):
-            yield from primitives.sweep_all(ctx, candidates)
+            yield from view_moves.sweep_all(ctx, candidates)
             seen = [i for i in candidates if ctx.perception.discovered[i]]
             count = self.count_seen(ctx, scene, seen)
             ctx.notes["count"] = count

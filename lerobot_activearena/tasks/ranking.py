@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from ..expert import primitives, routines
+from ..expert import motion, routines, skills, view_moves
 from ..sim.embodiment import ARMS
 from . import predicates
 from .base import Task
@@ -26,7 +26,7 @@ from .draft import HIDDEN, REACH, Region
 SPACING = 0.085  # m between neighbouring block centres in the final row
 ANCHOR = Region(angle=(50.0, 150.0))
 # Two-level variants: the anchor on the upper band (the release's row is at 0.68 m), where the
-# expert sets blocks down with the horizontal side entry (``primitives.place_on_upper``).
+# expert sets blocks down with the horizontal side entry (``skills.place_on_upper``).
 UPPER_ANCHOR = Region(r=(0.66, 0.70), angle=(50.0, 150.0), level=1)
 
 
@@ -120,16 +120,16 @@ class RankBlocksTask(Task):
                 side = yield from routines.find_and_face(
                     ctx, block, then=None if dest is None else right_of(dest)
                 )
-                yield from primitives.pick(ctx, side, block, lift=self.lift, approach=self.approach)
+                yield from skills.pick(ctx, side, block, lift=self.lift, approach=self.approach)
             with ctx.subtask(2 * k + 2):
-                yield from primitives.search(ctx, ref, center=False)
+                yield from view_moves.search(ctx, ref, center=False)
                 target = right_of(ctx.memory[ref])
-                yield from primitives.face_for_arm(ctx, np.array([*target, ctx.memory[ref][2]]), side)
-                primitives.start_action(ctx, {block, ref})
+                yield from view_moves.face_for_arm(ctx, np.array([*target, ctx.memory[ref][2]]), side)
+                skills.start_action(ctx, {block, ref})
                 if scene.params.get("row_level"):
-                    yield from primitives.place_on_upper(ctx, side, block, target, ctx.bottom_z(ref))
+                    yield from skills.place_on_upper(ctx, side, block, target, ctx.bottom_z(ref))
                 else:
-                    yield from primitives.place(ctx, side, block, target, ctx.bottom_z(ref), hover=self.hover)
+                    yield from skills.place(ctx, side, block, target, ctx.bottom_z(ref), hover=self.hover)
                 ctx.memory[block] = ctx.center(block)  # the expert knows where it put it
-                yield from primitives.retreat(ctx, side)
-        yield from primitives.hold(ctx, 3)
+                yield from skills.retreat(ctx, side)
+        yield from motion.hold(ctx, 3)

@@ -15,9 +15,10 @@ from collections import deque
 
 import numpy as np
 
-from ..expert import primitives, routines
+from ..expert import arm_paths, routines, skills
 from ..expert.motion import CONTROL_DT
 from ..sim.embodiment import ARMS
+from ..sim.workspace import TABLE_TOP
 from . import predicates
 from .base import Task
 from .draft import Region
@@ -129,13 +130,13 @@ class ShakeBottleTask(Task):
         with ctx.subtask(1):
             side = yield from routines.find_and_face(ctx, bottle)
             home = ctx.center(bottle)
-            yield from primitives.pick(ctx, side, bottle, closing=primitives.radial_tangent(home), lift=0.12)
-            p, rot = primitives.tcp_pose(ctx, side)
-            axis = np.array([0.0, 0.0, 1.0]) if not self.horizontal else primitives.radial_tangent(p)
+            yield from skills.pick(ctx, side, bottle, closing=arm_paths.radial_tangent(home), lift=0.12)
+            p, rot = arm_paths.tcp_pose(ctx, side)
+            axis = np.array([0.0, 0.0, 1.0]) if not self.horizontal else arm_paths.radial_tangent(p)
             for k in range(REVERSALS + 2):  # swings of 8 cm, a little over 3 per second
-                yield from primitives.arm_line(
+                yield from arm_paths.arm_line(
                     ctx, side, p + (0.04 if k % 2 == 0 else -0.04) * axis, rot, 0.0, speed=0.45
                 )
-            yield from primitives.arm_line(ctx, side, p, rot, 0.0, speed=0.3)
-            yield from primitives.place(ctx, side, bottle, home[:2], 0.74, yaw_free=False)
+            yield from arm_paths.arm_line(ctx, side, p, rot, 0.0, speed=0.3)
+            yield from skills.place(ctx, side, bottle, home[:2], TABLE_TOP, yaw_free=False)
             yield from routines.finish(ctx, side)

@@ -18,7 +18,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import primitives, routines
+from ...expert import motion, routines, skills
 from ...sim.assets.task_props import BLOCK_COLORS
 from ...sim.embodiment import ARMS
 from .. import predicates
@@ -75,11 +75,11 @@ class BeatBlockHammerRotateView(Task):
         side, hammer, block = scene.params["arm"], ctx.idx("hammer"), ctx.idx("block")
         with ctx.subtask(1):
             yield from routines.find_and_face(ctx, hammer, side)
-            yield from primitives.pick(ctx, side, hammer, lift=0.08, approach=0.08)
-            yield from primitives.hold_aside(ctx, side)
+            yield from skills.pick(ctx, side, hammer, lift=0.08, approach=0.08)
+            yield from skills.hold_aside(ctx, side)
         with ctx.subtask(2):
             yield from routines.find_and_face(ctx, block, side)
-            primitives.start_action(ctx, {hammer, block})
+            skills.start_action(ctx, {hammer, block})
             top = ctx.center(block)[:2].tolist() + [ctx.top_z(block)]
-            yield from primitives.strike(ctx, side, hammer, top)
-            yield from primitives.hold(ctx, 12)
+            yield from skills.strike(ctx, side, hammer, top)
+            yield from motion.hold(ctx, 12)

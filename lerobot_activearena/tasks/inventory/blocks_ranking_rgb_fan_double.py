@@ -4,7 +4,7 @@ Task Description:
     As blocks_ranking_rgb_rotate_view on the two-level workspace: the red block stays where it is,
     on the upper band (70 %) or the lower fan; the green block goes to its right, the blue block to
     the right of the green one, in a row on one arc. On the upper band the expert slides each block
-    in with the wrist horizontal (``primitives.place_on_upper``).
+    in with the wrist horizontal (``skills.place_on_upper``).
 Randomizations:
     The row's level (upper in 70 % of episodes, as released); the red block at 50-150 deg, on the
     upper band 0.66-0.70 m out (the release: 0.68) or in the lower arms' band, with two empty slots

@@ -4,7 +4,7 @@ Task Description:
     As blocks_ranking_size_rotate_view on the two-level workspace: the large block stays where it
     is, on the upper band (70 %) or the lower fan; the medium block goes to its right, the small
     block to the right of the medium one, in a row on one arc. On the upper band the expert slides
-    each block in with the wrist horizontal (``primitives.place_on_upper``).
+    each block in with the wrist horizontal (``skills.place_on_upper``).
 Randomizations:
     The row's level (upper in 70 % of episodes, as released); cube half sizes 3.0-3.3 / 2.4-2.7 /
     1.8-2.1 cm and three different colours drawn per episode (the release fixes a colour per size,

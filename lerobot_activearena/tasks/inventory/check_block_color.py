@@ -16,7 +16,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import inspection, primitives, routines
+from ...expert import inspection, routines, skills
 from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
@@ -104,9 +104,7 @@ class CheckBlockColor(Task):
         with ctx.subtask(4):
             pad = ctx.idx(f"{color}_pad")
             yield from routines.find_and_face(ctx, pad, turn.side)
-            primitives.start_action(ctx, {block, pad})
+            skills.start_action(ctx, {block, pad})
             ctx.intent.carried = {block}
-            yield from primitives.place(
-                ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True
-            )
+            yield from skills.place(ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True)
             yield from routines.finish(ctx, turn.side)

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...expert import inspection, primitives, routines
+from ...expert import inspection, motion, routines, skills
 from ...sim.embodiment import ARMS, other_arm
 from .. import predicates
 from ..base import Subtask, Task
@@ -127,11 +127,11 @@ class MatchBacksideTwoBlocks(Task):
                     ctx, pad, used.get(pad, 0), shared=scene.params["patch_colors"].count(color) == 2
                 )
                 used[pad] = used.get(pad, 0) + 1
-                primitives.start_action(ctx, {block, pad})
+                skills.start_action(ctx, {block, pad})
                 ctx.intent.carried = {block}
-                yield from primitives.place(ctx, turn.side, block, target, ctx.top_z(pad), yaw_free=True)
-                yield from primitives.retreat(ctx, turn.side)
-        yield from primitives.hold(ctx, 3)
+                yield from skills.place(ctx, turn.side, block, target, ctx.top_z(pad), yaw_free=True)
+                yield from skills.retreat(ctx, turn.side)
+        yield from motion.hold(ctx, 3)
 
 
 def pad_spot(ctx, pad: int, n_on_it: int, shared: bool) -> np.ndarray:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...expert import primitives, routines
+from ...expert import arm_paths, motion, routines, skills, view_moves
 from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
@@ -79,17 +79,17 @@ class PlaceCansPlasticboxRotateView(Task):
             cans.remove(can)
             with ctx.subtask(2 * k + 1):
                 side = yield from routines.find_and_face(ctx, can, then=ctx.memory.get(box))
-                closing = primitives.radial_tangent(ctx.center(can))
-                yield from primitives.pick(ctx, side, can, closing=closing, lift=LIFT[k], approach=0.14)
+                closing = arm_paths.radial_tangent(ctx.center(can))
+                yield from skills.pick(ctx, side, can, closing=closing, lift=LIFT[k], approach=0.14)
             with ctx.subtask(2 * k + 2):
                 yield from routines.find_and_face(ctx, box, side)
                 pos, rot = ctx.pose(box)
                 target = (pos + rot @ np.array([slot, 0.0, 0.0]))[:2]
-                yield from primitives.face_for_arm(ctx, np.array([*target, pos[2]]), side)
-                primitives.start_action(ctx, {can, box})
-                yield from primitives.place(
+                yield from view_moves.face_for_arm(ctx, np.array([*target, pos[2]]), side)
+                skills.start_action(ctx, {can, box})
+                yield from skills.place(
                     ctx, side, can, target, routines.surface_z(ctx, box), hover=HOVER[k], slow_last=0.04
                 )
                 ctx.memory[can] = ctx.center(can)
-                yield from primitives.retreat(ctx, side)
-        yield from primitives.hold(ctx, 3)
+                yield from skills.retreat(ctx, side)
+        yield from motion.hold(ctx, 3)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from ...expert import primitives, routines
+from ...expert import arm_paths, routines, skills
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH, Region
@@ -78,17 +78,17 @@ class PlaceObjectBasketFanDouble(Task):
         can, basket = ctx.idx("can"), ctx.idx("bread_basket")
         with ctx.subtask(1):
             side = yield from routines.find_and_face(ctx, can)
-            yield from primitives.pick(ctx, side, can, closing=primitives.radial_tangent(ctx.center(can)))
+            yield from skills.pick(ctx, side, can, closing=arm_paths.radial_tangent(ctx.center(can)))
         with ctx.subtask(2):
             yield from routines.find_and_face(ctx, basket, side)
-            primitives.start_action(ctx, {can, basket})
+            skills.start_action(ctx, {can, basket})
             centre, floor = ctx.center(basket)[:2], routines.surface_z(ctx, basket)
             if scene.params["basket_level"]:
                 rim = ctx.pose(basket)[0][2] + ctx.obj(basket).functional.container.rim
                 over = rim + RIM_CLEARANCE - floor
-                yield from primitives.place_on_upper(
+                yield from skills.place_on_upper(
                     ctx, side, can, centre, floor, over=over, drop=True, from_shoulder=True
                 )
             else:
-                yield from primitives.place(ctx, side, can, centre, floor, hover=0.12, slow_last=0.04)
+                yield from skills.place(ctx, side, can, centre, floor, hover=0.12, slow_last=0.04)
             yield from routines.finish(ctx, side)

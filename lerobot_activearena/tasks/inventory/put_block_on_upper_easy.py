@@ -18,7 +18,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import primitives, routines
+from ...expert import arm_paths, routines, skills
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, Region
@@ -56,11 +56,11 @@ class PutBlockOnUpperEasy(Task):
         b, plate = ctx.idx("block"), ctx.idx("plate")
         with ctx.subtask(1):
             side = yield from routines.find_and_face(ctx, b)
-            yield from primitives.pick(ctx, side, b, closing=primitives.radial_tangent(ctx.center(b)))
+            yield from skills.pick(ctx, side, b, closing=arm_paths.radial_tangent(ctx.center(b)))
         with ctx.subtask(2):
             yield from routines.find_and_face(ctx, plate, side)
-            primitives.start_action(ctx, {b, plate})
-            yield from primitives.place_on_upper(
+            skills.start_action(ctx, {b, plate})
+            yield from skills.place_on_upper(
                 ctx, side, b, ctx.center(plate)[:2], routines.surface_z(ctx, plate)
             )
             yield from routines.finish(ctx, side)

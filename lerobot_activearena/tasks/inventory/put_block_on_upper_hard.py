@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...expert import primitives, routines
+from ...expert import arm_paths, motion, routines, skills
 from .. import predicates
 from ..base import Subtask, Task
 from ..draft import HIDDEN, REACH, Region
@@ -76,26 +76,26 @@ class PutBlockOnUpperHard(Task):
             remaining.remove(b)
             with ctx.subtask(2 * k + 1):
                 side = yield from routines.find_and_face(ctx, b)
-                primitives.halt(ctx, side)  # the arm that placed the first block fetches this one
-                closing = primitives.radial_tangent(ctx.center(b))
-                yield from primitives.pick(
+                motion.halt(ctx, side)  # the arm that placed the first block fetches this one
+                closing = arm_paths.radial_tangent(ctx.center(b))
+                yield from skills.pick(
                     ctx, side, b, closing=closing, lift=0.08, approach=0.08, max_vel=PICK_MAX_VEL
                 )
             with ctx.subtask(2 * k + 2):
                 yield from routines.find_and_face(ctx, plate, side)
-                primitives.start_action(ctx, {b, plate})
+                skills.start_action(ctx, {b, plate})
                 centre = ctx.center(plate)
                 out = centre[:2] / np.linalg.norm(centre[:2])
                 spot = centre[:2] + (SPOT_OFFSET if k == 0 else -SPOT_OFFSET) * out
                 z = routines.surface_z(ctx, plate)
                 if scene.params["plate_level"]:
-                    yield from primitives.place_on_upper(ctx, side, b, spot, z)
+                    yield from skills.place_on_upper(ctx, side, b, spot, z)
                 else:
-                    yield from primitives.place(ctx, side, b, spot, z + 0.002)
+                    yield from skills.place(ctx, side, b, spot, z + 0.002)
                 # the same arm fetches the next block straight from here; else it goes home while
                 # the head and the other arm go on
                 nxt = routines.nearest_known(ctx, remaining) if remaining else None
-                if nxt is None or nxt not in ctx.memory or primitives.arm_for(ctx.memory[nxt]) != side:
-                    yield from primitives.retreat(ctx, side, trailing=True)
-        yield from primitives.await_trailing(ctx)
-        yield from primitives.hold(ctx, 3)
+                if nxt is None or nxt not in ctx.memory or skills.arm_for(ctx.memory[nxt]) != side:
+                    yield from skills.retreat(ctx, side, trailing=True)
+        yield from motion.await_trailing(ctx)
+        yield from motion.hold(ctx, 3)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from ...expert import inspection, primitives, routines
+from ...expert import inspection, motion, routines, skills
 from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task
@@ -114,10 +114,10 @@ class RankBacksideRgbBlocks(Task):
             with ctx.subtask(3 * k + 3):
                 pad = ctx.idx(f"{RANK[color]}_pad")
                 yield from routines.find_and_face(ctx, pad, turn.side)
-                primitives.start_action(ctx, {block, pad})
+                skills.start_action(ctx, {block, pad})
                 ctx.intent.carried = {block}
-                yield from primitives.place(
+                yield from skills.place(
                     ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True
                 )
-                yield from primitives.retreat(ctx, turn.side)
-        yield from primitives.hold(ctx, 3)
+                yield from skills.retreat(ctx, turn.side)
+        yield from motion.hold(ctx, 3)

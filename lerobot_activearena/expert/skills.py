@@ -1,334 +1,44 @@
-"""Expert primitives (paper App. "New Action Primitives"). Each is a generator of 18-D actions;
-head/torso moves and arm/gripper moves are separate primitives and never share a step.
-
-Camera: ``move_head``, ``move_torso[_to]``, ``move_head_torso_to`` (trapezoidal profiles under
-the joint limits), ``look_at`` (a world point) and ``look_at_object`` (where it was last seen),
-``face_for_arm`` (torso turns so the object sits in front of the chosen arm) and ``search`` (discrete
-sector sweep with memory of explored sectors; stops when the target appears, then centres it).
-Arm: ``move_arm_joint``, ``arm_line`` (straight TCP line, IK every step), ``pick``, ``place``,
-``press``, ``retreat``.
+"""Skills of the expert, built from arm paths: ``pick``, ``place`` (and ``place_on_upper``), ``press``,
+``strike``, ``pull_in``, ``hold_aside``, ``carry_and_turn``, ``retreat``, and the choice of arm
+(``arm_for``).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
 
 import numpy as np
 
 from ..annotations.schema import (
-    CAMERA_CENTER,
     CAMERA_HOLD,
-    CAMERA_SEARCH,
     STAGE_ACTION,
-    STAGE_ANCHOR,
-    STAGE_SEARCH,
 )
 from ..sim import embodiment
-from ..sim.action import HEAD_PITCH, TORSO_YAW
-from ..sim.head_camera import SEARCH_PITCH
+from .arm_paths import (
+    MAX_PATH_STEP,
+    arm_goto,
+    arm_line,
+    box_closing_axis,
+    follow,
+    line_path,
+    move_arm_joint,
+    set_gripper,
+    solve_ik,
+    tcp_pose,
+    top_down_rotation,
+)
 from .context import ExpertContext, ExpertError
 from .gaze import heading_deg
-from .ik import IKError, grasp_rotation, interpolate_pose, rot_z
-from .kinematics import torso_yaw_for_arm
-from .motion import CONTROL_DT, arm_of, gripper_index, interpolate_joints, trapezoid, with_arm
+from .ik import grasp_rotation, rot_z
+from .motion import CONTROL_DT, Actions, arm_of, hold, interpolate_joints, with_arm
 
-Actions = Iterator[np.ndarray]
-
-TORSO_VMAX, TORSO_AMAX = embodiment.TORSO_LIMITS  # the paper's 2.5 rad/s, 10 rad/s^2
-HEAD_VMAX, HEAD_AMAX = embodiment.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^2
 FINGERTIP_CLOSED = 0.047  # closed fingertips reach this far past the TCP along the approach axis
+
+
 PLACE_TURN_SPEED = 2.5  # rad/s: peak wrist turn when an object is turned to a set yaw while carried
+
+
 GRASP_Z_MIN_ABOVE_BOTTOM = 0.033  # open pads reach 0.028 m past the TCP: keep them off the table
-
-
-# ---- camera -------------------------------------------------------------------------------------
-def move_head_torso_to(
-    ctx: ExpertContext, yaw: float, pitch: float, mode: int, stop_when: Callable[[], bool] | None = None
-) -> Iterator[np.ndarray]:
-    """Turn torso and head together to (yaw, pitch); returns True if ``stop_when`` fired."""
-    y0, p0 = ctx.yaw, ctx.pitch
-    yaw = float(np.clip(yaw, *embodiment.TORSO_YAW_RANGE))
-    pitch = float(np.clip(pitch, *embodiment.HEAD_PITCH_RANGE))
-    sy = trapezoid(yaw - y0, TORSO_VMAX, TORSO_AMAX)
-    sp = trapezoid(pitch - p0, HEAD_VMAX, HEAD_AMAX)
-    s = sy if len(sy) >= len(sp) else sp
-    ctx.intent.camera_mode = mode
-    ctx.intent.camera_target_theta = 90.0 + math.degrees(yaw)
-    fired = False
-    for sk in s:
-        ctx.action[TORSO_YAW] = y0 + sk * (yaw - y0)
-        ctx.action[HEAD_PITCH] = p0 + sk * (pitch - p0)
-        yield ctx.emit()
-        if stop_when is not None and stop_when():
-            fired = True
-            break
-    ctx.intent.camera_mode = CAMERA_HOLD
-    ctx.intent.camera_target_theta = math.nan
-    if not fired:
-        yield from settle(ctx)
-    return fired
-
-
-def settle(ctx: ExpertContext, tol: float = 0.015, max_steps: int = 12) -> Actions:
-    """Hold the command until torso and head have caught up with it (the drives lag the profile)."""
-    for _ in range(max_steps):
-        err = np.abs(ctx.sim.state()[[TORSO_YAW, HEAD_PITCH]] - ctx.action[[TORSO_YAW, HEAD_PITCH]])
-        if err.max() < tol:
-            return
-        yield ctx.emit()
-
-
-def move_head(ctx: ExpertContext, delta: float, mode: int = CAMERA_CENTER) -> Actions:
-    """Relative head pitch."""
-    yield from move_head_torso_to(ctx, ctx.yaw, ctx.pitch + delta, mode)
-
-
-def move_torso_to(ctx: ExpertContext, yaw: float, mode: int = CAMERA_CENTER) -> Actions:
-    """Absolute torso yaw (head holds)."""
-    yield from move_head_torso_to(ctx, yaw, ctx.pitch, mode)
-
-
-def move_torso(ctx: ExpertContext, delta: float, mode: int = CAMERA_CENTER) -> Actions:
-    """Relative torso yaw."""
-    yield from move_head_torso_to(ctx, ctx.yaw + delta, ctx.pitch, mode)
-
-
-def look_at_object(ctx: ExpertContext, i: int, mode: int = CAMERA_CENTER) -> Actions:
-    """Centre object ``i`` where the expert last saw it (never where it is unseen)."""
-    if i not in ctx.memory:
-        raise ExpertError(f"{ctx.objects[i]} has not been seen yet; search for it first")
-    yield from look_at(ctx, ctx.memory[i], mode)
-
-
-def look_at(ctx: ExpertContext, point, mode: int = CAMERA_CENTER) -> Actions:
-    yaw, pitch = ctx.gaze.aim(point, ctx.yaw, ctx.pitch)
-    yield from move_head_torso_to(ctx, yaw, pitch, mode)
-
-
-def face_for_arm(ctx: ExpertContext, point, side: str) -> Actions:
-    """Torso turns so ``point`` is in front of ``side``'s arm; the head pitches to keep it in view."""
-    yaw = torso_yaw_for_arm(point, side)
-    _, pitch = ctx.gaze.aim(point, yaw, ctx.pitch, fix_yaw=True)
-    yield from move_head_torso_to(ctx, yaw, pitch, CAMERA_CENTER)
-
-
-def hold(ctx: ExpertContext, steps: int) -> Actions:
-    for _ in range(steps):
-        yield ctx.emit()
-
-
-def await_trailing(ctx: ExpertContext, side: str | None = None) -> Actions:
-    """Hold until the ``side`` arm's trailing motion (None: every arm's) has ended."""
-    while (side in ctx.trailing) if side is not None else ctx.trailing:
-        yield ctx.emit()
-
-
-def halt(ctx: ExpertContext, side: str) -> None:
-    """Stop the ``side`` arm's trailing motion where it is (it is needed again: no need to go home)."""
-    ctx.trailing.pop(side, None)
-
-
-def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
-    """Find object ``i``: if it was seen before, turn to where it was; else sweep unexplored sectors
-    nearest-first (explored ones last), stop as soon as it is visible, then centre it."""
-    it = ctx.intent
-    it.focus, it.stage, it.info_complete = i, STAGE_SEARCH, False
-    it.search_targets = it.search_targets | {i}
-    if i not in ctx.memory:
-        views = ctx.views  # lower sectors first, then (two-level) the upper ones
-        order = sorted(
-            range(len(views)),
-            key=lambda s: (s in ctx.explored, views[s][1] != SEARCH_PITCH, abs(views[s][0] - ctx.yaw)),
-        )
-        for s in order:
-            yield from move_head_torso_to(
-                ctx,
-                *views[s],
-                CAMERA_SEARCH,
-                stop_when=lambda: bool(ctx.perception.visible[i]),
-            )
-            if ctx.perception.visible[i]:
-                break
-            yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
-            ctx.explored.add(s)
-            if ctx.perception.visible[i]:
-                break
-        else:
-            raise ExpertError(f"{ctx.objects[i]} not found in any search sector")
-    it.stage = STAGE_ANCHOR
-    it.info_complete = True
-    if center:
-        yield from look_at(ctx, ctx.memory[i])
-
-
-def sweep_all(ctx: ExpertContext, targets: list[int]) -> Actions:
-    """Visit every sector (nearest first) so all of ``targets`` that exist get observed."""
-    it = ctx.intent
-    it.stage, it.info_complete = STAGE_SEARCH, False
-    it.search_targets = it.search_targets | set(targets)
-    lower = [s for s, (_, pitch) in enumerate(ctx.views) if pitch == SEARCH_PITCH]
-    upper = [s for s in range(len(ctx.views)) if s not in lower]
-    # Each row of sectors: to its nearer end first, then across to the other end.
-    for row in (lower, upper) if upper else (lower,):
-        centre = next(s for s in row if ctx.views[s][0] == 0.0)
-        ends = sorted([s for s in row if s != centre], key=lambda s: abs(ctx.views[s][0] - ctx.yaw))
-        at_centre = ctx.yaw == 0.0 and (row is lower or ctx.pitch == ctx.views[centre][1])
-        for s in ends if at_centre else [*ends, centre]:
-            yield from move_head_torso_to(ctx, *ctx.views[s], CAMERA_SEARCH)
-            yield from hold(ctx, 3)
-            ctx.explored.add(s)
-        ctx.explored.add(centre)
-    it.info_complete = True
-
-
-# ---- arm ----------------------------------------------------------------------------------------
-MAX_PATH_STEP = 0.5  # rad: a joint may move this much between two waypoints of a continuous path
-
-
-def solve_ik(ctx: ExpertContext, side: str, q_seed, pos, rot, max_step: float | None = None) -> np.ndarray:
-    """IK from ``q_seed``; on failure, once more from the home configuration with more iterations
-    (along a continuous path, ``max_step``, only if that lands on the seed's branch: a jump to
-    another branch would whip the arm and what it holds)."""
-    try:
-        return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot)
-    except IKError:
-        pass
-    try:
-        q = ctx.ik.solve(side, embodiment.HOME_ARM[side], ctx.yaw, pos, rot, max_iters=800)
-        if max_step is None or np.abs(q - np.asarray(q_seed)).max() <= max_step:
-            return q
-    except IKError:
-        pass
-    try:  # near-converged (a few mm) is fine along a path; endpoints are re-checked by physics
-        return ctx.ik.solve(side, q_seed, ctx.yaw, pos, rot, max_iters=400, pos_tol=8e-3, rot_tol=5e-2)
-    except IKError as exc:
-        raise ExpertError(str(exc)) from exc
-
-
-def tcp_pose(ctx: ExpertContext, side: str) -> tuple[np.ndarray, np.ndarray]:
-    return ctx.ik.tcp_pose(side, arm_of(ctx.action, side), ctx.yaw)
-
-
-def move_arm_joint(
-    ctx: ExpertContext, side: str, q_goal, gripper: float | None = None, max_vel: float = 1.0
-) -> Actions:
-    """The paper's move_joint: linear joint path at <= max_vel rad/s with a smooth time scaling."""
-    ctx.require_idle(side)
-    ctx.intent.camera_mode = CAMERA_HOLD
-    q0 = arm_of(ctx.action, side)
-    for q in interpolate_joints(q0, np.asarray(q_goal, float), max_vel=max_vel):
-        ctx.action = with_arm(ctx.action, side, q, gripper)
-        yield ctx.emit()
-
-
-def arm_goto(
-    ctx: ExpertContext, side: str, pos, rot, gripper: float | None = None, max_vel: float = 1.5
-) -> Actions:
-    q_goal = solve_ik(ctx, side, arm_of(ctx.action, side), pos, rot)
-    yield from move_arm_joint(ctx, side, q_goal, gripper, max_vel)
-
-
-def line_path(
-    ctx: ExpertContext,
-    side: str,
-    pos,
-    rot,
-    speed: float = 0.15,
-    turn_speed: float | None = None,
-    yaw_turn: float | None = None,
-) -> list[np.ndarray]:
-    """The arm's joint waypoints of a straight TCP segment with a smooth (cosine) speed profile peaking
-    at ``speed`` m/s (and, with ``turn_speed``, the wrist's turn peaking at that many rad/s: a carried
-    object does not swing); ``yaw_turn``: the wrist turns by this angle (rad, either way, any size)
-    about the vertical instead of the short way to ``rot``. Raises ExpertError where IK loses the path."""
-    q = arm_of(ctx.action, side)
-    p0, rot0 = tcp_pose(ctx, side)
-    dist = float(np.linalg.norm(np.asarray(pos) - p0))
-    n = max(3, int(math.ceil(dist * math.pi / 2 / (speed * CONTROL_DT))))
-    if turn_speed is not None:
-        angle = math.acos(np.clip((np.trace(rot0.T @ np.asarray(rot)) - 1.0) / 2.0, -1.0, 1.0))
-        angle = angle if yaw_turn is None else abs(yaw_turn)
-        n = max(n, int(math.ceil(angle * math.pi / 2 / (turn_speed * CONTROL_DT))))
-    path = []
-    for k in range(1, n + 1):
-        s = 0.5 - 0.5 * math.cos(math.pi * k / n)
-        pk, rot_k = interpolate_pose(p0, rot0, pos, rot, s)
-        if yaw_turn is not None:
-            rot_k = rot if k == n else rot_z(s * yaw_turn) @ rot0
-        q = solve_ik(ctx, side, q, pk, rot_k, max_step=MAX_PATH_STEP)
-        path.append(q)
-    return path
-
-
-def follow(ctx: ExpertContext, side: str, path, gripper: float | None = None) -> Actions:
-    ctx.require_idle(side)
-    ctx.intent.camera_mode = CAMERA_HOLD
-    for q in path:
-        ctx.action = with_arm(ctx.action, side, q, gripper)
-        yield ctx.emit()
-
-
-def arm_line(
-    ctx: ExpertContext,
-    side: str,
-    pos,
-    rot,
-    gripper: float | None = None,
-    speed: float = 0.15,
-) -> Actions:
-    """Straight TCP segment (``line_path``)."""
-    yield from follow(ctx, side, line_path(ctx, side, pos, rot, speed), gripper)
-
-
-def set_gripper(ctx: ExpertContext, side: str, value: float, steps: int) -> Actions:
-    ctx.require_idle(side)
-    g = gripper_index(side)
-    v0 = ctx.action[g]
-    for k in range(1, steps + 1):
-        ctx.action[g] = v0 + (value - v0) * min(1.0, k / max(1, steps // 2))
-        yield ctx.emit()
-
-
-def top_down_rotation(ctx: ExpertContext, side: str, closing, *positions) -> np.ndarray:
-    """Gripper pointing down with fingers closing along +/-``closing``: the sign nearest the current
-    wrist with which IK reaches every one of ``positions``."""
-    _, rot_now = tcp_pose(ctx, side)
-    c = np.array([closing[0], closing[1], 0.0])
-    c /= np.linalg.norm(c)
-    cands = sorted(
-        [grasp_rotation([0, 0, -1], c), grasp_rotation([0, 0, -1], -c)],
-        key=lambda r: -np.trace(rot_now.T @ r),
-    )
-    for rot in cands:
-        try:
-            for pos in positions:
-                solve_ik(ctx, side, arm_of(ctx.action, side), pos, rot)
-            return rot
-        except ExpertError:
-            continue
-    raise ExpertError(f"{side} arm cannot reach top-down poses at {np.round(positions, 3).tolist()}")
-
-
-def radial_tangent(point) -> np.ndarray:
-    """Horizontal direction perpendicular to the robot-to-point ray (fingers close sideways)."""
-    radial = np.array([point[0], point[1], 0.0]) / np.linalg.norm(point[:2])
-    return np.array([-radial[1], radial[0], 0.0])
-
-
-def box_closing_axis(ctx: ExpertContext, i: int, prefer_y: bool = False) -> np.ndarray:
-    """Finger-closing axis for a box-like object: the asset's ``functional.grasp_axis`` where it
-    declares one, else the body axis nearest the tangential direction (or its body y axis with
-    ``prefer_y``, which keeps the +x face free)."""
-    p, rot = ctx.pose(i)
-    declared = ctx.obj(i).functional.grasp_axis
-    if declared is not None:
-        return rot @ np.asarray(declared, float)
-    if prefer_y:
-        return rot[:, 1]
-    radial = np.array([p[0], p[1], 0.0]) / np.linalg.norm(p[:2])
-    tangential = np.array([-radial[1], radial[0], 0.0])
-    return max((rot[:, 0], rot[:, 1]), key=lambda ax: abs(ax @ tangential))
 
 
 def start_action(ctx: ExpertContext, targets: set[int]) -> None:
