@@ -3,14 +3,13 @@ CLIs do. Expensive artefacts are built once per test session: the expert episode
 and a small builder dataset (``bell_count_dataset``)."""
 
 import os
-from pathlib import Path
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 if os.environ.get("PYTEST_XDIST_WORKER"):  # one core per worker: torch, BLAS and Mesa's rasteriser
     for var in ("OMP_NUM_THREADS", "MKL_NUM_THREADS", "LP_NUM_THREADS"):
         os.environ.setdefault(var, "1")
 
-# first: pins numpy's BLAS kernels before numpy loads and selects the GL backend before mujoco does
+# first: selects the GL backend before mujoco is imported
 import lerobot_activearena  # noqa: E402,F401,I001
 import pytest  # noqa: E402
 import torch  # noqa: E402
@@ -18,20 +17,9 @@ import torch  # noqa: E402
 if os.environ.get("PYTEST_XDIST_WORKER"):
     torch.set_num_threads(1)
 
+from helpers.params import BELL, COUNT, DATASET_REPO, PREVIEW_RECIPE  # noqa: E402
+
 import lerobot_env_activearena  # noqa: E402,F401  (registers the env and policy types, as LeRobot's CLIs do)
-
-BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
-DATASET_REPO = "local/bench_id"
-PREVIEW_RECIPE = Path(__file__).parents[1] / "datasets_build" / "preview.json"
-
-
-def expert_task_params(selector: str = "all"):
-    """The registered tasks (``task_names(selector)``) as parameters grouped by task, so ``--dist
-    loadgroup`` sends a task's tests to one worker and the session cache serves its expert episodes
-    once."""
-    from lerobot_activearena.tasks import task_names
-
-    return [pytest.param(t, marks=pytest.mark.xdist_group(t)) for t in task_names(selector)]
 
 
 @pytest.fixture(scope="session")

@@ -1,6 +1,6 @@
 """How task objects look: lathed meshes for the round ones (``look/dress.py`` draws them in place
 of the primitives that collide). Each function returns the parts for one object's parameters; every
-part stays inside the object's collision extents (``tests/test_dressing.py``)."""
+part stays inside the object's collision extents (``tests/sim/test_dressing.py``)."""
 
 from __future__ import annotations
 

@@ -7,12 +7,12 @@ import json
 from pathlib import Path
 
 import torch
-from policy_runs import build_policy, collate, play_both, preset_config, train_preset
+from helpers.policy_runs import build_policy, collate, play_both, preset_config, train_preset
 
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY
 
-PRESET = Path(__file__).parents[1] / "configs" / "policy" / "gr00t_subtask_action_12_ws.json"
+PRESET = Path(__file__).parents[2] / "configs" / "policy" / "gr00t_subtask_action_12_ws.json"
 TINY_DIT = {
     "dit_width": 32,
     "dit_depth": 2,

@@ -6,7 +6,7 @@ import datetime as dt
 
 import numpy as np
 import pytest
-from conftest import expert_task_params
+from helpers.params import expert_task_params
 
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.sim.action import LEFT_ARM, RIGHT_ARM

@@ -170,7 +170,7 @@ def test_task_modules_are_discovered_without_a_list():
 def test_readme_task_table_is_the_registry():
     """The README's task table lists exactly the registered tasks, each with its category, step
     limit and instruction (the paper's sentence), in category order."""
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
     rows = [line for line in readme.splitlines() if line.startswith("| `") and line.count("|") == 5]
     table = {}
     for line in rows:
@@ -228,7 +228,7 @@ def test_docs_tables_cover_the_registry():
     and docs/tasks.md's expert table (both splits) list exactly the registered tasks."""
     import re
 
-    docs = Path(__file__).resolve().parents[1] / "docs"
+    docs = Path(__file__).resolve().parents[2] / "docs"
     tasks_md, eval_md = (docs / "tasks.md").read_text(), (docs / "eval.md").read_text()
     rows = dict(re.findall(r"^\| `(\w+)` \((\w\w, \d+)\) \|", tasks_md, re.M))
     names = task_names("all")

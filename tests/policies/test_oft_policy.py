@@ -11,10 +11,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import torch
+from helpers.policy_runs import FIXED, RUNS, build_policy, collate, play_both, train_preset
 from lerobot.configs.policies import PreTrainedConfig
 from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.policies.factory import make_pre_post_processors
-from policy_runs import FIXED, RUNS, build_policy, collate, play_both, train_preset
 
 from lerobot_activearena.annotations.keyframes import motion_keyframes
 from lerobot_activearena.cli.eval import main as activearena_eval
@@ -31,7 +31,7 @@ from lerobot_activearena.tasks.rollout import run_expert_episode
 
 REPO = "local/bench_id"  # conftest.DATASET_REPO
 COUNT = "count_target_press_button"
-CONFIGS = Path(__file__).resolve().parents[1] / "configs" / "policy"
+CONFIGS = Path(__file__).resolve().parents[2] / "configs" / "policy"
 
 
 def _exe(name):
@@ -551,7 +551,7 @@ def test_two_process_ddp_keeps_the_replicas_identical(vlm, root, tmp_path):
             _exe("torchrun"),
             "--nproc_per_node=2",
             "--master_port=29532",
-            str(Path(__file__).with_name("ddp_two_steps.py")),
+            str(Path(__file__).parents[1] / "helpers" / "ddp_two_steps.py"),
             str(vlm),
             str(root),
             REPO,

@@ -152,7 +152,7 @@ def test_report_html_is_self_contained_and_renders_in_a_headless_browser(tmp_pat
     import io
     import shutil
 
-    from headless_browser import open_page
+    from helpers.headless_browser import open_page
     from PIL import Image
 
     res = {

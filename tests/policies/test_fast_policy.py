@@ -9,13 +9,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 import torch
-from conftest import DATASET_REPO
+from helpers.params import DATASET_REPO
+from helpers.policy_runs import build_policy, collate, play_both, preset_config, train_preset
 from lerobot.configs.types import NormalizationMode
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
 from lerobot.utils.constants import ACTION
-from policy_runs import build_policy, collate, play_both, preset_config, train_preset
 
 from lerobot_activearena.cli.fit_fast_tokenizer import fit
 from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
@@ -23,7 +23,7 @@ from lerobot_activearena.policies.activearena_fast.processor_activearena_fast im
 from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY, THINK
 from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import RAW_STATE
 
-PRESET = Path(__file__).parents[1] / "configs" / "policy" / "fast_subtask_action_12_ws.json"
+PRESET = Path(__file__).parents[2] / "configs" / "policy" / "fast_subtask_action_12_ws.json"
 SMALL = {"state_hidden": 32, "subtask_max_tokens": 6, "max_action_tokens": 12}
 
 

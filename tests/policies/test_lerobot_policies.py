@@ -9,7 +9,7 @@ import json
 from pathlib import Path
 
 import pytest
-from conftest import BELL, DATASET_REPO
+from helpers.params import BELL, DATASET_REPO
 from lerobot.configs.default import EvalConfig
 from lerobot.configs.eval import EvalPipelineConfig
 from lerobot.configs.policies import PreTrainedConfig
@@ -21,7 +21,7 @@ from lerobot_activearena.cli.eval import main as activearena_eval, parse_policy
 from lerobot_activearena.cli.learning_curve import main as learning_curve_main
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 
-BASELINES = Path(__file__).resolve().parents[1] / "configs" / "policy" / "baselines"
+BASELINES = Path(__file__).resolve().parents[2] / "configs" / "policy" / "baselines"
 EPISODE_LENGTH = 12  # steps per evaluation episode: enough to compare trajectories
 POLICY_OPTIONS = {  # small networks: the test is about the plumbing, not the policy
     "act": [

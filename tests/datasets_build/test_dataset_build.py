@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import torch
-from fake_slurm import install_fake_slurm, submitted_jobs
+from helpers.fake_slurm import install_fake_slurm, submitted_jobs
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.scripts.lerobot_dataset_viz import main as dataset_viz_main
@@ -37,7 +37,7 @@ from lerobot_activearena.tasks import get_task, task_names
 
 BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 DATASET_REPO = "local/bench_id"
-RECIPES = Path(__file__).parents[1] / "datasets_build"
+RECIPES = Path(__file__).parents[2] / "datasets_build"
 HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one
 
 

@@ -6,9 +6,9 @@ end-to-end test (OFT K=6, Fixed, GR00T, FAST, Plan) are played there; the others
 import json
 
 import pytest
-from conftest import DATASET_REPO
+from helpers.params import DATASET_REPO
+from helpers.policy_runs import FIXED, PRESETS, RUNS, play_both, train_preset
 from lerobot.configs.train import TrainPipelineConfig
-from policy_runs import FIXED, PRESETS, RUNS, play_both, train_preset
 
 EXTRA = [FIXED, "oft_subtask_planned_12_ws_planner"]  # ActiveArena-Fixed; Plan's planner
 PLAYED_ELSEWHERE = {

@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 import pytest
-from conftest import DATASET_REPO
+from helpers.params import DATASET_REPO
 
 from lerobot_activearena.cli.fit_fast_tokenizer import action_chunks, fit
 from lerobot_activearena.policies.activearena_fast.action_tokenizer import FastActionTokenizer, dct_matrix

@@ -6,7 +6,7 @@ adversaries' side of validity is in test_validity.py."""
 
 import numpy as np
 import pytest
-from conftest import expert_task_params
+from helpers.params import expert_task_params
 
 from lerobot_activearena.cli.make_manifests import main as make_manifests_main
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv

@@ -8,7 +8,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import expert_task_params
+from helpers.params import expert_task_params
 
 from lerobot_activearena.annotations.schema import CAMERA_HOLD, FRAME_FIELDS, STAGE_ACTION, STAGE_SEARCH
 from lerobot_activearena.tasks import get_task, task_names

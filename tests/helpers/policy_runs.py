@@ -6,7 +6,6 @@ import json
 from pathlib import Path
 
 import torch
-from conftest import DATASET_REPO
 from lerobot.configs.default import EvalConfig
 from lerobot.configs.eval import EvalPipelineConfig
 from lerobot.configs.policies import PreTrainedConfig
@@ -18,10 +17,11 @@ from lerobot.policies.factory import make_policy, make_pre_post_processors
 from lerobot.scripts.lerobot_eval import eval_main as lerobot_eval_main
 from lerobot.scripts.lerobot_train import train as lerobot_train
 
+from helpers.params import DATASET_REPO
 from lerobot_activearena.cli.eval import main as activearena_eval
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 
-PRESETS = Path(__file__).parents[1] / "configs" / "policy"
+PRESETS = Path(__file__).parents[2] / "configs" / "policy"
 TASK = "click_bell_rotate_view"
 RUNS = [  # the paper's table "Complete internal-baseline manifest"
     "oft_instruction_action_12_ws",

@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 import torch
-from conftest import DATASET_REPO
+from helpers.params import DATASET_REPO
+from helpers.policy_runs import collate, play_both, policy_dataset, preset_config, train_preset
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
-from policy_runs import collate, play_both, policy_dataset, preset_config, train_preset
 
 from lerobot_activearena.annotations.keyframes import planned_memory, retrieval_positions
 from lerobot_activearena.policies.activearena_oft import ActiveArenaOFTConfig
@@ -33,7 +33,7 @@ from lerobot_activearena.policies.activearena_vla.processor_activearena_vla impo
     PROMPT_MASK,
 )
 
-PRESETS = Path(__file__).parents[1] / "configs" / "policy"
+PRESETS = Path(__file__).parents[2] / "configs" / "policy"
 EXECUTOR, PLANNER = (
     PRESETS / "oft_subtask_planned_12_ws.json",
     PRESETS / "oft_subtask_planned_12_ws_planner.json",

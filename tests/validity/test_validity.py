@@ -8,7 +8,7 @@ targets; the full 50-seed table runs every adversary: ``benchmarks/validity.py``
 import json
 
 import pytest
-from conftest import expert_task_params
+from helpers.params import expert_task_params
 
 from lerobot_activearena.cli.validity import main as validity_main
 from lerobot_activearena.envs.manifests import EVAL_SEED_START
