@@ -34,7 +34,7 @@ TASKS = (
 
 
 def episode_hash(job: tuple[str, int, str]) -> tuple[str, str]:
-    from lerobot_activearena.tasks.rollout import run_expert_episode
+    from lerobot_activearena.episodes.rollout import run_expert_episode
 
     task, seed, split = job
     r = run_expert_episode(task, seed, split)

@@ -20,7 +20,7 @@ from pathlib import Path
 
 def _run(job):
     task, seed, split, render = job
-    from lerobot_activearena.tasks.rollout import run_expert_episode
+    from lerobot_activearena.episodes.rollout import run_expert_episode
 
     cb = (lambda t, sim, frame, action: sim.render_head()) if render else None
     try:

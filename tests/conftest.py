@@ -25,7 +25,7 @@ import lerobot_env_activearena  # noqa: E402,F401  (registers the env and policy
 @pytest.fixture(scope="session")
 def expert_episode():
     """``expert_episode(task, seed, split)``: the scripted expert's episode, run once per session."""
-    from lerobot_activearena.tasks.rollout import run_expert_episode
+    from lerobot_activearena.episodes.rollout import run_expert_episode
 
     cache = {}
 

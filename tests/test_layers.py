@@ -1,6 +1,6 @@
 """The package's layers point one way:
 
-    sim <- annotations <- expert <- tasks <- envs / datasets_build / eval / validity / policies <- cli
+    sim <- annotations <- expert <- tasks <- episodes <- envs / datasets_build / eval / validity / policies <- cli
 
 Every import in the package (module level, inside functions and under TYPE_CHECKING) is read from
 the source; a module may import its own layer and the layers below, never one above (type-only
@@ -20,13 +20,14 @@ LAYERS = {  # rank: a module may import ranks <= its own
     "annotations": 1,
     "expert": 2,
     "tasks": 3,
-    "sharding": 4,  # datatrove plumbing shared by the sharded jobs
-    "envs": 4,
-    "datasets_build": 4,
-    "eval": 4,
-    "validity": 4,  # adversaries and the suite that runs them
-    "policies": 4,
-    "cli": 5,
+    "episodes": 4,  # the episode stepper and the expert's episodes
+    "sharding": 5,  # datatrove plumbing shared by the sharded jobs
+    "envs": 5,
+    "datasets_build": 5,
+    "eval": 5,
+    "validity": 5,  # adversaries and the suite that runs them
+    "policies": 5,
+    "cli": 6,
 }
 
 
@@ -154,7 +155,7 @@ def test_no_import_cycles():
 
 def test_the_simulator_imports_neither_torch_nor_lerobot():
     code = (
-        "import sys, lerobot_activearena.sim.simulator, lerobot_activearena.tasks.rollout; "
+        "import sys, lerobot_activearena.sim.simulator, lerobot_activearena.episodes.rollout; "
         "print(sorted(m for m in ('torch', 'lerobot', 'transformers') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)

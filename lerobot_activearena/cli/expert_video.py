@@ -14,10 +14,10 @@ import numpy as np
 from tqdm import tqdm
 
 from ..annotations.schema import CAMERA_MODE_NAMES, STAGE_NAMES
+from ..episodes.rollout import run_expert_episode
 from ..sim.scene import CONTROL_HZ
 from ..sim.video import Mp4Writer, draw_annotations
 from ..tasks import get_task, task_names
-from ..tasks.rollout import run_expert_episode
 
 
 def _jsonable(frame: dict) -> dict:

@@ -22,7 +22,7 @@ from ..tasks import task_names
 
 def _check(job):
     task, split, seed = job
-    from ..tasks.rollout import run_expert_episode
+    from ..episodes.rollout import run_expert_episode
 
     try:
         r = run_expert_episode(task, seed, split)

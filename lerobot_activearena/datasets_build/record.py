@@ -9,8 +9,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
+from ..episodes.rollout import EpisodeResult, run_expert_episode
 from ..sim.scene import HEAD_SIZE
-from ..tasks.rollout import EpisodeResult, run_expert_episode
 from .features import frame_row
 
 

@@ -12,6 +12,8 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 
+from ..episodes.episode import Episode
+from ..episodes.rollout import ExpertDriver
 from ..sim import embodiment
 from ..sim.action import ACTION_DIM, HEAD_PITCH, TORSO_YAW, validate_action
 from ..sim.head_camera import validate_head_size
@@ -19,8 +21,6 @@ from ..sim.scene import CONTROL_HZ, HEAD_HEIGHT, HEAD_WIDTH
 from ..sim.simulator import ActiveArenaSim
 from ..tasks import get_task
 from ..tasks.base import SPLITS
-from ..tasks.episode import Episode
-from ..tasks.rollout import ExpertDriver
 from ..tasks.sampling import sample_scene
 from .manifests import DEFAULT_SEED_BASE, manifest_seed
 

@@ -87,6 +87,18 @@ class Region:
 REACH = Region()  # anywhere in the arms' band
 HIDDEN = Region(hidden=True)  # in the arms' band, out of the home view, random side
 CLUTTER = Region(r=CLUTTER_R)
+# A destination on the upper band: its 20 cm depth leaves one distance (0.70 m) for a ~20 cm plate or
+# basket, anywhere in the placement span. The expert sets objects down there from the side
+# (``skills.place_on_upper``): no top-down pose reaches the band.
+ON_UPPER_BAND = Region(r=(0.70, 0.70), level=1)
+
+
+def draw_level(draft: SceneDraft, name: str, upper_share: float) -> bool:
+    """Whether the destination ``name`` stands on the upper band this episode (with probability
+    ``upper_share``, else on the lower fan); recorded as ``params['<name>_level']`` (0 / 1)."""
+    upper = bool(draft.rng.random() < upper_share)
+    draft.params[f"{name}_level"] = int(upper)
+    return upper
 
 
 @lru_cache(maxsize=1)

@@ -63,7 +63,7 @@ def _still(env, obs, task, split, seed) -> Act:
 def replay_actions(task: str, split: str, seed: int) -> tuple[int, np.ndarray]:
     """The (seed, actions) of a successful expert episode of ``task``/``split`` on another seed:
     seed + k * REPLAY_SEED_OFFSET for the first k in 1..REPLAY_TRIES where the expert succeeds."""
-    from ..tasks.rollout import run_expert_episode
+    from ..episodes.rollout import run_expert_episode
 
     tried = []
     for k in range(1, REPLAY_TRIES + 1):

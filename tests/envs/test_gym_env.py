@@ -9,7 +9,7 @@ import pytest
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.envs.manifests import PROTOCOL_EPISODES, load_manifest
-from lerobot_activearena.tasks.episode import failure_state
+from lerobot_activearena.episodes.episode import failure_state
 
 
 def test_reset_step_observation_contract():

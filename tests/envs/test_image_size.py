@@ -12,8 +12,8 @@ from lerobot_activearena.datasets_build.recipe import load_recipe
 from lerobot_activearena.envs.configs import ActiveArenaEnvConfig
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.envs.gym_ids import gym_id
+from lerobot_activearena.episodes.rollout import run_expert_episode
 from lerobot_activearena.sim.head_camera import validate_head_size
-from lerobot_activearena.tasks.rollout import run_expert_episode
 
 TASK = "click_bell_rotate_view"
 

@@ -133,7 +133,7 @@ def test_search_never_finds_an_object_outside_every_view():
 
 SCRIPT = r"""
 import hashlib, numpy as np, lerobot_activearena
-from lerobot_activearena.tasks.rollout import run_expert_episode
+from lerobot_activearena.episodes.rollout import run_expert_episode
 r = run_expert_episode("click_bell_rotate_view", 7, "ood")
 h = hashlib.sha256(r.actions.tobytes())
 for f in r.frames:
@@ -189,8 +189,8 @@ def test_camera_primitives_respect_the_paper_limits_and_hold_the_arms():
 def test_pick_and_place_carries_to_a_spot_and_names_bad_arguments(monkeypatch):
     """The routine with a table spot instead of a destination object: the cup, set down at the
     coaster's spawn point, rests on it, released (the coaster itself is never searched for)."""
+    from lerobot_activearena.episodes.rollout import run_expert_episode
     from lerobot_activearena.expert import routines
-    from lerobot_activearena.tasks.rollout import run_expert_episode
 
     task = get_task("place_empty_cup_rotate_view")
     scene = sample_scene(task, 0, "id")

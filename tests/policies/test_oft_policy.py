@@ -18,6 +18,7 @@ from lerobot.policies.factory import make_pre_post_processors
 
 from lerobot_activearena.annotations.keyframes import motion_keyframes
 from lerobot_activearena.cli.eval import main as activearena_eval
+from lerobot_activearena.episodes.rollout import run_expert_episode
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
 from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
@@ -27,7 +28,6 @@ from lerobot_activearena.policies.activearena_vla.processor_activearena_vla impo
     THINK_MASK,
 )
 from lerobot_activearena.policies.activearena_vla.tiny_vlm import make_tiny_vlm
-from lerobot_activearena.tasks.rollout import run_expert_episode
 
 REPO = "local/bench_id"  # conftest.DATASET_REPO
 COUNT = "count_target_press_button"

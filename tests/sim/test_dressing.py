@@ -7,11 +7,11 @@ import mujoco
 import numpy as np
 import pytest
 
+from lerobot_activearena.episodes.rollout import run_expert_episode
 from lerobot_activearena.sim.assets import ASSETS, primitives, task_objects, task_props
 from lerobot_activearena.sim.look.dress import DRESS_GROUP, SHAPE_GROUP
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.tasks import get_task
-from lerobot_activearena.tasks.rollout import run_expert_episode
 from lerobot_activearena.tasks.sampling import sample_scene
 
 TOLERANCE_M = 0.001  # how far a drawn vertex may stand outside the collision shapes' bounding box

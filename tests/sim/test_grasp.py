@@ -145,9 +145,9 @@ def test_the_expert_carries_without_slip(task, seed):
     table a rounded object (a mouse's shell) settles in the pads (up to 8 mm). Carrying ends when the
     release begins: a frame reached by an opening gripper command is not carried (the object slides
     out then, by design)."""
+    from lerobot_activearena.episodes.rollout import run_expert_episode
     from lerobot_activearena.sim.embodiment import TCP_SITES
     from lerobot_activearena.tasks.predicates import held_by_gripper
-    from lerobot_activearena.tasks.rollout import run_expert_episode
 
     obj = CARRIED[task]
     offsets, welds, previous = [], [], []

@@ -17,7 +17,7 @@ from lerobot_activearena.tasks.inventory.check_cola_date import expired
 from lerobot_activearena.tasks.inventory.count_random_object_press_button import CATEGORIES as PLURALS
 from lerobot_activearena.tasks.inventory.rank_backside_rgb_blocks import RANK
 from lerobot_activearena.tasks.sampling import sample_scene
-from lerobot_activearena.tasks.shaking import ShakeDetector, reversals
+from lerobot_activearena.tasks.shapes.shaking import ShakeDetector, reversals
 from lerobot_activearena.tasks.success import SuccessMonitor
 
 

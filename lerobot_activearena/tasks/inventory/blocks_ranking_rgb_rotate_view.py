@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from ...sim.assets.task_props import BLOCK_COLORS
 from ..base import Subtask
-from ..ranking import RankBlocksTask
+from ..shapes.ranking import RankBlocksTask
 
 HALF = 0.025
 

@@ -20,16 +20,13 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ..ranking import RankBlocksTask
-from .blocks_ranking_size_rotate_view import BlocksRankingSizeRotateView
+from .blocks_ranking_size_rotate_view import RankBySize
 
 
-class BlocksRankingSizeFanDouble(BlocksRankingSizeRotateView):
+class BlocksRankingSizeFanDouble(RankBySize):
     """The single-level row's instruction, subtasks, blocks and sizes on the two-level workspace."""
 
     name = "blocks_ranking_size_fan_double"
     max_episode_steps = 463
     workspace = "two_level"
     upper_share = 0.7
-    # the default carrying heights (the single-level row lowers them for its 303-step limit)
-    lift, hover, approach = RankBlocksTask.lift, RankBlocksTask.hover, RankBlocksTask.approach

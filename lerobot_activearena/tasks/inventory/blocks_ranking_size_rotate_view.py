@@ -17,13 +17,14 @@ from __future__ import annotations
 
 from ...sim.assets.task_props import BLOCK_COLORS
 from ..base import Subtask
-from ..ranking import RankBlocksTask
+from ..shapes.ranking import RankBlocksTask
 
 HALF_SIZES = {"large_block": (0.030, 0.033), "medium_block": (0.024, 0.027), "small_block": (0.018, 0.021)}
 
 
-class BlocksRankingSizeRotateView(RankBlocksTask):
-    name = "blocks_ranking_size_rotate_view"
+class RankBySize(RankBlocksTask):
+    """The size row (instruction, subtasks, blocks and their sizes) on either workspace."""
+
     category = "ML"
     instruction = "Arrange the large, medium, and small blocks from left to right."
     subtasks = (
@@ -42,10 +43,7 @@ class BlocksRankingSizeRotateView(RankBlocksTask):
             3,
         ),
     )
-    max_episode_steps = 303
     blocks = ("large_block", "medium_block", "small_block")
-    # Lower than rgb's (its step limit is 48 shorter); a 6 cm lift sweeps the large block.
-    lift, hover, approach = 0.08, 0.05, 0.07
 
     def block_options(self, draft):
         colors = draft.rng.choice(sorted(BLOCK_COLORS), size=3, replace=False)
@@ -53,3 +51,10 @@ class BlocksRankingSizeRotateView(RankBlocksTask):
             {"rgba": BLOCK_COLORS[str(c)], "half": (float(draft.rng.uniform(*HALF_SIZES[b])),) * 3}
             for b, c in zip(self.blocks, colors, strict=True)
         ]
+
+
+class BlocksRankingSizeRotateView(RankBySize):
+    name = "blocks_ranking_size_rotate_view"
+    max_episode_steps = 303
+    # Lower than rgb's (its step limit is 48 shorter); a 6 cm lift sweeps the large block.
+    lift, hover, approach = 0.08, 0.05, 0.07

@@ -21,8 +21,8 @@ from __future__ import annotations
 
 from ...sim.embodiment import ARMS, other_arm
 from ..base import Subtask
-from ..can_inspection import InspectCanTask
 from ..draft import HIDDEN, REACH
+from ..shapes.can_inspection import InspectCanTask
 
 AREA_COLORS = ("red", "green", "blue", "yellow", "orange", "purple")
 

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 from ...sim.assets.task_props import BLOCK_COLORS
 from ..base import Subtask
-from ..counting import PRESS_SUBTASK, CountAndPressTask
 from ..draft import Region
+from ..shapes.counting import PRESS_SUBTASK, CountAndPressTask
 
 PALETTE = ("red", "green", "blue", "yellow", "purple")
 N_BLOCKS = 4

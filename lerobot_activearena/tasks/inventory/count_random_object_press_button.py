@@ -20,8 +20,8 @@ Success Conditions:
 from __future__ import annotations
 
 from ..base import Subtask
-from ..counting import PRESS_SUBTASK, CountAndPressTask
 from ..draft import Region
+from ..shapes.counting import PRESS_SUBTASK, CountAndPressTask
 
 CATEGORIES = {
     "can": "cans",

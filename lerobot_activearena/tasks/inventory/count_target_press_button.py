@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from ...sim.assets.task_props import BLOCK_COLORS
 from ..base import Subtask
-from ..counting import PRESS_SUBTASK, CountAndPressTask
 from ..draft import Region
+from ..shapes.counting import PRESS_SUBTASK, CountAndPressTask
 
 OTHER_COLORS = ("red", "blue", "yellow", "purple", "orange")
 BLOCK_R = (0.36, 0.8)

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from ...sim.assets.task_objects import RELEASE_MAT_COLORS
 from ..base import Subtask
-from ..placing import PickPlaceTask, colored_mat
+from ..shapes.placing import PickPlaceTask, colored_mat
 
 
 class MoveStaplerPadRotateView(PickPlaceTask):

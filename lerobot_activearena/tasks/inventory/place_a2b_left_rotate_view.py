@@ -18,7 +18,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ..base import Subtask
-from ..relations import PlaceBesideTask
+from ..shapes.relations import PlaceBesideTask
 
 
 class PlaceA2BLeftRotateView(PlaceBesideTask):

@@ -19,7 +19,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ..base import Subtask
-from ..relations import MOVABLE, REFERENCES, PlaceBesideTask
+from ..shapes.relations import MOVABLE, REFERENCES, PlaceBesideTask
 
 CARRIED = {**MOVABLE, "bell": "bell"}
 

@@ -12,14 +12,12 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import routines
-from ...sim.embodiment import ARMS
 from .. import predicates
-from ..base import Subtask, Task
-from ..draft import HIDDEN, REACH
+from ..base import Subtask
+from ..shapes.placing import PickPlaceTask
 
 
-class PlaceEmptyCupRotateView(Task):
+class PlaceEmptyCupRotateView(PickPlaceTask):
     name = "place_empty_cup_rotate_view"
     category = "SL"
     instruction = "Place the empty cup on the coaster."
@@ -28,15 +26,13 @@ class PlaceEmptyCupRotateView(Task):
         Subtask(2, "place_cup_on_coaster", "localize the coaster and place the carried cup on it", 1),
     )
     max_episode_steps = 199
+    obj, dest = "cup", "coaster"
+    grasp_across = "radial"
 
-    def layout(self, draft):
-        cup_hidden = bool(draft.rng.integers(0, 2))
-        draft.place("cup", "cup", "cup", HIDDEN if cup_hidden else REACH, yaw="random", arms=ARMS)
-        draft.place("coaster", "coaster", "coaster", REACH if cup_hidden else HIDDEN, arms=ARMS)
-
-    def evaluate(self, sim, scene, monitor):
+    def placed(self, sim, scene):
+        """The cup's base on the coaster's top, centred within the coaster's radius less 1.5 cm."""
         coaster = scene.obj("coaster")
-        on = predicates.resting_on(
+        return predicates.resting_on(
             sim,
             "cup",
             "coaster",
@@ -44,11 +40,3 @@ class PlaceEmptyCupRotateView(Task):
             coaster.functional.support.top,
             margin=0.0,
         ) and predicates.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
-        return {
-            "cup_on_coaster": on,
-            "cup_upright": predicates.upright(sim, "cup"),
-            "cup_released": predicates.released(sim, "cup"),
-        }
-
-    def expert(self, ctx, scene):
-        yield from routines.pick_and_place(ctx, ctx.idx("cup"), ctx.idx("coaster"), grasp_across="radial")

@@ -24,7 +24,7 @@ from dataclasses import replace
 from ...sim.assets.task_objects import MAT_COLORS
 from .. import predicates
 from ..base import Subtask
-from ..placing import PickPlaceTask, colored_mat
+from ..shapes.placing import PickPlaceTask, colored_mat
 
 COLORS = tuple(sorted(MAT_COLORS))
 FAN_R = (0.38, 0.45)  # m (the release: 0.40-0.50): nearer, the fan topples into the robot's cut-out

@@ -23,11 +23,10 @@ import math
 from ...expert import arm_paths, routines, skills
 from .. import predicates
 from ..base import Subtask, Task
-from ..draft import HIDDEN, REACH, Region
-from ..placing import carried
+from ..draft import HIDDEN, ON_UPPER_BAND, REACH, draw_level
+from ..shapes.placing import carried
 
 UPPER_SHARE = 0.7  # the release's share of episodes with the basket on the upper band
-BASKET_ON_UPPER = Region(r=(0.70, 0.70), level=1)
 BASKET_YAW_JITTER = 0.1  # rad about the radial direction
 BASKET_HALF = (0.093, 0.068)  # m: the basket's outer half sizes (long side along its body x)
 # how far it reaches along the radius, turned by up to the jitter: it must stand on the 20 cm band
@@ -52,13 +51,12 @@ class PlaceObjectBasketFanDouble(Task):
 
     def layout(self, draft):
         draft.place("can", "can", "can", HIDDEN, yaw="random", arms=("left", "right"))
-        upper = bool(draft.rng.random() < UPPER_SHARE)
-        draft.params["basket_level"] = int(upper)
+        upper = draw_level(draft, "basket", UPPER_SHARE)
         draft.place(
             "bread_basket",
             "bread_basket",
             "bread basket",
-            BASKET_ON_UPPER if upper else REACH,
+            ON_UPPER_BAND if upper else REACH,
             static=True,
             yaw_jitter=BASKET_YAW_JITTER if upper else 0.25,
             half_depth=BASKET_HALF_DEPTH if upper else None,

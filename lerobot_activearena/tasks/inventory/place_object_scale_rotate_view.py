@@ -17,7 +17,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ..base import Subtask
-from ..placing import PickPlaceTask
+from ..shapes.placing import PickPlaceTask
 
 
 class PlaceObjectScaleRotateView(PickPlaceTask):

@@ -19,7 +19,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ..base import Subtask
-from ..placing import PickPlaceTask
+from ..shapes.placing import PickPlaceTask
 
 OBJECTS = {"rubiks_cube": "Rubik's cube", "mouse": "mouse", "stapler": "stapler"}
 

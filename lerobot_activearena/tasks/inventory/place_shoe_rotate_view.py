@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from ..base import Subtask
 from ..draft import HIDDEN, Region
-from ..placing import PickPlaceTask
+from ..shapes.placing import PickPlaceTask
 
 MAT_AHEAD = Region(r=(0.38, 0.42), angle=(85.0, 95.0), hidden=False)
 

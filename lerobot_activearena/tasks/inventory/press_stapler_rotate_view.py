@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from ..base import Subtask
 from ..draft import Region
-from ..pressing import PressDeviceTask
+from ..shapes.pressing import PressDeviceTask
 
 
 class PressStaplerRotateView(PressDeviceTask):

@@ -21,10 +21,8 @@ from __future__ import annotations
 from ...expert import arm_paths, routines, skills
 from .. import predicates
 from ..base import Subtask, Task
-from ..draft import HIDDEN, Region
-from ..placing import carried
-
-PLATE_ON_UPPER = Region(r=(0.70, 0.70), level=1)
+from ..draft import HIDDEN, ON_UPPER_BAND
+from ..shapes.placing import carried
 
 
 class PutBlockOnUpperEasy(Task):
@@ -42,7 +40,7 @@ class PutBlockOnUpperEasy(Task):
 
     def layout(self, draft):
         draft.place("block", "block", "block", HIDDEN, yaw="random", arms=("left", "right"))
-        draft.place("plate", "plate", "plate", PLATE_ON_UPPER, static=True)
+        draft.place("plate", "plate", "plate", ON_UPPER_BAND, static=True)
 
     def evaluate(self, sim, scene, monitor):
         block, plate = scene.obj("block"), scene.obj("plate")

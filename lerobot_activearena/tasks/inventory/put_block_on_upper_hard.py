@@ -22,10 +22,9 @@ import numpy as np
 from ...expert import arm_paths, motion, routines, skills
 from .. import predicates
 from ..base import Subtask, Task
-from ..draft import HIDDEN, REACH, Region
-from ..placing import carried
+from ..draft import HIDDEN, ON_UPPER_BAND, REACH, draw_level
+from ..shapes.placing import carried
 
-PLATE_ON_UPPER = Region(r=(0.70, 0.70), level=1)
 UPPER_SHARE = 0.8  # the release's share of episodes with the plate on the upper band
 # m: the first block is set down this far beyond the plate's centre along the approach (the line
 # from the robot's base), the second as far before it: the fingers close across that line, so
@@ -54,9 +53,8 @@ class PutBlockOnUpperHard(Task):
             draft.place(
                 "block", name, "block", HIDDEN if hidden else REACH, yaw="random", arms=("left", "right")
             )
-        upper = bool(draft.rng.random() < UPPER_SHARE)
-        draft.params["plate_level"] = int(upper)
-        draft.place("plate", "plate", "plate", PLATE_ON_UPPER if upper else REACH, static=True)
+        upper = draw_level(draft, "plate", UPPER_SHARE)
+        draft.place("plate", "plate", "plate", ON_UPPER_BAND if upper else REACH, static=True)
 
     def evaluate(self, sim, scene, monitor):
         plate = scene.obj("plate")

@@ -16,7 +16,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ..base import Subtask
-from ..shaking import ShakeBottleTask
+from ..shapes.shaking import ShakeBottleTask
 
 
 class ShakeBottleRotateView(ShakeBottleTask):

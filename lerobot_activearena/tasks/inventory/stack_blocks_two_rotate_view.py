@@ -17,7 +17,7 @@ from __future__ import annotations
 from ...sim.assets.task_props import BLOCK_COLORS
 from .. import predicates
 from ..base import Subtask
-from ..placing import PickPlaceTask
+from ..shapes.placing import PickPlaceTask
 
 HALF = (0.025,) * 3  # m: the release's cubes
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from ...sim.assets.task_objects import MAT_COLORS
 from ..base import Subtask
-from ..placing import PickPlaceTask, carried, colored_mat
+from ..shapes.placing import PickPlaceTask, carried, colored_mat
 
 COLORS = tuple(sorted(MAT_COLORS))
 

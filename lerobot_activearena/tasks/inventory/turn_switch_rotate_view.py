@@ -19,7 +19,7 @@ import math
 
 from ..base import Subtask
 from ..draft import Region
-from ..pressing import PressDeviceTask
+from ..shapes.pressing import PressDeviceTask
 
 
 class TurnSwitchRotateView(PressDeviceTask):

@@ -16,8 +16,8 @@ from ..sim.health import PhysicsHealth
 from ..sim.perception import PerceptionMemory
 from ..sim.scene import HEAD_SIZE
 from ..sim.simulator import ActiveArenaSim
-from .base import Task, TaskScene
-from .success import SuccessMonitor
+from ..tasks.base import Task, TaskScene
+from ..tasks.success import SuccessMonitor
 
 
 def failure_state(success: bool, ever_seen: np.ndarray, visible_now: np.ndarray) -> str:

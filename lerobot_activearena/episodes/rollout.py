@@ -22,10 +22,10 @@ from ..sim.health import PENETRATION_LIMIT
 from ..sim.perception import PerceptionMemory
 from ..sim.scene import HEAD_SIZE
 from ..sim.simulator import ActiveArenaSim
-from .base import Task, TaskScene
+from ..tasks.base import Task, TaskScene
+from ..tasks.registry import get_task
+from ..tasks.sampling import sample_scene
 from .episode import Episode
-from .registry import get_task
-from .sampling import sample_scene
 
 log = logging.getLogger(__name__)
 

@@ -15,9 +15,9 @@ import math
 
 import numpy as np
 
-from ..sim.embodiment import ARMS
-from . import predicates
-from .draft import FAN_ANGLES, SamplingError
+from ...sim.embodiment import ARMS
+from .. import predicates
+from ..draft import FAN_ANGLES, SamplingError
 from .placing import PickPlaceTask
 
 # Graspable top-down: A. B may also be one the gripper cannot hold (a bell, a loaf).

@@ -15,13 +15,13 @@ from collections import deque
 
 import numpy as np
 
-from ..expert import arm_paths, routines, skills
-from ..expert.motion import CONTROL_DT
-from ..sim.embodiment import ARMS
-from ..sim.workspace import TABLE_TOP
-from . import predicates
-from .base import Task
-from .draft import Region
+from ...expert import arm_paths, routines, skills
+from ...expert.motion import CONTROL_DT
+from ...sim.embodiment import ARMS
+from ...sim.workspace import TABLE_TOP
+from .. import predicates
+from ..base import Task
+from ..draft import Region
 
 BOTTLE = "bottle"
 LIFT = 0.05  # m above its spawn height while shaking

@@ -8,11 +8,11 @@ asset parameters), and maps what the expert read to the area (``area_for``).
 
 from __future__ import annotations
 
-from ..expert import inspection, routines, skills
-from ..sim.embodiment import ARMS
-from . import predicates
-from .base import Task
-from .draft import Region
+from ...expert import inspection, routines, skills
+from ...sim.embodiment import ARMS
+from .. import predicates
+from ..base import Task
+from ..draft import Region
 
 CAN = "cola_can"
 

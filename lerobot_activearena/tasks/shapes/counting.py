@@ -7,12 +7,12 @@ expert counts what it has seen (``count_seen``); buttons, checks and the press c
 
 from __future__ import annotations
 
-from ..expert import routines, view_moves
-from ..expert.context import ExpertError
-from ..sim.embodiment import ARMS
-from . import predicates
-from .base import Subtask, Task
-from .draft import REACH
+from ...expert import routines, view_moves
+from ...expert.context import ExpertError
+from ...sim.embodiment import ARMS
+from .. import predicates
+from ..base import Subtask, Task
+from ..draft import REACH
 
 BUTTONS = (1, 2, 3)
 PRESS_SUBTASK = Subtask(

@@ -7,19 +7,19 @@ A subclass states its row and: ``obj`` / ``dest`` (object names), ``obj_asset`` 
 ``regions(draft)`` (where each goes), ``obj_options(draft)`` / ``dest_options(draft)`` (builder
 options drawn per episode), ``obj_yaw`` (``draft.place``'s yaw), ``grasp_across``, ``face_robot``,
 ``straight_approach`` and the pick / carry heights (``routines.pick_and_place``), ``min_overlap``
-and ``extra_checks`` (more named checks). Success, held 8 frames after both were seen: the object
+or ``placed`` (what resting on the destination means) and ``extra_checks`` (more named checks). Success, held 8 frames after both were seen: the object
 rests on the destination's support surface (``predicates.on_support``: footprint-aware), upright,
 released. Failure: the object off the table (the monitor's, as for every task)."""
 
 from __future__ import annotations
 
-from ..expert import routines
-from ..sim.assets import ASSETS
-from ..sim.assets.task_objects import RELEASE_MAT_COLORS
-from ..sim.embodiment import ARMS
-from . import predicates
-from .base import Task
-from .draft import HIDDEN, REACH, Region
+from ...expert import routines
+from ...sim.assets import ASSETS
+from ...sim.assets.task_objects import RELEASE_MAT_COLORS
+from ...sim.embodiment import ARMS
+from .. import predicates
+from ..base import Task
+from ..draft import HIDDEN, REACH, Region
 
 
 class PickPlaceTask(Task):
@@ -78,13 +78,17 @@ class PickPlaceTask(Task):
         return {}
 
     def evaluate(self, sim, scene, monitor):
-        obj, dest = scene.obj(self.obj), scene.obj(self.dest)
         return {
-            f"{self.obj}_on_{self.dest}": predicates.on_support(sim, obj, dest, self.min_overlap),
+            f"{self.obj}_on_{self.dest}": self.placed(sim, scene),
             f"{self.obj}_upright": predicates.upright(sim, self.obj),
             f"{self.obj}_released": predicates.released(sim, self.obj),
             **self.extra_checks(sim, scene, monitor),
         }
+
+    def placed(self, sim, scene) -> bool:
+        """The object rests on the destination (default: on its support surface, ``min_overlap`` of
+        its footprint over the top)."""
+        return predicates.on_support(sim, scene.obj(self.obj), scene.obj(self.dest), self.min_overlap)
 
     def extra_checks(self, sim, scene, monitor) -> dict[str, bool]:
         return {}

@@ -17,11 +17,11 @@ import math
 
 import numpy as np
 
-from ..expert import motion, routines, skills, view_moves
-from ..sim.embodiment import ARMS
-from . import predicates
-from .base import Task
-from .draft import HIDDEN, REACH, Region
+from ...expert import motion, routines, skills, view_moves
+from ...sim.embodiment import ARMS
+from .. import predicates
+from ..base import Task
+from ..draft import HIDDEN, REACH, Region
 
 SPACING = 0.085  # m between neighbouring block centres in the final row
 ANCHOR = Region(angle=(50.0, 150.0))

@@ -12,11 +12,11 @@ Failure: the device knocked over or pushed more than 6 cm (irreversible).
 
 from __future__ import annotations
 
-from ..expert import routines
-from ..sim.embodiment import ARMS
-from . import predicates
-from .base import Task
-from .draft import Region
+from ...expert import routines
+from ...sim.embodiment import ARMS
+from .. import predicates
+from ..base import Task
+from ..draft import Region
 
 IN_PLACE = 0.03  # m: the device stays within this of where it stood (while pressed and after)
 PUSHED_AWAY = 0.06  # m: further than this is an irreversible failure
