@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ..sim.embodiment import ROBOT_TYPE
 from ..sim.scene import HEAD_SIZE
+from ..tasks.registry import get_task
 from .features import FPS, dataset_features
 from .plan import ShardSpec
 from .record import record_episode
@@ -56,6 +57,11 @@ def build_shard(
     shutil.rmtree(final, ignore_errors=True)
     tmp.parent.mkdir(parents=True, exist_ok=True)
     features = dataset_features(max_objects, image_size)
+    # LeRobot's streaming encoder is made for live recording: a frame that waits more than 0.1 s for
+    # a place in its queue is dropped (a warning only), which shifts every later frame of the video
+    # against the episode's data. We add a whole episode at once, faster than real time, so the
+    # queue holds a whole episode: nothing waits, nothing is dropped (save_episode drains it).
+    episode_frames = get_task(spec.task).max_episode_steps + 1
     ds = LeRobotDataset.create(
         f"{repo_id}-{spec.name}",
         fps=FPS,
@@ -64,6 +70,7 @@ def build_shard(
         robot_type=ROBOT_TYPE,
         use_videos=True,
         streaming_encoding=True,
+        encoder_queue_maxsize=episode_frames,
         encoder_threads=encoder_threads,
         video_backend="pyav",
     )

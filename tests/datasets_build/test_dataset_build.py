@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import torch
 from helpers.fake_slurm import install_fake_slurm, submitted_jobs
+from helpers.params import BELL, COUNT, DATASET_REPO
 from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.scripts.lerobot_dataset_viz import main as dataset_viz_main
@@ -35,8 +36,6 @@ from lerobot_activearena.datasets_build.record import record_episode
 from lerobot_activearena.envs.manifests import EVAL_SEED_START, load_manifest
 from lerobot_activearena.tasks import get_task, task_names
 
-BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
-DATASET_REPO = "local/bench_id"
 RECIPES = Path(__file__).parents[2] / "datasets_build"
 HISTORY = [-16 * k / 15 for k in range(12, -1, -1)]  # stride-16 history of 12 frames + the current one
 
@@ -120,6 +119,32 @@ def test_video_frames_are_the_head_camera_images(built):
         decoded = (ds[t][IMAGE_KEY].numpy().transpose(1, 2, 0) * 255).astype(np.float32)
         err = np.abs(decoded - rec.images[t].astype(np.float32)).mean()
         assert err < 6.0, f"frame {t}: mean abs error {err:.1f} (lossy AV1 should stay well below 6)"
+
+
+def test_a_slow_video_encoder_drops_no_frame(tmp_path, monkeypatch):
+    """LeRobot's streaming encoder is made for live recording: a frame that waits more than 0.1 s
+    for a place in its queue is dropped, and every later frame of the video then shows the wrong
+    step. A build adds a whole episode at once; on a busy machine (here: the encoder thread made
+    slower than 0.1 s per frame) the video must still hold every frame, in order."""
+    import threading
+
+    import av
+    from lerobot.datasets import video_utils
+
+    real = video_utils.Image.fromarray
+
+    def slow(*args, **kwargs):  # the encoder thread turns each frame into an image first
+        if threading.current_thread() is not threading.main_thread():
+            time.sleep(0.12)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(video_utils.Image, "fromarray", slow)
+    spec = shard_mod.ShardSpec(rank=0, task=BELL, seeds=(0,), reserve=(), quota=1)
+    summary = shard_mod.build_shard(spec, "id", "local/slow", tmp_path, 16, image_size=(96, 128))
+    (video,) = (tmp_path / "shards" / spec.name / "videos").rglob("*.mp4")
+    with av.open(str(video)) as container:
+        frames = sum(1 for _ in container.decode(video=0))
+    assert frames == summary["kept"][0]["length"] > 60
 
 
 def test_lerobots_default_decoder_reads_the_history(built):

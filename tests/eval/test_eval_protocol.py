@@ -13,6 +13,7 @@ from pathlib import Path
 import draccus
 import pytest
 from helpers.fake_slurm import install_fake_slurm, submitted_jobs
+from helpers.params import BELL, COUNT
 from lerobot.configs.eval import EvalPipelineConfig
 from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.scripts.lerobot_eval import main as lerobot_eval_cli
@@ -28,7 +29,6 @@ from lerobot_activearena.policies.activearena_expert.configuration_activearena_e
 from lerobot_activearena.tasks import get_task
 
 ROOT = Path(__file__).resolve().parents[2]
-BELL, COUNT = "click_bell_rotate_view", "count_target_press_button"
 EXPERT = ["--policy.type=activearena_expert", "--policy.device=cpu", "--env.render_pixels=false"]
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import torch
+from helpers.params import COUNT, DATASET_REPO as REPO
 from helpers.policy_runs import FIXED, RUNS, build_policy, collate, play_both, train_preset
 from lerobot.configs.policies import PreTrainedConfig
 from lerobot.configs.types import FeatureType, PolicyFeature
@@ -29,8 +30,6 @@ from lerobot_activearena.policies.activearena_vla.processor_activearena_vla impo
 )
 from lerobot_activearena.policies.activearena_vla.tiny_vlm import make_tiny_vlm
 
-REPO = "local/bench_id"  # conftest.DATASET_REPO
-COUNT = "count_target_press_button"
 CONFIGS = Path(__file__).resolve().parents[2] / "configs" / "policy"
 
 
