@@ -37,6 +37,9 @@ def image_size(policy_dir: Path) -> tuple[int, int]:
     """(height, width) of the head images a checkpoint was trained on."""
     from lerobot.configs.policies import PreTrainedConfig
 
+    from .protocol import register_policy_types
+
+    register_policy_types()  # a config names its type: LeRobot's and the plugins' must be known
     cfg = PreTrainedConfig.from_pretrained(policy_dir)
     _, h, w = cfg.input_features["observation.images.head"].shape
     return int(h), int(w)
