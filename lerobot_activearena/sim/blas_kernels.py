@@ -24,7 +24,7 @@ from pathlib import Path
 KERNELS = "Haswell"  # the family the shipped artefacts were made with
 _NEEDS = ("avx2", "fma")
 _LOCK = threading.Lock()
-_PINNED = False
+_DECIDED: list[str | None] = []  # the family in force, once decided (the producers call this often)
 
 
 def _cpu_flags() -> set[str]:
@@ -94,9 +94,12 @@ def use_pinned_kernels() -> str | None:
     """Run ``KERNELS`` on x86-64 CPUs with AVX2 and FMA unless the user chose a family
     (``OPENBLAS_CORETYPE``); return the family in force (None: numpy's BLAS is not OpenBLAS). Cheap
     after the first call: the episode producers call it every time."""
-    global _PINNED
-    if _PINNED:
-        return KERNELS
+    if not _DECIDED:
+        _DECIDED.append(_decide())
+    return _DECIDED[0]
+
+
+def _decide() -> str | None:
     have = openblas_kernels() if "numpy" in sys.modules else None
     chosen = os.environ.get("OPENBLAS_CORETYPE")
     if chosen is not None and chosen.lower() != KERNELS.lower():
@@ -112,5 +115,4 @@ def use_pinned_kernels() -> str | None:
     if have.lower() != KERNELS.lower():
         have = switch_kernels(KERNELS)
     os.environ["OPENBLAS_CORETYPE"] = KERNELS  # worker processes load the same family
-    _PINNED = True
     return have
