@@ -374,8 +374,8 @@ def main() -> None:
         "activearena_oft",
         "activearena_groot",
     ):  # what memory=subtask adds per chunk: greedy <think> decoding
-        pixels, grid, valid, state, cache = policy._history_batch(b)
-        enc = policy._encode_args(
+        pixels, grid, valid, state, cache = policy.history_batch(b)
+        enc = policy.encode_args(
             pixels,
             grid,
             valid,
@@ -386,14 +386,14 @@ def main() -> None:
         )
         with torch.no_grad():
             cached, (tokens, _, _) = timed(
-                lambda: policy._greedy_think(enc, use_cache=True, vision_cache=cache)
+                lambda: policy.greedy_think(enc, use_cache=True, vision_cache=cache)
             )
             line = (
                 f"subtask decoding ({len(tokens[0])} tokens, {args.history} memory frames): {cached * 1000:.0f} ms "
                 "with the KV cache and the memory's vision features (the same pass also gives the chunk)"
             )
             if not args.skip_uncached:
-                full = timed(lambda: policy._greedy_think(enc, use_cache=False))[0]
+                full = timed(lambda: policy.greedy_think(enc, use_cache=False))[0]
                 line += f", {full * 1000:.0f} ms re-encoding everything every step ({full / cached:.1f}x)"
         print(line)
 

@@ -56,6 +56,8 @@ def test_the_preset_is_the_papers_run():
         True,
     )
     assert cfg.action_vocab_size == 2048 and cfg.lm_loss_weight == 1.0
+    with pytest.raises(ValueError, match="lm_loss_weight"):  # one cross-entropy: a weight would do nothing
+        ActiveArenaFASTConfig(lm_loss_weight=0.1, device="cpu")
     assert cfg.normalization_mapping["ACTION"] == NormalizationMode.MIN_MAX  # as the tokenizer is fitted
     with pytest.raises(ValueError, match="think"):
         ActiveArenaFASTConfig(think="none")
@@ -75,7 +77,7 @@ def test_one_cross_entropy_over_think_and_action_tokens(tiny_vlm, bell_count_dat
     batch = collate(ds, pre, [70, len(ds) - 40])
     assert batch[ACTION].abs().max() <= 1 + 1e-5  # min-max normalised
     args = policy.training_args(batch)
-    seq = policy._assemble(*args)
+    seq = policy.assemble(*args)
     assert not (seq["kind"] == QUERY).any()
     span = seq["input_ids"][0][seq["kind"][0] == THINK].tolist()
     codes = [t for t in span if t >= text_rows]

@@ -51,7 +51,7 @@ def test_losses_reach_the_head_and_backbone_and_a_seed_fixes_the_chunk(tiny_vlm,
     for name in ("dit.blocks.0.k.weight", "dit.decoder.2.weight", "state_encoder.mlp.0.weight"):
         assert params[name].grad is not None and params[name].grad.abs().sum() > 0, name
     assert policy.vlm.get_input_embeddings().weight.grad.abs().sum() > 0
-    seq = policy._assemble(*policy.training_args(batch))
+    seq = policy.assemble(*policy.training_args(batch))
     assert not (seq["kind"] == QUERY).any()  # the DiT keeps its own queries
     policy.eval()
     one = pre(torch.utils.data.default_collate([ds[70]]))

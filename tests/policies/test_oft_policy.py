@@ -90,7 +90,7 @@ def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, r
 
     monkeypatch.setattr(policy.vlm.model.language_model, "forward", spy)
     with torch.no_grad():
-        seq = policy._assemble(*_encode_args(batch))
+        seq = policy.assemble(*_encode_args(batch))
         policy._backbone(seq)
     assert torch.equal(seen["position_ids"], seq["position_ids"])  # the decoder gets exactly these
     pos = seq["position_ids"][:, 0]  # (3, L): temporal, height, width rows
@@ -134,10 +134,10 @@ def test_actions_cannot_see_the_think_text(vlm, root):
     batch = collate(ds, pre, [40, len(ds) - 10])
     policy.eval()
     with torch.no_grad():
-        a_none, _ = policy._encode(*_encode_args(batch))
-        a_think, lm = policy._encode(*_encode_args(batch), batch[THINK_IDS], batch[THINK_MASK])
+        a_none, _ = policy.encode(*_encode_args(batch))
+        a_think, lm = policy.encode(*_encode_args(batch), batch[THINK_IDS], batch[THINK_MASK])
         other = torch.flip(batch[THINK_IDS], dims=[1])
-        a_other, lm_other = policy._encode(
+        a_other, lm_other = policy.encode(
             *_encode_args(batch), other, torch.flip(batch[THINK_MASK], dims=[1])
         )
     assert torch.allclose(a_none, a_think, atol=1e-5) and torch.allclose(a_none, a_other, atol=1e-5)
@@ -222,7 +222,7 @@ def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, mo
     monkeypatch.setattr(
         policy,
         "predict_subtask_and_actions",
-        lambda args, vision_cache=None: ([script[policy._t]], policy._encode(*args)[0]),
+        lambda args, vision_cache=None: ([script[policy._t]], policy.encode(*args)[0]),
     )
     for _t, obs, _ in _scripted_observations(70):
         policy.select_action(pre(obs))
@@ -241,9 +241,9 @@ def test_subtask_memory_decodes_and_acts_from_one_pass(vlm, root):
     _, obs, _ = next(_scripted_observations(1))
     batch = pre(obs)
     policy._start(batch)
-    pixels, grid, valid, state, _ = policy._history_batch(batch)
+    pixels, grid, valid, state, _ = policy.history_batch(batch)
     with torch.no_grad():
-        alone, _ = policy._encode(
+        alone, _ = policy.encode(
             pixels,
             grid,
             valid,
@@ -270,7 +270,7 @@ def test_backbone_matches_qwen3_vl_forward(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="none")
     batch = collate(ds, pre, [20, len(ds) - 40])
     with torch.no_grad():
-        seq = policy._assemble(*_encode_args(batch))
+        seq = policy.assemble(*_encode_args(batch))
         ours = policy._backbone(seq)[0].last_hidden_state
         keys = (
             "inputs_embeds",
@@ -294,9 +294,9 @@ def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
     for t, obs, _ in _scripted_observations(33):
         batch = pre(obs)
         if t == 32:  # a full bank (frames 0 and 16): compare with encoding every image afresh
-            pixels, grid, valid, state, _ = policy._history_batch(batch)
+            pixels, grid, valid, state, _ = policy.history_batch(batch)
             with torch.no_grad():
-                fresh, _ = policy._encode(
+                fresh, _ = policy.encode(
                     pixels,
                     grid,
                     valid,
@@ -335,9 +335,9 @@ def test_cached_think_decoding_matches_re_encoding_the_whole_sequence(vlm, root)
     assert batch["observation.vlm.frame_valid"].sum(1).tolist() == [2, 5]
     policy.eval()
     with torch.no_grad():
-        cached, cached_logits, actions = policy._greedy_think(_encode_args(batch), use_cache=True)
-        full, full_logits, _ = policy._greedy_think(_encode_args(batch), use_cache=False)
-        alone, _ = policy._encode(*_encode_args(batch))
+        cached, cached_logits, actions = policy.greedy_think(_encode_args(batch), use_cache=True)
+        full, full_logits, _ = policy.greedy_think(_encode_args(batch), use_cache=False)
+        alone, _ = policy.encode(*_encode_args(batch))
     assert cached == full and len(cached_logits) == len(full_logits) == 6
     assert torch.allclose(actions, alone, atol=1e-5)  # one pass serves the chunk and the subtask
     for a, b in zip(cached_logits, full_logits, strict=True):

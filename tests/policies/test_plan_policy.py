@@ -60,6 +60,8 @@ def test_the_presets_are_the_papers_planner_and_executor():
     )
     with pytest.raises(ValueError, match="activearena_plan"):  # an OFT run cannot use the planner's memory
         ActiveArenaOFTConfig(memory="planned", device="cpu")
+    with pytest.raises(ValueError, match="lm_loss_weight"):  # the planner's only loss: no weight to set
+        ActiveArenaPlannerConfig(lm_loss_weight=0.1, device="cpu")
 
 
 def test_planner_and_executor_training_inputs(tiny_vlm, bell_count_dataset):
@@ -74,7 +76,7 @@ def test_planner_and_executor_training_inputs(tiny_vlm, bell_count_dataset):
     pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
     batch = collate(policy_dataset(cfg, bell_count_dataset, meta), pre, [FRAME])
     assert int(batch[FRAME_VALID][0].sum()) == len(frames) and batch.get("observation.state_token") is None
-    seq = planner._assemble(*planner.training_args(batch))
+    seq = planner.assemble(*planner.training_args(batch))
     tok = planner.text_tokenizer
     target = tok.decode(seq["input_ids"][0][seq["kind"][0] == THINK].tolist())
     positions = retrieval_positions(frames, keyframes)
@@ -138,13 +140,13 @@ def test_the_run_time_loop_chains_planner_bank_and_executor(tiny_vlm, bell_count
     obs = {k: frame[k][None] for k in ("observation.images.head", "observation.state")}
     obs["task"] = [frame["task"]]
     seen = []
-    encode = policy._encode
+    encode = policy.encode
 
     def spy(*args, vision_cache=None):
         seen.append((int(args[2][0].sum()), policy.text_tokenizer.decode(args[5][0][args[6][0]].tolist())))
         return encode(*args, vision_cache=vision_cache)
 
-    policy._encode = spy
+    policy.encode = spy
     policy.reset()
     for _ in range(33):  # chunks at 0, 16, 32
         assert policy.select_action(pre(obs)).shape == (1, 18)

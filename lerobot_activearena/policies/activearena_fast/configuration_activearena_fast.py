@@ -54,6 +54,12 @@ class ActiveArenaFASTConfig(ActiveArenaVLAConfig):
             raise ValueError(
                 "activearena_fast has no fixed-view variant (ActiveArena-Fixed is an OFT preset)"
             )
+        if self.lm_loss_weight != 1.0:
+            raise ValueError(
+                "activearena_fast's loss is one cross-entropy over think text and action tokens, so "
+                "--policy.lm_loss_weight (the think loss's weight beside an action loss) has no effect: "
+                f"leave it at 1.0, got {self.lm_loss_weight}"
+            )
         if self.max_action_tokens < 1:
             raise ValueError(f"--policy.max_action_tokens must be >= 1, got {self.max_action_tokens}")
         if self.action_tokenizer_path and Path(self.action_tokenizer_path).expanduser().is_dir():

@@ -17,7 +17,8 @@ import torch
 from lerobot.utils.constants import ACTION
 from torch import Tensor
 
-from ..activearena_vla.modeling_activearena_vla import ActiveArenaVLAPolicy, _in_precision
+from ..activearena_vla.helpers import in_precision
+from ..activearena_vla.modeling_activearena_vla import ActiveArenaVLAPolicy
 from .action_tokenizer import FastActionTokenizer
 from .configuration_activearena_fast import ACTION_TOKENIZER_DIR, ActiveArenaFASTConfig
 from .processor_activearena_fast import ACTION_SUFFIX, HOLD_COMMAND
@@ -30,7 +31,7 @@ class ActiveArenaFASTPolicy(ActiveArenaVLAPolicy):
     name = "activearena_fast"
 
     # ----- the action vocabulary (replaces OFT's queries and head) -----
-    def _build_action_head(self, width: int) -> None:
+    def build_action_head(self, width: int) -> None:
         c = self.config
         if not c.action_tokenizer_path:
             raise ValueError(
@@ -93,25 +94,25 @@ class ActiveArenaFASTPolicy(ActiveArenaVLAPolicy):
         args[7], args[8] = ids, keep
         return tuple(args)
 
-    @_in_precision
+    @in_precision
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
         if reduction != "mean":
             raise ValueError(
                 "activearena_fast's loss is one cross-entropy over the batch's tokens (reduction=mean)"
             )
-        ce = self._hidden(*self.training_args(batch))[2]
+        ce = self.hidden_states(*self.training_args(batch))[2]
         return ce, {"ce_loss": float(ce.detach())}
 
     # ----- evaluation -----
     def decode(self, encode_args: tuple, use_cache: bool | None = None, vision_cache: dict | None = None):
         """Greedy responses after ``<think>``: each sample's token ids (up to ``<|im_end|>``)."""
-        start = self._think_token_ids()[0]
+        start = self.think_token_ids()[0]
         stop = self.text_tokenizer.convert_tokens_to_ids("<|im_end|>")
         budget = self.config.subtask_max_tokens + self.config.max_action_tokens + 8  # + the tags
         use_cache = self.config.kv_cache if use_cache is None else use_cache
-        return self._greedy(encode_args, [start], stop, budget, use_cache, vision_cache)[0]
+        return self.greedy_decode(encode_args, [start], stop, budget, use_cache, vision_cache)[0]
 
-    def _encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, None]:
+    def encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, None]:
         """The decoded (B, chunk, action_dim) chunks; NaN rows where a response did not decode."""
         responses = self.decode(args, vision_cache=vision_cache)
         shape = (len(responses), self.config.chunk_size, self.config.predicted_action_dim)

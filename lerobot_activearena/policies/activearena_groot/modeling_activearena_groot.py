@@ -10,7 +10,8 @@ import torch
 from lerobot.utils.constants import ACTION
 from torch import Tensor
 
-from ..activearena_vla.modeling_activearena_vla import THINK, ActiveArenaVLAPolicy, _real_steps
+from ..activearena_vla.helpers import real_steps
+from ..activearena_vla.modeling_activearena_vla import THINK, ActiveArenaVLAPolicy
 from .configuration_activearena_groot import ActiveArenaGR00TConfig
 from .flow_dit import FlowMatchingDiT
 
@@ -19,7 +20,7 @@ class ActiveArenaGR00TPolicy(ActiveArenaVLAPolicy):
     config_class = ActiveArenaGR00TConfig
     name = "activearena_groot"
 
-    def _build_action_head(self, width: int) -> None:
+    def build_action_head(self, width: int) -> None:
         self.dit = FlowMatchingDiT(self.config.dit_config(context_dim=width))
 
     @property
@@ -30,18 +31,18 @@ class ActiveArenaGR00TPolicy(ActiveArenaVLAPolicy):
     def _context_mask(kind: Tensor) -> Tensor:
         return (kind >= 0) & (kind != THINK)
 
-    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
+    def decode_actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
         """A sampled (B, chunk, predicted_action_dim) chunk (torch's global RNG: seeded runs repeat)."""
         return self.dit.sample(hidden.float(), self._context_mask(kind))
 
-    def _action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
+    def action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
         target = batch[ACTION][..., : self.config.predicted_action_dim].float()
         per = self.dit.loss(
             target,
             hidden.float(),
             self._context_mask(kind),
             reduction="none",
-            step_mask=_real_steps(batch, target),
+            step_mask=real_steps(batch, target),
         )
         return per, {"flow_loss": float(per.detach().mean())}
 

@@ -8,7 +8,8 @@ import torch
 from lerobot.utils.constants import ACTION
 from torch import Tensor, nn
 
-from ..activearena_vla.modeling_activearena_vla import QUERY, ActiveArenaVLAPolicy, _real_steps
+from ..activearena_vla.helpers import real_steps
+from ..activearena_vla.modeling_activearena_vla import QUERY, ActiveArenaVLAPolicy
 from .configuration_activearena_oft import ActiveArenaOFTConfig
 from .heads import MLPResNet
 
@@ -17,7 +18,7 @@ class ActiveArenaOFTPolicy(ActiveArenaVLAPolicy):
     config_class = ActiveArenaOFTConfig
     name = "activearena_oft"
 
-    def _build_action_head(self, width: int) -> None:
+    def build_action_head(self, width: int) -> None:
         self.action_queries = nn.Parameter(torch.randn(self.config.chunk_size, width) * 0.02)
         self.head = MLPResNet(
             width,
@@ -31,15 +32,15 @@ class ActiveArenaOFTPolicy(ActiveArenaVLAPolicy):
         """Action query tokens after the prompt: one per chunk step."""
         return self.config.chunk_size
 
-    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
+    def decode_actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
         """The (B, chunk, predicted_action_dim) prediction from the last-layer states at the action queries."""
         return self.head(hidden[kind == QUERY].view(kind.shape[0], self.config.chunk_size, -1).float())
 
-    def _action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
+    def action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
         """Per-sample L1 over the chunk's real (not padded) steps."""
-        pred = self._actions(hidden, kind).float()
+        pred = self.decode_actions(hidden, kind).float()
         target = batch[ACTION][..., : self.config.predicted_action_dim]
-        keep = _real_steps(batch, target)
+        keep = real_steps(batch, target)
         l1 = (pred - target).abs().mean(-1)
         l1 = (l1 * keep).sum(-1) / keep.sum(-1).clamp(min=1)
         return l1, {"l1_loss": float(l1.detach().mean())}

@@ -35,6 +35,11 @@ class ActiveArenaPlannerConfig(ActiveArenaVLAConfig):
                 "activearena_planner reads the stride-16 frames (memory=chunk) and is trained on the "
                 f"subtask annotation (think=subtask); got memory={self.memory!r}, think={self.think!r}"
             )
+        if self.lm_loss_weight != 1.0:
+            raise ValueError(
+                "activearena_planner's only loss is its answer's cross-entropy, so --policy.lm_loss_weight "
+                f"(the think loss's weight beside an action loss) has no effect: leave it at 1.0, got {self.lm_loss_weight}"
+            )
         if self.plan_max_tokens < 1:
             raise ValueError(f"--policy.plan_max_tokens must be >= 1, got {self.plan_max_tokens}")
 
@@ -49,6 +54,7 @@ class ActiveArenaPlanConfig(ActiveArenaOFTConfig):
     think: str = "none"  # the executor predicts only the action chunk
     # A trained activearena_planner checkpoint (local folder or Hub id); needed at evaluation only.
     planner_path: str | None = None
+    uses_planner_memory = True  # memory=planned: the frames its planner retrieves
 
     def __post_init__(self):
         super().__post_init__()

@@ -14,7 +14,8 @@ from torch import Tensor
 
 from ...annotations.keyframes import STRIDE
 from ..activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
-from ..activearena_vla.modeling_activearena_vla import ActiveArenaVLAPolicy, _in_precision
+from ..activearena_vla.helpers import in_precision, stack_frames
+from ..activearena_vla.modeling_activearena_vla import ActiveArenaVLAPolicy
 from ..activearena_vla.processor_activearena_vla import GRID, PIXELS, PREFIX_IDS
 from .configuration_activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
 from .planning import MemoryBank, parse_planner_answer, stride_frames
@@ -25,7 +26,7 @@ class ActiveArenaPlannerPolicy(ActiveArenaVLAPolicy):
     config_class = ActiveArenaPlannerConfig
     name = "activearena_planner"
 
-    def _build_action_head(self, width: int) -> None:
+    def build_action_head(self, width: int) -> None:
         pass  # the planner answers in text
 
     @property
@@ -35,19 +36,21 @@ class ActiveArenaPlannerPolicy(ActiveArenaVLAPolicy):
     def get_optim_params(self) -> list[dict]:
         return [g for g in super().get_optim_params() if g["params"]]
 
-    @_in_precision
+    @in_precision
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
         if reduction != "mean":
             raise ValueError("activearena_planner's loss is one cross-entropy over the batch's tokens")
-        ce = self._hidden(*self.training_args(batch))[2]
+        ce = self.hidden_states(*self.training_args(batch))[2]
         return ce, {"lm_loss": float(ce.detach())}
 
     @torch.no_grad()
     def plan(self, encode_args: tuple, vision_cache: dict | None = None) -> list[str]:
         """Each sample's greedy answer, from ``<think>`` (the prompt's images are ``encode_args``)."""
         tok = self.text_tokenizer
-        start, stop = self._think_token_ids()[0], tok.convert_tokens_to_ids("<|im_end|>")
-        answers = self._greedy(encode_args, [start], stop, self.config.plan_max_tokens, True, vision_cache)[0]
+        start, stop = self.think_token_ids()[0], tok.convert_tokens_to_ids("<|im_end|>")
+        answers = self.greedy_decode(
+            encode_args, [start], stop, self.config.plan_max_tokens, True, vision_cache
+        )[0]
         return [
             "<think>" + tok.decode([t for t in ids if t != stop], skip_special_tokens=False)
             for ids in answers
@@ -119,25 +122,6 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
         )
         return ids["input_ids"], ids["attention_mask"].bool()
 
-    def _stack(self, entries: list[list[dict]], slots: int, with_state: bool):
-        """Left-padded (B, slots) frames from stored entries, and the vision cache over them."""
-        first = entries[0][-1]
-        batch_size = len(entries)
-        pixels = first["pixels"].new_zeros((batch_size, slots, *first["pixels"].shape))
-        grid = first["grid"].new_ones((batch_size, slots, 3))
-        valid = torch.zeros(batch_size, slots, dtype=torch.bool)
-        state = None
-        if with_state and first["state"] is not None:
-            state = first["state"].new_zeros((batch_size, slots, first["state"].shape[-1]))
-        cache = {}
-        for b, row in enumerate(entries):
-            for slot, e in zip(range(slots - len(row), slots), row, strict=True):
-                pixels[b, slot], grid[b, slot], valid[b, slot] = e["pixels"], e["grid"], True
-                if state is not None:
-                    state[b, slot] = e["state"]
-                cache[(b, slot)] = e
-        return pixels, grid, valid, state, cache
-
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         self.eval()
@@ -160,7 +144,7 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
         self._t += 1
         return self._queue.popleft()
 
-    @_in_precision
+    @in_precision
     def _plan_and_act(self, batch: dict[str, Tensor]) -> Tensor:
         t, batch_size = self._t, batch[PIXELS].shape[0]
         tasks = batch.get("task")
@@ -173,7 +157,7 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
             [{**self._frames[b][f], "vision": self._frames[b][f]["planner"].get("vision")} for f in seen]
             for b in range(batch_size)
         ]
-        pixels, grid, valid, _, cache = self._stack(rows, len(seen), with_state=False)
+        pixels, grid, valid, _, cache = stack_frames(rows, len(seen), with_state=False)
         prompt, mask = self._prompts(self.planner.text_tokenizer, PLANNER_PROMPT, tasks)
         answers = self.planner.plan(
             (pixels, grid, valid, None, batch[PREFIX_IDS], prompt, mask), vision_cache=cache
@@ -186,13 +170,13 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
         # executor: the retrieved frames (each with its state), the current one, the planner's subtask
         slots = self.config.history + 1
         frames = [self._banks[b].executor_frames(t)[-slots:] for b in range(batch_size)]
-        pixels, grid, valid, state, cache = self._stack(
+        pixels, grid, valid, state, cache = stack_frames(
             [[self._frames[b][f] for f in fs] for b, fs in enumerate(frames)], slots, with_state=True
         )
         subtasks = [bank.subtask or task for bank, task in zip(self._banks, tasks, strict=True)]
         prompt, mask = self._prompts(self.text_tokenizer, EXECUTOR_PROMPT, subtasks)
-        args = self._encode_args(pixels, grid, valid, state, batch[PREFIX_IDS], prompt, mask)
-        pred = self._encode(*args, vision_cache=cache)[0]
+        args = self.encode_args(pixels, grid, valid, state, batch[PREFIX_IDS], prompt, mask)
+        pred = self.encode(*args, vision_cache=cache)[0]
         for b in range(batch_size):  # forget frames neither in the bank nor in the planner's next view
             keep = set(self._banks[b].frames) | set(stride_frames(t + STRIDE))
             self._frames[b] = {f: e for f, e in self._frames[b].items() if f in keep}

@@ -82,11 +82,14 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
         }
     )
 
+    # a head whose memory is filled by a planner (memory=planned) sets this
+    uses_planner_memory = False
+
     def __post_init__(self):
         super().__post_init__()
         if self.memory not in WRITE_POLICIES:
             raise ValueError(f"--policy.memory must be one of {WRITE_POLICIES}, got {self.memory!r}")
-        if self.memory == "planned" and self.type != "activearena_plan":
+        if self.memory == "planned" and not self.uses_planner_memory:
             raise ValueError(
                 "memory=planned is ActiveArena-Plan's executor memory (frames its planner retrieves): "
                 "use --policy.type=activearena_plan"

@@ -2,16 +2,14 @@
 (each optionally followed by a soft state token) and the prompt; a head's action queries (if it
 has any) follow the prompt, then the optional ``<think>`` span, trained with next-token loss. The
 queries cannot attend to the span (causal attention), so regressed actions never depend on text.
-A head fills the hooks ``_build_action_head``, ``n_queries``, ``_actions`` and ``_action_loss`` (or
-overrides ``forward`` and ``_encode``, as the text heads do, decoding with ``_greedy``).
+A head fills the hooks ``build_action_head``, ``n_queries``, ``decode_actions`` and ``action_loss`` (or
+overrides ``forward`` and ``encode``, as the text heads do, decoding with ``greedy_decode``).
 
-The same ``_assemble`` / ``_encode`` serve training (history from the batch) and evaluation (history from the
+The same ``assemble`` / ``encode`` serve training (history from the batch) and evaluation (history from the
 policy's memory bank, written causally and reset per episode), so both see identical inputs."""
 
 from __future__ import annotations
 
-import functools
-import warnings
 from collections import deque
 
 import numpy as np
@@ -22,6 +20,7 @@ from torch import Tensor, nn
 
 from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_vla import ActiveArenaVLAConfig
+from .helpers import in_precision, stack_frames, weights_dtype
 from .processor_activearena_vla import (
     FRAME_VALID,
     GRID,
@@ -37,41 +36,6 @@ from .state_encoder import StateEncoder
 from .vlm_loading import load_from_vlm_path
 
 TEXT, IMAGE, STATE, QUERY, THINK = 0, 1, 2, 3, 4
-
-
-def _weights_dtype(config: ActiveArenaVLAConfig) -> torch.dtype:
-    if config.weights_dtype == "bfloat16":
-        warnings.warn(
-            "weights_dtype=bfloat16: the backbone's parameters are bfloat16, so AdamW updates smaller "
-            "than their last bit (most of them at lr 1e-5) round away. Keep the default float32 master "
-            "weights (bfloat16 compute comes from dtype=auto/bfloat16) unless memory forces this.",
-            UserWarning,
-            stacklevel=3,
-        )
-        return torch.bfloat16
-    return torch.float32
-
-
-def _in_precision(method):
-    """Run ``method`` under the policy's autocast (bfloat16 compute over float32 weights when enabled)."""
-
-    @functools.wraps(method)
-    def wrapper(self, *args, **kwargs):
-        with torch.autocast(
-            device_type=self.device.type,
-            dtype=torch.bfloat16,
-            enabled=self.config.autocast_bfloat16,
-        ):
-            return method(self, *args, **kwargs)
-
-    return wrapper
-
-
-def _real_steps(batch: dict[str, Tensor], target: Tensor) -> Tensor:
-    """(B, chunk) True where the chunk's step is real (LeRobot pads past an episode's end)."""
-    if "action_is_pad" in batch:
-        return ~batch["action_is_pad"]
-    return torch.ones(target.shape[:2], dtype=torch.bool, device=target.device)
 
 
 class ActiveArenaVLAPolicy(PreTrainedPolicy):
@@ -90,7 +54,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             Qwen3VLForConditionalGeneration.from_pretrained,
             config.vlm_path,
             "model",
-            dtype=_weights_dtype(config),
+            dtype=weights_dtype(config),
             attn_implementation=config.attn_implementation,
         )
         if config.gradient_checkpointing:
@@ -98,7 +62,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         vc = self.vlm.config
         width = vc.text_config.hidden_size
         self.max_frames = config.history + 1
-        self._build_action_head(width)
+        self.build_action_head(width)
         state_ft = config.input_features.get(OBS_STATE)
         self.state_encoder = (
             StateEncoder(int(state_ft.shape[0]), config.state_hidden, width, self.max_frames)
@@ -114,7 +78,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         self.reset()
 
     # ----- the action head: the hooks each head fills -----
-    def _build_action_head(self, width: int) -> None:
+    def build_action_head(self, width: int) -> None:
         """Create the head's modules for a backbone of hidden size ``width``."""
         raise NotImplementedError
 
@@ -127,11 +91,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def device(self) -> torch.device:
         return self.vlm.get_input_embeddings().weight.device
 
-    def _actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
+    def decode_actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
         """The (B, chunk, predicted_action_dim) prediction from the backbone's last-layer states."""
         raise NotImplementedError
 
-    def _action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
+    def action_loss(self, hidden: Tensor, kind: Tensor, batch: dict[str, Tensor]) -> tuple[Tensor, dict]:
         """Per-sample action loss and its log entries."""
         raise NotImplementedError
 
@@ -145,7 +109,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         ]
 
     # ----- sequence assembly -----
-    def _assemble(
+    def assemble(
         self,
         pixels: Tensor,
         grid: Tensor,
@@ -262,16 +226,16 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         )
         return out, feats
 
-    def _encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor | None]:
+    def encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor | None]:
         """Returns the (B, chunk, predicted_action_dim) prediction and, when a think span is given, its
-        LM loss. Arguments as ``_assemble``."""
-        h, kind, lm_loss = self._hidden(*args, vision_cache=vision_cache)
-        return self._actions(h, kind), lm_loss
+        LM loss. Arguments as ``assemble``."""
+        h, kind, lm_loss = self.hidden_states(*args, vision_cache=vision_cache)
+        return self.decode_actions(h, kind), lm_loss
 
-    def _hidden(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor, Tensor | None]:
+    def hidden_states(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor, Tensor | None]:
         """The backbone's last-layer states, the per-position ``kind`` and, when a think span is given,
-        its LM loss. Arguments as ``_assemble``."""
-        seq = self._assemble(*args)
+        its LM loss. Arguments as ``assemble``."""
+        seq = self.assemble(*args)
         kind, input_ids = seq["kind"], seq["input_ids"]
         h = self._backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
         if not (kind == THINK).any():
@@ -287,7 +251,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
 
     # ----- training -----
     def training_args(self, batch: dict[str, Tensor]) -> tuple:
-        """``_assemble``'s arguments from a preprocessed dataset batch (history frames, think target)."""
+        """``assemble``'s arguments from a preprocessed dataset batch (history frames, think target)."""
         state = batch.get(OBS_STATE) if self.state_encoder is not None else None
         if state is not None and state.dim() == 2:
             state = state[:, None]
@@ -304,10 +268,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             batch.get(THINK_MASK),
         )
 
-    @_in_precision
+    @in_precision
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
-        h, kind, lm_loss = self._hidden(*self.training_args(batch))
-        per_sample, info = self._action_loss(h, kind, batch)
+        h, kind, lm_loss = self.hidden_states(*self.training_args(batch))
+        per_sample, info = self.action_loss(h, kind, batch)
         loss = per_sample.mean() if reduction == "mean" else per_sample
         if lm_loss is not None:
             loss = loss + self.config.lm_loss_weight * lm_loss
@@ -334,37 +298,25 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             return new
         return False
 
-    def _history_batch(self, batch: dict[str, Tensor]):
-        """Stack each env's last K memory entries (left-padded) and the current frame. Also returns the
-        vision cache: (env, slot) -> the memory entry (its features are reused or stored there), and an
-        empty entry for the current frame that receives its features."""
-        batch_size = batch[PIXELS].shape[0]
+    def history_batch(self, batch: dict[str, Tensor]):
+        """Stack each env's last K memory entries (left-padded) and the current frame (``stack_frames``).
+        The vision cache maps (env, slot) to the memory entry (its features are reused or stored there),
+        and the current frame's slot to a new entry that receives its features."""
         history = self.config.history if self.config.uses_history else 0
-        cur_pix, cur_grid = batch[PIXELS][:, -1], batch[GRID][:, -1]
         cur_state = batch.get(OBS_STATE)
         cur_state = cur_state[:, -1] if cur_state is not None and cur_state.dim() == 3 else cur_state
-        pixels = cur_pix.new_zeros((batch_size, history + 1, *cur_pix.shape[1:]))
-        grid = cur_grid.new_ones((batch_size, history + 1, 3))
-        valid = torch.zeros(batch_size, history + 1, dtype=torch.bool)
-        state = (
-            None if cur_state is None else cur_state.new_zeros((batch_size, history + 1, cur_state.shape[-1]))
-        )
-        cache: dict[tuple[int, int], dict] = {}
-        for b in range(batch_size):
-            mem = self._bank[b][-history:] if history else []
-            cache[(b, history)] = {}
-            for slot, entry in zip(range(history - len(mem), history), mem, strict=True):
-                cache[(b, slot)] = entry
-                pixels[b, slot], grid[b, slot], valid[b, slot] = entry["pixels"], entry["grid"], True
-                if state is not None:
-                    state[b, slot] = entry["state"]
-            pixels[b, history], grid[b, history], valid[b, history] = cur_pix[b], cur_grid[b], True
-            if state is not None:
-                state[b, history] = cur_state[b]
-        return pixels, grid, valid, state, cache
+        rows = []
+        for b in range(batch[PIXELS].shape[0]):
+            current = {
+                "pixels": batch[PIXELS][b, -1],
+                "grid": batch[GRID][b, -1],
+                "state": None if cur_state is None else cur_state[b],
+            }
+            rows.append([*(self._bank[b][-history:] if history else []), current])
+        return stack_frames(rows, history + 1)
 
     @torch.no_grad()
-    @_in_precision
+    @in_precision
     def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         """A chunk for the batch's current frames. A dataset batch carries its own history (T > 1);
         an env batch (T = 1) gets it from the memory bank."""
@@ -376,8 +328,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         else:
             if self._bank is None:
                 self._start(batch)
-            pixels, grid, valid, state, cache = self._history_batch(batch)
-        args = self._encode_args(
+            pixels, grid, valid, state, cache = self.history_batch(batch)
+        args = self.encode_args(
             pixels, grid, valid, state, batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK]
         )
         if cache is not None and self.config.memory == "subtask" and self.config.uses_history:
@@ -386,7 +338,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 self._subtask_new[b] = sub != self._subtask[b]  # first frame of a new (predicted) subtask
                 self._subtask[b] = sub
         else:
-            pred = self._encode(*args, vision_cache=cache)[0]
+            pred = self.encode(*args, vision_cache=cache)[0]
         if self.config.fixed_view:  # placeholders: the postprocessor sets torso and head to home
             pred = nn.functional.pad(pred, (0, self.config.action_dim - pred.shape[-1]))
         if cache is not None:  # the current frames' features, for a memory write at this step
@@ -395,8 +347,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             }
         return pred.float()
 
-    def _encode_args(self, pixels, grid, valid, state, prefix, prompt, prompt_mask) -> tuple:
-        """``_assemble``'s inputs at evaluation (no think span); the state only where it has tokens."""
+    def encode_args(self, pixels, grid, valid, state, prefix, prompt, prompt_mask) -> tuple:
+        """``assemble``'s inputs at evaluation (no think span); the state only where it has tokens."""
         return (
             pixels,
             grid,
@@ -430,7 +382,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             )
         return self._text_tokenizer
 
-    def _think_token_ids(self) -> tuple[int, int]:
+    def think_token_ids(self) -> tuple[int, int]:
         tok = self.text_tokenizer
         return tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>")
 
@@ -438,30 +390,30 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def predict_subtask(self, encode_args: tuple) -> list[tuple[int, ...]]:
         """Greedy ``<think>`` decoding: the token ids of each sample's predicted current subtask (up to and
         including ``</think>``). It decides which frames the subtask memory keeps; the actions never read it."""
-        return self._greedy_think(encode_args)[0]
+        return self.greedy_think(encode_args)[0]
 
     @torch.no_grad()
     def predict_subtask_and_actions(
         self, encode_args: tuple, vision_cache: dict | None = None
     ) -> tuple[list[tuple[int, ...]], Tensor]:
         """The predicted subtasks and the action chunk from one backbone pass over images and prompt: the
-        queries sit before ``<think>``, so (causal attention) the actions are those of ``_encode``."""
-        tokens, _, actions = self._greedy_think(encode_args, vision_cache=vision_cache)
+        queries sit before ``<think>``, so (causal attention) the actions are those of ``encode``."""
+        tokens, _, actions = self.greedy_think(encode_args, vision_cache=vision_cache)
         return tokens, actions
 
-    def _greedy_think(
+    def greedy_think(
         self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
     ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
         """Greedy decoding after ``<think>`` up to ``</think>``; returns the tokens, each step's (B, vocab)
         logits and the action chunk read from the first pass's query positions."""
-        start, end = self._think_token_ids()
-        tokens, step_logits, (hidden, kind) = self._greedy(
+        start, end = self.think_token_ids()
+        tokens, step_logits, (hidden, kind) = self.greedy_decode(
             encode_args, [start], end, self.config.subtask_max_tokens, use_cache, vision_cache
         )
-        return tokens, step_logits, self._actions(hidden, kind)
+        return tokens, step_logits, self.decode_actions(hidden, kind)
 
-    @_in_precision
-    def _greedy(
+    @in_precision
+    def greedy_decode(
         self,
         encode_args: tuple,
         start: list[int],
@@ -482,7 +434,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         seq = cache = first = None
         for _ in range(max_tokens):
             if seq is None or not use_cache:
-                seq = self._assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
+                seq = self.assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
                 out = self._backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
                 last = (
                     torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1)

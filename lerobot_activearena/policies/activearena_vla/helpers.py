@@ -1,0 +1,72 @@
+"""Public helpers the ActiveArena-VLA heads share: precision, which chunk steps are real, and how stored
+frames become the backbone's left-padded frame slots."""
+
+from __future__ import annotations
+
+import functools
+import warnings
+
+import torch
+from torch import Tensor
+
+from .configuration_activearena_vla import ActiveArenaVLAConfig
+
+
+def weights_dtype(config: ActiveArenaVLAConfig) -> torch.dtype:
+    """The backbone's parameter dtype: float32 master weights unless ``weights_dtype=bfloat16``."""
+    if config.weights_dtype == "bfloat16":
+        warnings.warn(
+            "weights_dtype=bfloat16: the backbone's parameters are bfloat16, so AdamW updates smaller "
+            "than their last bit (most of them at lr 1e-5) round away. Keep the default float32 master "
+            "weights (bfloat16 compute comes from dtype=auto/bfloat16) unless memory forces this.",
+            UserWarning,
+            stacklevel=3,
+        )
+        return torch.bfloat16
+    return torch.float32
+
+
+def in_precision(method):
+    """Run a policy ``method`` under the policy's autocast (bfloat16 compute over float32 weights when
+    ``config.autocast_bfloat16``)."""
+
+    @functools.wraps(method)
+    def wrapper(self, *args, **kwargs):
+        with torch.autocast(
+            device_type=self.device.type,
+            dtype=torch.bfloat16,
+            enabled=self.config.autocast_bfloat16,
+        ):
+            return method(self, *args, **kwargs)
+
+    return wrapper
+
+
+def real_steps(batch: dict[str, Tensor], target: Tensor) -> Tensor:
+    """(B, chunk) True where the chunk's step is real (LeRobot pads past an episode's end)."""
+    if "action_is_pad" in batch:
+        return ~batch["action_is_pad"]
+    return torch.ones(target.shape[:2], dtype=torch.bool, device=target.device)
+
+
+def stack_frames(entries: list[list[dict]], slots: int, with_state: bool = True):
+    """Per sample, its stored frames (dicts with ``pixels``, ``grid``, ``state``; oldest first, the
+    last one the current frame) in the last of ``slots`` left-padded slots. Returns ``pixels``, ``grid``,
+    ``valid``, ``state`` (None without states) and the vision cache (sample, slot) -> entry, through which
+    the backbone reuses an entry's ``vision`` features or stores them there."""
+    first = entries[0][-1]
+    batch_size = len(entries)
+    pixels = first["pixels"].new_zeros((batch_size, slots, *first["pixels"].shape))
+    grid = first["grid"].new_ones((batch_size, slots, 3))
+    valid = torch.zeros(batch_size, slots, dtype=torch.bool)
+    state = None
+    if with_state and first["state"] is not None:
+        state = first["state"].new_zeros((batch_size, slots, first["state"].shape[-1]))
+    cache = {}
+    for b, row in enumerate(entries):
+        for slot, e in zip(range(slots - len(row), slots), row, strict=True):
+            pixels[b, slot], grid[b, slot], valid[b, slot] = e["pixels"], e["grid"], True
+            if state is not None:
+                state[b, slot] = e["state"]
+            cache[(b, slot)] = e
+    return pixels, grid, valid, state, cache
