@@ -278,6 +278,13 @@ def main(argv: list[str] | None = None) -> None:
         f"activearena-eval: {plan.n_episodes} episodes ({len(plan.tasks)} tasks x {plan.splits} x "
         f"{len(plan.episodes)}) in {len(plan.shards)} shards -> {args.out}"
     )
+    if args.executor == "local" and args.workers > len(plan.shards):
+        per = -(-plan.n_episodes // args.workers)  # ceil: one block of episodes per worker
+        print(
+            f"activearena-eval: {len(plan.shards)} shards keep only {len(plan.shards)} of the {args.workers} "
+            f"workers busy (a shard is one task and split by default); pass --episodes-per-shard "
+            f"{max(1, per)} or fewer to use them all"
+        )
     try:
         result = run_eval(
             plan,

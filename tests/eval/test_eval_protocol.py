@@ -86,11 +86,15 @@ def test_rerunning_a_finished_run_plays_nothing_and_refuses_another_configuratio
             "id,ood",
             "--episodes",
             "2",
+            "--workers",
+            "8",
             "--out",
             str(protocol_run),
         ]
     )
     assert {p: p.stat().st_mtime_ns for p in (protocol_run / "records").rglob("*.jsonl")} == stamp
+    # 4 shards (task x split) for 8 workers: the user learns how to use them all
+    assert "keep only 4 of the 8 workers busy" in capsys.readouterr().out
     with pytest.raises(SystemExit):
         eval_main(
             [*EXPERT, "--tasks", BELL, "--splits", "id,ood", "--episodes", "3", "--out", str(protocol_run)]
