@@ -1,0 +1,55 @@
+"""Sample-loading cost of a built dataset against its slim copy (``activearena-slim-dataset``), for
+the sample a LeRobot ACT / diffusion policy draws (the head image, the state and a 16-step action
+chunk), in the process, one thread:
+
+    python benchmarks/slim_dataset_loading.py --root outputs/datasets/cpu_click_bell
+
+Prints ms per sample for both and the full dataset's cost as a ratio of the slim one's (the
+machine's noise cancels out of the ratio).
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import tempfile
+import time
+from pathlib import Path
+
+import torch
+from lerobot.datasets.lerobot_dataset import LeRobotDataset
+
+from lerobot_activearena.cli.slim_dataset import slim_dataset
+from lerobot_activearena.datasets_build.features import FPS
+
+CHUNK = [k / FPS for k in range(16)]
+
+
+def ms_per_sample(root: Path, samples: int, seed: int = 0) -> tuple[float, int]:
+    ds = LeRobotDataset(f"local/{root.name}", root=root, delta_timestamps={"action": CHUNK})
+    order = random.Random(seed).sample(range(len(ds)), samples + 1)
+    ds[order[0]]  # open the decoder outside the timing
+    t = time.perf_counter()
+    for i in order[1:]:
+        ds[i]
+    return 1000 * (time.perf_counter() - t) / samples, len(ds.meta.features)
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--root", required=True, help="a dataset activearena-build-dataset wrote")
+    p.add_argument("--samples", type=int, default=200)
+    args = p.parse_args()
+    torch.set_num_threads(1)
+    with tempfile.TemporaryDirectory() as tmp:
+        slim = Path(tmp) / "slim"
+        slim_dataset(args.root, slim)
+        full_ms, full_cols = ms_per_sample(Path(args.root), args.samples)
+        slim_ms, slim_cols = ms_per_sample(slim, args.samples)
+    print(f"full dataset ({full_cols} columns): {full_ms:.1f} ms/sample")
+    print(f"slim copy    ({slim_cols} columns): {slim_ms:.1f} ms/sample")
+    print(f"full / slim: {full_ms / slim_ms:.2f}x")
+
+
+if __name__ == "__main__":
+    main()
