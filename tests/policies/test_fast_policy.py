@@ -58,6 +58,8 @@ def test_the_preset_is_the_papers_run():
     assert cfg.action_vocab_size == 2048 and cfg.lm_loss_weight == 1.0
     with pytest.raises(ValueError, match="lm_loss_weight"):  # one cross-entropy: a weight would do nothing
         ActiveArenaFASTConfig(lm_loss_weight=0.1, device="cpu")
+    with pytest.raises(ValueError, match="activearena_oft"):  # the subtask write policy is OFT's
+        ActiveArenaFASTConfig(memory="subtask", device="cpu")
     assert cfg.normalization_mapping["ACTION"] == NormalizationMode.MIN_MAX  # as the tokenizer is fitted
     with pytest.raises(ValueError, match="think"):
         ActiveArenaFASTConfig(think="none")

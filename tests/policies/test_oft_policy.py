@@ -201,19 +201,21 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
     states = observations[0][2]  # the reference trajectory's states (the same in every item)
     for t, obs, _ in observations:
         batch = pre(obs)
-        assert all(e["t"] < t for e in (policy._bank[0] if policy._bank else []))  # only the past is memory
+        assert all(e["t"] < t for e in policy.memory(0))  # only the past is memory
         policy.select_action(batch)
-        if policy._bank[0] and policy._bank[0][-1]["t"] == t:  # written now: it is this step's frame
-            assert torch.equal(policy._bank[0][-1]["pixels"], batch[PIXELS][0, -1])
+        assert policy.step == t + 1
+        if policy.memory(0) and policy.memory(0)[-1]["t"] == t:  # written now: it is this step's frame
+            assert torch.equal(policy.memory(0)[-1]["pixels"], batch[PIXELS][0, -1])
     if memory == "chunk":
         expected = [0, 16, 32, 48, 64]
     elif memory == "motion":
         expected = [int(i) for i in np.flatnonzero(motion_keyframes(states[:n_steps]))]
     else:
         expected = []
-    assert [e["t"] for e in policy._bank[0]] == expected[-4:]
+    assert [e["t"] for e in policy.memory(0)] == expected[-4:]
+    assert policy.queued_actions == 16 - n_steps % 16  # whole 16-step chunks, one popped per step
     policy.reset()
-    assert policy._bank is None and not policy._queue
+    assert policy.memory(0) == [] and policy.queued_actions == 0 and policy.step == 0
 
 
 def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, monkeypatch):
@@ -222,11 +224,11 @@ def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, mo
     monkeypatch.setattr(
         policy,
         "predict_subtask_and_actions",
-        lambda args, vision_cache=None: ([script[policy._t]], policy.encode(*args)[0]),
+        lambda args, vision_cache=None: ([script[policy.step]], policy.encode(*args)[0]),
     )
     for _t, obs, _ in _scripted_observations(70):
         policy.select_action(pre(obs))
-    assert [e["t"] for e in policy._bank[0]] == [0, 32, 48]
+    assert [e["t"] for e in policy.memory(0)] == [0, 32, 48]
     _, refused, pre2, _, _ = _setup(vlm, root, memory="subtask", history=4, think="none")
     _, obs, _ = next(_scripted_observations(1))
     with pytest.raises(ValueError, match="think=subtask"):
@@ -240,7 +242,7 @@ def test_subtask_memory_decodes_and_acts_from_one_pass(vlm, root):
     policy.eval()
     _, obs, _ = next(_scripted_observations(1))
     batch = pre(obs)
-    policy._start(batch)
+    policy.start_episode(batch)
     pixels, grid, valid, state, _ = policy.history_batch(batch)
     with torch.no_grad():
         alone, _ = policy.encode(
@@ -254,8 +256,8 @@ def test_subtask_memory_decodes_and_acts_from_one_pass(vlm, root):
         )
     action = policy.select_action(batch)
     assert torch.allclose(action, alone[:, 0], atol=1e-5)
-    assert policy._subtask[0] is not None and len(policy._subtask[0]) <= 4  # decoded, within the budget
-    assert [e["t"] for e in policy._bank[0]] == [0]  # the first predicted subtask starts the memory
+    assert policy.predicted_subtask(0) is not None and len(policy.predicted_subtask(0)) <= 4  # within budget
+    assert [e["t"] for e in policy.memory(0)] == [0]  # the first predicted subtask starts the memory
 
 
 def test_a_wrongly_shaped_state_at_evaluation_is_named(vlm, root):
@@ -309,7 +311,7 @@ def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
         action = policy.select_action(batch)
     assert seen == [1]  # only the current frame went through the vision tower
     assert torch.allclose(action, fresh[:, 0], atol=1e-5)
-    assert all(e["vision"] is not None for e in policy._bank[0])
+    assert all(e["vision"] is not None for e in policy.memory(0))
 
 
 def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):

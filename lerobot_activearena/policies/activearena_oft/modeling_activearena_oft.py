@@ -10,6 +10,7 @@ from torch import Tensor, nn
 
 from ..activearena_vla.helpers import real_steps
 from ..activearena_vla.modeling_activearena_vla import QUERY, ActiveArenaVLAPolicy
+from ..activearena_vla.processor_activearena_vla import PIXELS
 from .configuration_activearena_oft import ActiveArenaOFTConfig
 from .heads import MLPResNet
 
@@ -44,3 +45,62 @@ class ActiveArenaOFTPolicy(ActiveArenaVLAPolicy):
         l1 = (pred - target).abs().mean(-1)
         l1 = (l1 * keep).sum(-1) / keep.sum(-1).clamp(min=1)
         return l1, {"l1_loss": float(l1.detach().mean())}
+
+    # ----- the subtask write policy (memory=subtask, the paper's OFT ablation) -----
+    # At evaluation the policy decodes its own current subtask after ``<think>`` at every chunk
+    # boundary (in the pass that yields the chunk) and writes a frame where that subtask changes.
+    def start_episode(self, batch: dict[str, Tensor]) -> None:
+        if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
+            raise ValueError(
+                "memory=subtask at evaluation writes a frame when the policy's own predicted subtask "
+                "changes, so it needs a policy trained with think=subtask"
+            )
+        super().start_episode(batch)
+        batch_size = batch[PIXELS].shape[0]
+        self._subtask: list[tuple[int, ...] | None] = [None] * batch_size
+        self._subtask_new = [False] * batch_size
+
+    def predicted_subtask(self, b: int = 0) -> tuple[int, ...] | None:
+        """Env ``b``'s last decoded subtask (token ids up to ``</think>``); None before any decoding."""
+        return None if self._bank is None else self._subtask[b]
+
+    def predict_chunk(self, encode_args: tuple, vision_cache: dict | None = None) -> Tensor:
+        if self.config.memory != "subtask" or not self.config.uses_history:
+            return super().predict_chunk(encode_args, vision_cache)
+        subtasks, pred = self.predict_subtask_and_actions(encode_args, vision_cache=vision_cache)
+        for b, sub in enumerate(subtasks):
+            self._subtask_new[b] = sub != self._subtask[b]  # first frame of a new (predicted) subtask
+            self._subtask[b] = sub
+        return pred
+
+    def writes_frame(self, b: int) -> bool:
+        if self.config.memory == "subtask":  # decided at chunk boundaries, where the subtask is predicted
+            new, self._subtask_new[b] = self._subtask_new[b], False
+            return new
+        return super().writes_frame(b)
+
+    @torch.no_grad()
+    def predict_subtask(self, encode_args: tuple) -> list[tuple[int, ...]]:
+        """Greedy ``<think>`` decoding: the token ids of each sample's predicted current subtask (up to and
+        including ``</think>``). It decides which frames the subtask memory keeps; the actions never read it."""
+        return self.greedy_think(encode_args)[0]
+
+    @torch.no_grad()
+    def predict_subtask_and_actions(
+        self, encode_args: tuple, vision_cache: dict | None = None
+    ) -> tuple[list[tuple[int, ...]], Tensor]:
+        """The predicted subtasks and the action chunk from one backbone pass over images and prompt: the
+        queries sit before ``<think>``, so (causal attention) the actions are those of ``encode``."""
+        tokens, _, actions = self.greedy_think(encode_args, vision_cache=vision_cache)
+        return tokens, actions
+
+    def greedy_think(
+        self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
+    ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
+        """Greedy decoding after ``<think>`` up to ``</think>``; returns the tokens, each step's (B, vocab)
+        logits and the action chunk read from the first pass's query positions."""
+        start, end = self.think_token_ids()
+        tokens, step_logits, (hidden, kind) = self.greedy_decode(
+            encode_args, [start], end, self.config.subtask_max_tokens, use_cache, vision_cache
+        )
+        return tokens, step_logits, self.decode_actions(hidden, kind)

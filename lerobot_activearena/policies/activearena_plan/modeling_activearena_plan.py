@@ -122,10 +122,12 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
         )
         return ids["input_ids"], ids["attention_mask"].bool()
 
-    @torch.no_grad()
-    def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
-        self.eval()
-        batch_size, t = batch[PIXELS].shape[0], self._t
+    # At evaluation the base's select_action runs: ``observe`` keeps every stride frame the planner may
+    # see or retrieve, each chunk comes from ``plan_and_act``; no frame is written per step (the
+    # planner's retrievals are this policy's memory).
+    def observe(self, batch: dict[str, Tensor]) -> None:
+        super().observe(batch)
+        batch_size, t = batch[PIXELS].shape[0], self.step
         if self._banks is None:
             self._banks = [MemoryBank() for _ in range(batch_size)]
             self._frames = [{} for _ in range(batch_size)]
@@ -138,15 +140,20 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
                     "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
                     "planner": {},  # the planner's vision features of this frame
                 }
-        if not self._queue:
-            chunk = self._plan_and_act(batch)[:, : self.config.n_action_steps]
-            self._queue.extend(chunk.transpose(0, 1))
-        self._t += 1
-        return self._queue.popleft()
+
+    @torch.no_grad()
+    def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        """An env batch (T = 1): the planner's subtask and retrievals, then the executor's chunk. A dataset
+        batch carries its own history and goes straight to the executor."""
+        if batch[PIXELS].shape[1] > 1:
+            return super().predict_action_chunk(batch)
+        return self.plan_and_act(batch)
 
     @in_precision
-    def _plan_and_act(self, batch: dict[str, Tensor]) -> Tensor:
-        t, batch_size = self._t, batch[PIXELS].shape[0]
+    def plan_and_act(self, batch: dict[str, Tensor]) -> Tensor:
+        """Ask the planner (every chunk, on the stride frames seen so far), update each env's bank, and
+        predict the chunk from the retrieved frames, the current one and the planner's subtask."""
+        t, batch_size = self.step, batch[PIXELS].shape[0]
         tasks = batch.get("task")
         if tasks is None:
             raise ValueError("activearena_plan needs the task instruction ('task') in the batch")

@@ -40,7 +40,7 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     fixed_view: bool = False
     think: str = "subtask"  # auxiliary <think> target: none | instruction | subtask
     lm_loss_weight: float = 0.1
-    subtask_max_tokens: int = 32  # memory=subtask at evaluation: greedy <think> decoding budget per chunk
+    subtask_max_tokens: int = 32  # greedy <think> decoding budget (OFT's memory=subtask, FAST's think span)
     chunk_size: int = 16
     n_action_steps: int = 16
     state_hidden: int = 1024
@@ -84,6 +84,8 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
 
     # a head whose memory is filled by a planner (memory=planned) sets this
     uses_planner_memory = False
+    # a head that decodes its own subtask at evaluation to decide memory writes (memory=subtask) sets this
+    supports_subtask_memory = False
 
     def __post_init__(self):
         super().__post_init__()
@@ -93,6 +95,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 "memory=planned is ActiveArena-Plan's executor memory (frames its planner retrieves): "
                 "use --policy.type=activearena_plan"
+            )
+        if self.memory == "subtask" and not self.supports_subtask_memory:
+            raise ValueError(
+                "memory=subtask writes a frame where the policy's own decoded subtask changes, which "
+                "ActiveArena-VLA-OFT implements (the paper's ablation): use --policy.type=activearena_oft"
             )
         if self.think not in THINK_TARGETS:
             raise ValueError(f"--policy.think must be one of {THINK_TARGETS}, got {self.think!r}")

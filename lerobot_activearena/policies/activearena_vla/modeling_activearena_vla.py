@@ -279,6 +279,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         return loss, info
 
     # ----- evaluation: memory bank -----
+    # ``select_action`` runs, per env step: ``observe`` (bookkeeping of the new observation), a new chunk
+    # from ``predict_action_chunk`` when the queue is empty, ``remember`` (memory writes), then pops one
+    # action. A head changes what is remembered through ``writes_frame``, how an env chunk is decoded
+    # through ``predict_chunk``, and what an episode starts with through ``start_episode``.
     def reset(self) -> None:
         self._queue: deque[Tensor] = deque()
         self._bank: list[list[dict]] | None = None
@@ -286,16 +290,29 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         self._current_vision: dict = {}
         self._t = 0
 
-    def _retained(self, b: int) -> bool:
-        """Is the frame just observed (step ``self._t``) written to env b's memory?"""
+    @property
+    def step(self) -> int:
+        """Env steps taken since the last ``reset``."""
+        return self._t
+
+    @property
+    def queued_actions(self) -> int:
+        """Actions of the current chunk not yet returned."""
+        return len(self._queue)
+
+    def memory(self, b: int = 0) -> list[dict]:
+        """Env ``b``'s memory, oldest first (empty before an episode): per frame its env step ``t``,
+        ``pixels``, ``grid``, ``state`` and cached ``vision`` features (None until first encoded)."""
+        return [] if self._bank is None else list(self._bank[b])
+
+    def writes_frame(self, b: int) -> bool:
+        """Is the frame just observed (step ``self.step``) written to env b's memory? The paper's
+        chunk (every 16th step) and motion (keyframes of the state so far) write policies."""
         policy = self.config.memory
         if policy == "chunk":
             return self._t % STRIDE == 0
         if policy == "motion":
             return bool(motion_keyframes(np.stack(self._raw_states[b]))[-1])
-        if policy == "subtask":  # decided at chunk boundaries, where the subtask is predicted
-            new, self._subtask_new[b] = self._subtask_new[b], False
-            return new
         return False
 
     def history_batch(self, batch: dict[str, Tensor]):
@@ -327,18 +344,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             pixels, grid, valid = batch[PIXELS], batch[GRID], batch[FRAME_VALID]
         else:
             if self._bank is None:
-                self._start(batch)
+                self.start_episode(batch)
             pixels, grid, valid, state, cache = self.history_batch(batch)
         args = self.encode_args(
             pixels, grid, valid, state, batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK]
         )
-        if cache is not None and self.config.memory == "subtask" and self.config.uses_history:
-            subtasks, pred = self.predict_subtask_and_actions(args, vision_cache=cache)
-            for b, sub in enumerate(subtasks):
-                self._subtask_new[b] = sub != self._subtask[b]  # first frame of a new (predicted) subtask
-                self._subtask[b] = sub
-        else:
-            pred = self.encode(*args, vision_cache=cache)[0]
+        pred = self.encode(*args)[0] if cache is None else self.predict_chunk(args, vision_cache=cache)
         if self.config.fixed_view:  # placeholders: the postprocessor sets torso and head to home
             pred = nn.functional.pad(pred, (0, self.config.action_dim - pred.shape[-1]))
         if cache is not None:  # the current frames' features, for a memory write at this step
@@ -359,17 +370,15 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             prompt_mask,
         )
 
-    def _start(self, batch: dict[str, Tensor]) -> None:
-        if self.config.memory == "subtask" and self.config.uses_history and self.config.think != "subtask":
-            raise ValueError(
-                "memory=subtask at evaluation writes a frame when the policy's own predicted subtask "
-                "changes, so it needs a policy trained with think=subtask"
-            )
+    def predict_chunk(self, encode_args: tuple, vision_cache: dict | None = None) -> Tensor:
+        """The (B, chunk, predicted_action_dim) chunk at an env step, from ``encode_args``' inputs."""
+        return self.encode(*encode_args, vision_cache=vision_cache)[0]
+
+    def start_episode(self, batch: dict[str, Tensor]) -> None:
+        """Empty memories for the batch's envs (called at the first env step after ``reset``)."""
         batch_size = batch[PIXELS].shape[0]
         self._bank = [[] for _ in range(batch_size)]
         self._raw_states = [[] for _ in range(batch_size)]
-        self._subtask: list[tuple[int, ...] | None] = [None] * batch_size
-        self._subtask_new = [False] * batch_size
 
     @property
     def text_tokenizer(self):
@@ -385,32 +394,6 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def think_token_ids(self) -> tuple[int, int]:
         tok = self.text_tokenizer
         return tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>")
-
-    @torch.no_grad()
-    def predict_subtask(self, encode_args: tuple) -> list[tuple[int, ...]]:
-        """Greedy ``<think>`` decoding: the token ids of each sample's predicted current subtask (up to and
-        including ``</think>``). It decides which frames the subtask memory keeps; the actions never read it."""
-        return self.greedy_think(encode_args)[0]
-
-    @torch.no_grad()
-    def predict_subtask_and_actions(
-        self, encode_args: tuple, vision_cache: dict | None = None
-    ) -> tuple[list[tuple[int, ...]], Tensor]:
-        """The predicted subtasks and the action chunk from one backbone pass over images and prompt: the
-        queries sit before ``<think>``, so (causal attention) the actions are those of ``encode``."""
-        tokens, _, actions = self.greedy_think(encode_args, vision_cache=vision_cache)
-        return tokens, actions
-
-    def greedy_think(
-        self, encode_args: tuple, use_cache: bool = True, vision_cache: dict | None = None
-    ) -> tuple[list[tuple[int, ...]], list[Tensor], Tensor]:
-        """Greedy decoding after ``<think>`` up to ``</think>``; returns the tokens, each step's (B, vocab)
-        logits and the action chunk read from the first pass's query positions."""
-        start, end = self.think_token_ids()
-        tokens, step_logits, (hidden, kind) = self.greedy_decode(
-            encode_args, [start], end, self.config.subtask_max_tokens, use_cache, vision_cache
-        )
-        return tokens, step_logits, self.decode_actions(hidden, kind)
 
     @in_precision
     def greedy_decode(
@@ -470,8 +453,19 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         self.eval()
+        self.observe(batch)
+        if not self._queue:
+            chunk = self.predict_action_chunk(batch)[:, : self.config.n_action_steps]
+            self._queue.extend(chunk.transpose(0, 1))
+        self.remember(batch)
+        self._t += 1
+        return self._queue.popleft()
+
+    def observe(self, batch: dict[str, Tensor]) -> None:
+        """Bookkeeping of an env step's observation before any chunk is predicted: start the episode's
+        memories, keep the raw state (the motion write policy reads the states so far)."""
         if self._bank is None:
-            self._start(batch)
+            self.start_episode(batch)
         batch_size = batch[PIXELS].shape[0]
         if RAW_STATE in batch:
             dim = self.config.input_features[OBS_STATE].shape[0]
@@ -484,12 +478,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             for b in range(batch_size):
                 self._raw_states[b].append(batch[RAW_STATE][b].float().cpu().numpy())
         self._current_vision = {}
-        if not self._queue:
-            chunk = self.predict_action_chunk(batch)[:, : self.config.n_action_steps]
-            self._queue.extend(chunk.transpose(0, 1))
+
+    def remember(self, batch: dict[str, Tensor]) -> None:
+        """Write the step's frame to each env's memory where ``writes_frame`` says so (K newest kept)."""
         if self.config.uses_history:
-            for b in range(batch_size):
-                if self._retained(b):  # vision features: this step's, else computed at first use
+            for b in range(batch[PIXELS].shape[0]):
+                if self.writes_frame(b):  # vision features: this step's, else computed at first use
                     self._bank[b].append(
                         {
                             "t": self._t,
@@ -500,5 +494,3 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                         }
                     )
                     del self._bank[b][: -self.config.history]
-        self._t += 1
-        return self._queue.popleft()
