@@ -37,7 +37,8 @@ from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.policies.activearena_fast import ActiveArenaFASTConfig
 from lerobot_activearena.policies.activearena_groot import ActiveArenaGR00TConfig
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
-from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
+from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig
+from lerobot_activearena.policies.activearena_planner import ActiveArenaPlannerConfig
 from lerobot_activearena.policies.activearena_vla.tiny_vlm import make_tiny_vlm
 
 CONFIGS = {

@@ -10,6 +10,7 @@ from lerobot_activearena.policies import (
     activearena_groot,
     activearena_oft,
     activearena_plan,
+    activearena_planner,
 )
 
 __all__ = [
@@ -18,5 +19,6 @@ __all__ = [
     "activearena_groot",
     "activearena_oft",
     "activearena_plan",
+    "activearena_planner",
     "env_configs",
 ]

@@ -5,11 +5,13 @@ answers that parse back, malformed answers that change nothing but a counter."""
 import pytest
 
 from lerobot_activearena.annotations.keyframes import retrieval_positions
-from lerobot_activearena.policies.activearena_plan.planning import (
+from lerobot_activearena.policies.activearena_plan.memory_bank import (
     MemoryBank,
-    PlannerAnswer,
     executor_memory,
     executor_prompt,
+)
+from lerobot_activearena.policies.activearena_planner.answers import (
+    PlannerAnswer,
     parse_planner_answer,
     planner_prompt,
     planner_target,

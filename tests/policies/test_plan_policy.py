@@ -17,8 +17,9 @@ from lerobot.policies.factory import make_policy, make_pre_post_processors
 
 from lerobot_activearena.annotations.keyframes import planned_memory, retrieval_positions
 from lerobot_activearena.policies.activearena_oft import ActiveArenaOFTConfig
-from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
-from lerobot_activearena.policies.activearena_plan.planning import (
+from lerobot_activearena.policies.activearena_plan import ActiveArenaPlanConfig
+from lerobot_activearena.policies.activearena_planner import ActiveArenaPlannerConfig
+from lerobot_activearena.policies.activearena_planner.answers import (
     PlannerAnswer,
     parse_planner_answer,
     planner_prompt,

@@ -1,7 +1,7 @@
-"""ActiveArena-Plan (`oft_subtask_planned_12_ws`): the planner (``activearena_planner``) and the OFT
-executor (``activearena_plan``, which runs its planner at evaluation), their prompts, targets,
-retrieval labels and run-time memory bank (``planning``)."""
+"""ActiveArena-Plan (`oft_subtask_planned_12_ws`): the OFT executor (``activearena_plan``) that runs its
+planner (``activearena_planner``, its own package) at evaluation, its prompt and run-time memory bank
+(``memory_bank``)."""
 
-from .configuration_activearena_plan import ActiveArenaPlanConfig, ActiveArenaPlannerConfig
+from .configuration_activearena_plan import ActiveArenaPlanConfig
 
-__all__ = ["ActiveArenaPlanConfig", "ActiveArenaPlannerConfig"]
+__all__ = ["ActiveArenaPlanConfig"]

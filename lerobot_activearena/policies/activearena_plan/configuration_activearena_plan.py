@@ -1,9 +1,7 @@
-"""Configs of ActiveArena-Plan (`oft_subtask_planned_12_ws`, paper App. "ActiveArena-Plan
-Architecture"): two models trained separately. ``activearena_planner`` reads the last <= 13
-stride-16 frames (no state) and the instruction and writes ``<think>..</think><subtask>..</subtask>
-<retrieval>[..]</retrieval>``; ``activearena_plan`` is the OFT executor, prompted with the subtask and
-shown the retrieved frames (each with its state) and the current one. At evaluation the executor
-loads its planner (``planner_path``) and runs both."""
+"""Config of ActiveArena-Plan's executor (`oft_subtask_planned_12_ws`, paper App. "ActiveArena-Plan
+Architecture"): the OFT head prompted with the planner's subtask and shown the retrieved frames (each
+with its state) and the current one. The planner (``activearena_planner``, its own package) is trained
+separately; at evaluation the executor loads it (``planner_path``) and runs both."""
 
 from __future__ import annotations
 
@@ -14,34 +12,6 @@ from lerobot.configs.policies import PreTrainedConfig
 
 from ...annotations.keyframes import STRIDE
 from ..activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
-from ..activearena_vla.configuration_activearena_vla import ActiveArenaVLAConfig
-from .planning import PLANNER_HISTORY
-
-
-@PreTrainedConfig.register_subclass("activearena_planner")
-@dataclass
-class ActiveArenaPlannerConfig(ActiveArenaVLAConfig):
-    memory: str = "chunk"  # the stride-16 frames
-    history: int = PLANNER_HISTORY
-    use_state: bool = False  # the planner sees images and language only
-    think: str = "subtask"  # its target names the annotated subtask
-    lm_loss_weight: float = 1.0  # its only loss
-    plan_max_tokens: int = 128  # greedy decoding budget per answer
-
-    def __post_init__(self):
-        super().__post_init__()
-        if (self.memory, self.think) != ("chunk", "subtask"):
-            raise ValueError(
-                "activearena_planner reads the stride-16 frames (memory=chunk) and is trained on the "
-                f"subtask annotation (think=subtask); got memory={self.memory!r}, think={self.think!r}"
-            )
-        if self.lm_loss_weight != 1.0:
-            raise ValueError(
-                "activearena_planner's only loss is its answer's cross-entropy, so --policy.lm_loss_weight "
-                f"(the think loss's weight beside an action loss) has no effect: leave it at 1.0, got {self.lm_loss_weight}"
-            )
-        if self.plan_max_tokens < 1:
-            raise ValueError(f"--policy.plan_max_tokens must be >= 1, got {self.plan_max_tokens}")
 
 
 @PreTrainedConfig.register_subclass("activearena_plan")

@@ -1,60 +1,13 @@
-"""ActiveArena-Plan's processors: the shared ones of ``activearena_vla`` with the paper's prompts. The planner's
-annotation step also writes its complete training target (subtask and the retrieval positions of its
-input frames); the executor is prompted with the annotated subtask at training time (at evaluation the
-policy re-prompts it with the planner's)."""
+"""ActiveArena-Plan's executor processors: the shared ones of ``activearena_vla`` with the paper's
+executor prompt. The executor is prompted with the annotated subtask at training time (at evaluation
+the policy re-prompts it with its planner's)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ..activearena_vla.processor_activearena_vla import ASSISTANT, make_activearena_vla_pre_post_processors
+from .memory_bank import executor_prompt
 
-import torch
-from lerobot.lerobot_types import TransitionKey
-from lerobot.processor import ProcessorStepRegistry
-
-from ...annotations.keyframes import retrieval_positions
-from ..activearena_vla.processor_activearena_vla import (
-    ActiveArenaAnnotationStep,
-    make_activearena_vla_pre_post_processors,
-)
-from .planning import executor_prompt, planner_prompt, planner_target, stride_frames
-
-ASSISTANT = "<|im_end|>\n<|im_start|>assistant\n"
-PLANNER_PROMPT = planner_prompt("{instruction}") + ASSISTANT
 EXECUTOR_PROMPT = executor_prompt("{instruction}") + ASSISTANT
-PLANNER_TARGET = "{target}<|im_end|>"
-
-
-@ProcessorStepRegistry.register(name="activearena_planner_annotations")
-@dataclass
-class PlannerAnnotationStep(ActiveArenaAnnotationStep):
-    """Training only: also writes the planner's target for each sample's stride-16 input frames."""
-
-    def __call__(self, transition):
-        out = super().__call__(transition)
-        comp = out.get(TransitionKey.COMPLEMENTARY_DATA) or {}
-        if comp.get("index") is None or "subtask" not in comp:
-            return out
-        targets = []
-        for i, subtask in zip(
-            torch.as_tensor(comp["index"]).reshape(-1).tolist(), comp["subtask"], strict=True
-        ):
-            x, keyframes = self._ann.subtask_keyframes(i)
-            frames = stride_frames(x, history=self.history)
-            targets.append(planner_target(len(frames), subtask, retrieval_positions(frames, keyframes)))
-        out = dict(out)
-        out[TransitionKey.COMPLEMENTARY_DATA] = {**comp, "think_target": targets}
-        return out
-
-
-def make_activearena_planner_pre_post_processors(config, dataset_stats=None, dataset_meta=None):
-    return make_activearena_vla_pre_post_processors(
-        config,
-        dataset_stats,
-        dataset_meta,
-        think_template=PLANNER_TARGET,
-        prompt_template=PLANNER_PROMPT,
-        annotation_step=PlannerAnnotationStep,
-    )
 
 
 def make_activearena_plan_pre_post_processors(config, dataset_stats=None, dataset_meta=None):

@@ -32,6 +32,7 @@ PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + 
 PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
 PREFIX = "<|im_start|>user\n"
+ASSISTANT = "<|im_end|>\n<|im_start|>assistant\n"  # closes a user turn, opens the answer
 PROMPT = (
     "The images are ordered from earliest to latest, and the last image is the current view. "
     "Task: {instruction}<|im_end|>\n<|im_start|>assistant\n"

@@ -1,20 +1,17 @@
-"""ActiveArena-Plan's text and frame bookkeeping (paper App. "ActiveArena-Plan Architecture").
-
-The planner sees the last <= K + 1 stride-16 frames and the instruction, and answers
+"""ActiveArena-Plan's planner language (paper App. "ActiveArena-Plan Architecture"): the planner sees
+the last <= K + 1 stride-16 frames and the instruction, and answers
 ``<think>..</think><subtask>..</subtask><retrieval>[positions]</retrieval>``; a position is a
-retrieval target when its frame lies in [q, q + 16) for an earlier subtask keyframe q. The executor
-(OFT) is prompted with the subtask and sees the retrieved frames of the uncapped stride-16 history
-and the current frame. At run time (``MemoryBank``) each chunk's retrieval adds frames to a
-persistent, de-duplicated bank; a malformed answer keeps the previous subtask and bank and is
-counted.
+retrieval target when its frame lies in [q, q + 16) for an earlier subtask keyframe q. Its prompt,
+training target and the parser of its answers live here; the executor's memory is in
+``activearena_plan.memory_bank``.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
-from ...annotations.keyframes import STRIDE, planned_memory, stride_sequence
+from ...annotations.keyframes import STRIDE, stride_sequence
 
 PLANNER_HISTORY = 12  # K: history frames the planner sees (plus the current one)
 
@@ -25,25 +22,12 @@ def stride_frames(x: int, stride: int = STRIDE, history: int | None = PLANNER_HI
     return stride_sequence(x, stride, history)
 
 
-def executor_memory(x: int, keyframes, stride: int = STRIDE) -> list[int]:
-    """The executor's frames: those of the uncapped stride-16 history in a keyframe window, then the
-    current frame ``x`` (not twice when it is the latest selected one)."""
-    return [*planned_memory(x, keyframes, stride), x]
-
-
 def planner_prompt(instruction: str) -> str:
     return (
         f'Your task is: "{instruction}" The input images are ordered from earliest to latest, and the last '
         "image is the current view. Please think about the current subtask and which frame(s) among the "
         "input images are worth remembering. Your response should be in the format of: "
         "<think>...</think><subtask>...</subtask><retrieval>...</retrieval>."
-    )
-
-
-def executor_prompt(subtask: str) -> str:
-    return (
-        f'Your task is: "{subtask}" The input images are ordered from earliest to latest, and the last '
-        "image is the current view. Please think about the next action."
     )
 
 
@@ -81,25 +65,3 @@ def parse_planner_answer(text: str, n_frames: int) -> PlannerAnswer | None:
     if positions and positions[-1] >= n_frames:
         return None
     return PlannerAnswer(subtask, positions)
-
-
-@dataclass
-class MemoryBank:
-    """One episode's planner-driven memory: the frames retrieved so far (absolute indices, sorted,
-    unique), the current subtask, and how many planner answers were malformed."""
-
-    subtask: str | None = None
-    frames: list[int] = field(default_factory=list)
-    malformed: int = 0
-
-    def update(self, answer: PlannerAnswer | None, input_frames: list[int]) -> None:
-        """Apply one planner answer to the images ``input_frames`` it saw (None: malformed, ignored)."""
-        if answer is None:
-            self.malformed += 1
-            return
-        self.subtask = answer.subtask
-        self.frames = sorted(set(self.frames) | {input_frames[p] for p in answer.positions})
-
-    def executor_frames(self, x: int) -> list[int]:
-        """Retrieved frames before ``x``, then ``x``."""
-        return [f for f in self.frames if f < x] + [x]
