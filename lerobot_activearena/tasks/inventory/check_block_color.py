@@ -16,16 +16,17 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...expert import inspection, routines, skills
+from ...expert import inspection
 from ...sim.embodiment import ARMS
 from .. import predicates
-from ..base import Subtask, Task
+from ..base import Subtask
 from ..draft import HIDDEN, Region
+from ..shapes.inspection import InspectAndPlaceTask, Reading
 
 PAD_COLORS = ("red", "green", "blue")
 
 
-class CheckBlockColor(Task):
+class CheckBlockColor(InspectAndPlaceTask):
     name = "check_block_color"
     category = "IA"
     instruction = "Inspect the gray block's hidden color and place it on the matching pad."
@@ -38,6 +39,8 @@ class CheckBlockColor(Task):
         ),
     )
     max_episode_steps = 296
+    inspected = ("gray_block",)
+    restore_before_placing = True
 
     def layout(self, draft):
         rng = draft.rng
@@ -77,9 +80,6 @@ class CheckBlockColor(Task):
     def search_targets(self, scene):
         return [scene.objects.index("gray_block"), scene.objects.index(f"{scene.params['patch_color']}_pad")]
 
-    def information_faces(self, scene):
-        return ["gray_block"]
-
     def evaluate(self, sim, scene, monitor):
         pad = f"{scene.params['patch_color']}_pad"
         info = scene.obj(pad)
@@ -90,21 +90,6 @@ class CheckBlockColor(Task):
             "block_released": predicates.released(sim, "gray_block"),
         }
 
-    def expert(self, ctx, scene):
-        block = ctx.idx("gray_block")
-        with ctx.subtask(1):
-            turn = yield from inspection.pick_for_inspection(ctx, block)
-        with ctx.subtask(2):
-            yield from inspection.show_hidden_face(ctx, turn, block)
-            color = ctx.obj(block).attributes["patch_color"]  # read off the visible patch
-            ctx.notes["observed_color"] = color
-            inspection.record_reading(ctx, block, color, f"place on the {color} pad")
-        with ctx.subtask(3):
-            yield from inspection.restore_pose(ctx, turn, block)
-        with ctx.subtask(4):
-            pad = ctx.idx(f"{color}_pad")
-            yield from routines.find_and_face(ctx, pad, turn.side)
-            skills.start_action(ctx, {block, pad})
-            ctx.intent.carried = {block}
-            yield from skills.place(ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True)
-            yield from routines.finish(ctx, turn.side)
+    def read(self, scene, attributes):
+        color = attributes["patch_color"]
+        return Reading(color, f"{color}_pad", f"place on the {color} pad")

@@ -22,7 +22,7 @@ from __future__ import annotations
 from ...sim.embodiment import ARMS, other_arm
 from ..base import Subtask
 from ..draft import HIDDEN, REACH
-from ..shapes.can_inspection import InspectCanTask
+from ..shapes.inspection import InspectCanTask
 
 AREA_COLORS = ("red", "green", "blue", "yellow", "orange", "purple")
 

@@ -25,7 +25,7 @@ from ...sim.assets.task_objects import DATE_RANGE, SHELF_LIFE_DAYS
 from ...sim.embodiment import ARMS, other_arm
 from ..base import Subtask
 from ..draft import HIDDEN, REACH
-from ..shapes.can_inspection import InspectCanTask
+from ..shapes.inspection import InspectCanTask
 
 AREAS = {"expired": ("red", "EXPIRED"), "valid": ("green", "VALID")}
 TODAY_RANGE = (dt.date(2024, 1, 2), DATE_RANGE[1])

@@ -21,18 +21,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...expert import inspection, motion, routines, skills
+from ...expert import inspection
 from ...sim.embodiment import ARMS, other_arm
 from .. import predicates
-from ..base import Subtask, Task
+from ..base import Subtask
 from ..draft import HIDDEN, REACH, Region
+from ..shapes.inspection import InspectAndPlaceTask, Reading
 
 PAD_COLORS = ("red", "green", "blue")
 BLOCKS = ("gray_block_0", "gray_block_1")
 SHARED_PAD_OFFSET = 0.026  # m along each pad axis when both blocks go on one pad
 
 
-class MatchBacksideTwoBlocks(Task):
+class MatchBacksideTwoBlocks(InspectAndPlaceTask):
     name = "match_backside_two_blocks"
     category = "IA"
     instruction = "Inspect two gray blocks and place each on its matching pad."
@@ -51,6 +52,7 @@ class MatchBacksideTwoBlocks(Task):
         )
     )
     max_episode_steps = 488
+    inspected = BLOCKS
 
     def layout(self, draft):
         rng = draft.rng
@@ -94,9 +96,6 @@ class MatchBacksideTwoBlocks(Task):
         pads = {f"{c}_pad" for c in scene.params["patch_colors"]}
         return [scene.objects.index(n) for n in (*BLOCKS, *sorted(pads))]
 
-    def information_faces(self, scene):
-        return list(BLOCKS)
-
     def evaluate(self, sim, scene, monitor):
         checks = {}
         for k, (block, color) in enumerate(zip(BLOCKS, scene.params["patch_colors"], strict=True)):
@@ -107,31 +106,13 @@ class MatchBacksideTwoBlocks(Task):
         checks["blocks_released"] = all(predicates.released(sim, b) for b in BLOCKS)
         return checks
 
-    def expert(self, ctx, scene):
-        used: dict[int, int] = {}  # pad -> blocks already placed on it
-        todo = [ctx.idx(b) for b in BLOCKS]
-        for k in range(2):
-            with ctx.subtask(3 * k + 1):
-                block = routines.nearest_known(ctx, todo)
-                todo.remove(block)
-                turn = yield from inspection.pick_for_inspection(ctx, block)
-            with ctx.subtask(3 * k + 2):
-                yield from inspection.show_hidden_face(ctx, turn, block)
-                color = ctx.obj(block).attributes["patch_color"]  # read off the visible patch
-                ctx.notes[f"observed_color_{k}"] = color
-                inspection.record_reading(ctx, block, color, f"place on the {color} pad")
-            with ctx.subtask(3 * k + 3):
-                pad = ctx.idx(f"{color}_pad")
-                yield from routines.find_and_face(ctx, pad, turn.side)
-                target = pad_spot(
-                    ctx, pad, used.get(pad, 0), shared=scene.params["patch_colors"].count(color) == 2
-                )
-                used[pad] = used.get(pad, 0) + 1
-                skills.start_action(ctx, {block, pad})
-                ctx.intent.carried = {block}
-                yield from skills.place(ctx, turn.side, block, target, ctx.top_z(pad), yaw_free=True)
-                yield from skills.retreat(ctx, turn.side)
-        yield from motion.hold(ctx, 3)
+    def read(self, scene, attributes):
+        color = attributes["patch_color"]
+        return Reading(color, f"{color}_pad", f"place on the {color} pad")
+
+    def place_spot(self, ctx, scene, dest, reading, placed_before):
+        shared = scene.params["patch_colors"].count(reading.value) == 2
+        return pad_spot(ctx, dest, placed_before, shared)
 
 
 def pad_spot(ctx, pad: int, n_on_it: int, shared: bool) -> np.ndarray:

@@ -20,18 +20,19 @@ from __future__ import annotations
 
 import math
 
-from ...expert import inspection, motion, routines, skills
+from ...expert import inspection
 from ...sim.embodiment import ARMS
 from .. import predicates
-from ..base import Subtask, Task
+from ..base import Subtask
 from ..draft import Region
+from ..shapes.inspection import InspectAndPlaceTask, Reading
 
 RANK = {"red": "left", "green": "middle", "blue": "right"}
 BLOCKS = ("gray_block_0", "gray_block_1", "gray_block_2")
 PAD_SPACING = 0.145  # m between neighbouring pad centres (2.5 cm gaps between 12 cm pads)
 
 
-class RankBacksideRgbBlocks(Task):
+class RankBacksideRgbBlocks(InspectAndPlaceTask):
     name = "rank_backside_rgb_blocks"
     category = "IA"
     instruction = "Inspect three gray blocks and arrange them in red--green--blue order."
@@ -50,6 +51,7 @@ class RankBacksideRgbBlocks(Task):
         )
     )
     max_episode_steps = 697
+    inspected = BLOCKS
 
     def layout(self, draft):
         rng = draft.rng
@@ -81,9 +83,6 @@ class RankBacksideRgbBlocks(Task):
         draft.params["patch_colors"] = colors
         draft.params["row"] = (round(r, 4), round(center, 2))
 
-    def information_faces(self, scene):
-        return list(BLOCKS)
-
     def evaluate(self, sim, scene, monitor):
         checks = {}
         for block, color in zip(BLOCKS, scene.params["patch_colors"], strict=True):
@@ -99,25 +98,6 @@ class RankBacksideRgbBlocks(Task):
             )
         )
 
-    def expert(self, ctx, scene):
-        todo = [ctx.idx(b) for b in BLOCKS]
-        for k in range(3):
-            with ctx.subtask(3 * k + 1):
-                block = routines.nearest_known(ctx, todo)
-                todo.remove(block)
-                turn = yield from inspection.pick_for_inspection(ctx, block)
-            with ctx.subtask(3 * k + 2):
-                yield from inspection.show_hidden_face(ctx, turn, block)
-                color = ctx.obj(block).attributes["patch_color"]  # read off the visible patch
-                ctx.notes[f"observed_color_{k}"] = color
-                inspection.record_reading(ctx, block, color, f"place on the {RANK[color]} pad")
-            with ctx.subtask(3 * k + 3):
-                pad = ctx.idx(f"{RANK[color]}_pad")
-                yield from routines.find_and_face(ctx, pad, turn.side)
-                skills.start_action(ctx, {block, pad})
-                ctx.intent.carried = {block}
-                yield from skills.place(
-                    ctx, turn.side, block, ctx.center(pad)[:2], ctx.top_z(pad), yaw_free=True
-                )
-                yield from skills.retreat(ctx, turn.side)
-        yield from motion.hold(ctx, 3)
+    def read(self, scene, attributes):
+        color = attributes["patch_color"]
+        return Reading(color, f"{RANK[color]}_pad", f"place on the {RANK[color]} pad")
