@@ -1,9 +1,11 @@
-"""Named predicates over the simulator state that success checks compose.
+"""Named predicates over the simulator state that success checks compose. One rule for arguments:
 
-State predicates (``resting_on``, ``left_of`` ...) read object poses; contact predicates
-(``touched_by_robot``, ``pressed_by``) read MuJoCo's contact list; both take body names. The
-placement relations at the end (``on_support``, ``in_container``, ``stacked_on``, ``beside``,
-``facing``, ``touching``, ``struck``) take ``ObjectInfo`` and read its typed functional metadata.
+- a predicate about one body (its pose: ``upright``, ``in_place`` ...; its contacts:
+  ``touched_by_robot``, ``released``, ``pressed_by`` ...) takes the body's name;
+- a relation between objects (``resting_on``, ``inside_disc``, ``left_of``, ``on_support``,
+  ``in_container``, ``stacked_on``, ``beside``, ``facing``, ``touching``, ``struck``) and anything
+  that needs an object's shape takes its ``ObjectInfo`` (``scene.obj(name)``) and reads the typed
+  functional metadata (a support's top and half sizes, a container's floor and rim).
 """
 
 from __future__ import annotations
@@ -233,40 +235,45 @@ def press_moved(sim: ActiveArenaSim, obj: ObjectInfo) -> bool:
     return press.is_pressed(joint_pos(sim, press.joint))
 
 
+# ---- placement relations on typed functional metadata -------------------------------------------
 def resting_on(
     sim: ActiveArenaSim,
-    body: str,
-    support: str,
-    half_xy,
-    height: float,
+    obj: ObjectInfo,
+    support: ObjectInfo,
     margin: float = 0.01,
     z_tol: float = 0.012,
+    half_xy=None,
 ) -> bool:
-    """``body``'s origin lies within the support's top rectangle (``half_xy`` in the support's frame,
-    shrunk by ``margin``) at ``height`` above the support's origin (+/- ``z_tol``)."""
-    s = sim.data.body(support)
-    local = s.xmat.reshape(3, 3).T @ (sim.data.body(body).xpos - s.xpos)
-    hx, hy = (half_xy, half_xy) if np.isscalar(half_xy) else half_xy
+    """``obj``'s origin (its bottom centre) lies over ``support``'s top rectangle (its
+    ``functional.support`` half sizes, or ``half_xy``, in the support's frame, shrunk by ``margin``)
+    at the top's height (+/- ``z_tol``). Where the object's whole footprint matters: ``on_support``."""
+    top = support.functional.support
+    if top is None:
+        raise ValueError(f"{support.name} ({support.category}) declares no support surface")
+    s = sim.data.body(support.name)
+    local = s.xmat.reshape(3, 3).T @ (sim.data.body(obj.name).xpos - s.xpos)
+    half = top.half if half_xy is None else half_xy
+    hx, hy = (half, half) if np.isscalar(half) else half
     return bool(
-        abs(local[0]) <= hx - margin and abs(local[1]) <= hy - margin and abs(local[2] - height) <= z_tol
+        abs(local[0]) <= hx - margin and abs(local[1]) <= hy - margin and abs(local[2] - top.top) <= z_tol
     )
 
 
-def inside_disc(sim: ActiveArenaSim, body: str, center_body: str, radius: float) -> bool:
-    """Horizontal distance between the two bodies' origins below ``radius``."""
-    return bool(np.linalg.norm(sim.data.body(body).xpos[:2] - sim.data.body(center_body).xpos[:2]) <= radius)
+def inside_disc(sim: ActiveArenaSim, obj: ObjectInfo, centre: ObjectInfo, radius: float) -> bool:
+    """Horizontal distance between the two objects' origins below ``radius``."""
+    a, b = sim.data.body(obj.name).xpos, sim.data.body(centre.name).xpos
+    return bool(np.linalg.norm(a[:2] - b[:2]) <= radius)
 
 
-def left_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
+def left_of(sim: ActiveArenaSim, a: ObjectInfo, b: ObjectInfo, min_deg: float = 0.0) -> bool:
     """``a`` is left of ``b`` as the robot sees them (larger workspace angle)."""
-    return polar(sim.data.body(a).xpos)[1] - polar(sim.data.body(b).xpos)[1] > min_deg
+    return polar(sim.data.body(a.name).xpos)[1] - polar(sim.data.body(b.name).xpos)[1] > min_deg
 
 
-def right_of(sim: ActiveArenaSim, a: str, b: str, min_deg: float = 0.0) -> bool:
+def right_of(sim: ActiveArenaSim, a: ObjectInfo, b: ObjectInfo, min_deg: float = 0.0) -> bool:
     return left_of(sim, b, a, min_deg)
 
 
-# ---- placement relations on typed functional metadata -------------------------------------------
 FOOTPRINT_GRID = 5  # points per side sampled over an object's footprint
 
 

@@ -81,12 +81,9 @@ class CheckBlockColor(InspectAndPlaceTask):
         return [scene.objects.index("gray_block"), scene.objects.index(f"{scene.params['patch_color']}_pad")]
 
     def evaluate(self, sim, scene, monitor):
-        pad = f"{scene.params['patch_color']}_pad"
-        info = scene.obj(pad)
+        pad = scene.obj(f"{scene.params['patch_color']}_pad")
         return {
-            "on_matching_pad": predicates.resting_on(
-                sim, "gray_block", pad, info.half_extents[0], info.functional.support.top
-            ),
+            "on_matching_pad": predicates.resting_on(sim, scene.obj("gray_block"), pad),
             "block_released": predicates.released(sim, "gray_block"),
         }
 

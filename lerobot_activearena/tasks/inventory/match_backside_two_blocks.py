@@ -100,9 +100,7 @@ class MatchBacksideTwoBlocks(InspectAndPlaceTask):
         checks = {}
         for k, (block, color) in enumerate(zip(BLOCKS, scene.params["patch_colors"], strict=True)):
             pad = scene.obj(f"{color}_pad")
-            checks[f"block_{k}_on_matching_pad"] = predicates.resting_on(
-                sim, block, pad.name, pad.half_extents[0], pad.functional.support.top
-            )
+            checks[f"block_{k}_on_matching_pad"] = predicates.resting_on(sim, scene.obj(block), pad)
         checks["blocks_released"] = all(predicates.released(sim, b) for b in BLOCKS)
         return checks
 

@@ -31,12 +31,7 @@ class PlaceEmptyCupRotateView(PickPlaceTask):
 
     def placed(self, sim, scene):
         """The cup's base on the coaster's top, centred within the coaster's radius less 1.5 cm."""
-        coaster = scene.obj("coaster")
+        cup, coaster = scene.obj("cup"), scene.obj("coaster")
         return predicates.resting_on(
-            sim,
-            "cup",
-            "coaster",
-            coaster.half_extents[0] / 2**0.5,
-            coaster.functional.support.top,
-            margin=0.0,
-        ) and predicates.inside_disc(sim, "cup", "coaster", coaster.half_extents[0] - 0.015)
+            sim, cup, coaster, margin=0.0, half_xy=coaster.half_extents[0] / 2**0.5
+        ) and predicates.inside_disc(sim, cup, coaster, coaster.half_extents[0] - 0.015)

@@ -87,9 +87,7 @@ class RankBacksideRgbBlocks(InspectAndPlaceTask):
         checks = {}
         for block, color in zip(BLOCKS, scene.params["patch_colors"], strict=True):
             pad = scene.obj(f"{RANK[color]}_pad")
-            checks[f"{color}_on_{RANK[color]}_pad"] = predicates.resting_on(
-                sim, block, pad.name, pad.half_extents[0], pad.functional.support.top
-            )
+            checks[f"{color}_on_{RANK[color]}_pad"] = predicates.resting_on(sim, scene.obj(block), pad)
         checks["blocks_released"] = all(predicates.released(sim, b) for b in BLOCKS)
         return dict(
             sorted(

@@ -132,9 +132,7 @@ class InspectCanTask(InspectAndPlaceTask):
     def evaluate(self, sim, scene, monitor):
         area = scene.obj(self.area_for(scene, scene.obj(CAN).attributes))
         return {
-            "can_in_matching_area": predicates.resting_on(
-                sim, CAN, area.name, area.half_extents[:2], area.functional.support.top
-            ),
+            "can_in_matching_area": predicates.resting_on(sim, scene.obj(CAN), area),
             "can_upright": predicates.upright(sim, CAN),
             "can_released": predicates.released(sim, CAN),
         }

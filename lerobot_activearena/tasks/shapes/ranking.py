@@ -45,7 +45,7 @@ def neighbours(sim, scene, a: str, b: str) -> bool:
     gap = float(np.linalg.norm(pa[:2] - pb[:2]))
     za, zb = (predicates.bottom_z(sim, scene.obj(x)) for x in (a, b))
     return (
-        predicates.right_of(sim, b, a)
+        predicates.right_of(sim, scene.obj(b), scene.obj(a))
         and 0.05 <= gap <= 0.15
         and abs(ra - rb) <= 0.06
         and abs(za - zb) < 0.01
