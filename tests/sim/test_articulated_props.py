@@ -3,12 +3,8 @@
 import mujoco
 import numpy as np
 
-from lerobot_activearena.sim.assets.task_props import (
-    BUTTON_PRESSED,
-    BUTTON_RESET,
-    add_patch_block,
-    digit_image,
-)
+from lerobot_activearena.sim.assets.devices import BUTTON_PRESSED, BUTTON_RESET, digit_image
+from lerobot_activearena.sim.assets.handheld import add_patch_block
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 

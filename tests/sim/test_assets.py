@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from lerobot_activearena.sim.assets import ASSETS, build_asset, categories
-from lerobot_activearena.sim.assets.task_objects import date_label_image
+from lerobot_activearena.sim.assets.handheld import date_label_image
 from lerobot_activearena.sim.look.dress import DRESS_GROUP
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.sim.simulator import ActiveArenaSim

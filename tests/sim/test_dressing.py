@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from lerobot_activearena.episodes.rollout import run_expert_episode
-from lerobot_activearena.sim.assets import ASSETS, primitives, task_objects, task_props
+from lerobot_activearena.sim.assets import ASSETS, devices, handheld, parts, primitives, surfaces
 from lerobot_activearena.sim.look.dress import DRESS_GROUP, SHAPE_GROUP
 from lerobot_activearena.sim.scene import SceneBuilder
 from lerobot_activearena.tasks import get_task
@@ -71,7 +71,7 @@ def test_every_dressed_part_stays_inside_its_objects_collision_extents():
 
 
 def _undressed(monkeypatch):
-    for module in (primitives, task_objects, task_props):
+    for module in (primitives, parts, devices, handheld, surfaces):
         monkeypatch.setattr(module, "dress", lambda *args, **kwargs: None)
 
 

@@ -10,7 +10,7 @@ from helpers.params import expert_task_params
 
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.sim.action import LEFT_ARM, RIGHT_ARM
-from lerobot_activearena.sim.assets.task_objects import DATE_RANGE
+from lerobot_activearena.sim.assets.handheld import DATE_RANGE
 from lerobot_activearena.sim.simulator import ActiveArenaSim
 from lerobot_activearena.tasks import get_task, predicates
 from lerobot_activearena.tasks.inventory.check_cola_date import expired

@@ -3,7 +3,7 @@
 Importing this package registers every asset module's categories in ``ASSETS``.
 """
 
-from . import distractors, primitives, task_objects, task_props  # noqa: F401  (register categories)
+from . import devices, distractors, handheld, primitives, surfaces  # noqa: F401  (register categories)
 from .base import ObjectInfo
 from .registry import ASSETS, AssetEntry, build_asset, categories, register_asset
 

@@ -19,7 +19,7 @@ Success Conditions:
 from __future__ import annotations
 
 from ...expert import motion, routines, skills
-from ...sim.assets.task_props import BLOCK_COLORS
+from ...sim.assets.colors import BLOCK_COLORS
 from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Subtask, Task

@@ -14,7 +14,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...sim.assets.task_props import BLOCK_COLORS
+from ...sim.assets.colors import BLOCK_COLORS
 from ..base import Subtask
 from ..shapes.ranking import RankBlocksTask
 

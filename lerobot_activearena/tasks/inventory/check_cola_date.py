@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import datetime as dt
 
-from ...sim.assets.task_objects import DATE_RANGE, SHELF_LIFE_DAYS
+from ...sim.assets.handheld import DATE_RANGE, SHELF_LIFE_DAYS
 from ...sim.embodiment import ARMS, other_arm
 from ..base import Subtask
 from ..draft import HIDDEN, REACH

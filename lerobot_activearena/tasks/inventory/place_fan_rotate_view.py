@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ...sim.assets.task_objects import MAT_COLORS
+from ...sim.assets.colors import MAT_COLORS
 from .. import predicates
 from ..base import Subtask
 from ..shapes.placing import PickPlaceTask, colored_mat

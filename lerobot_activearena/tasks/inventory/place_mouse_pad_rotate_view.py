@@ -16,7 +16,7 @@ Success Conditions:
 
 from __future__ import annotations
 
-from ...sim.assets.task_objects import RELEASE_MAT_COLORS
+from ...sim.assets.colors import RELEASE_MAT_COLORS
 from ..base import Subtask
 from ..shapes.placing import PickPlaceTask, colored_mat
 

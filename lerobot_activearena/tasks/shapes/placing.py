@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from ...expert import routines
 from ...sim.assets import ASSETS
-from ...sim.assets.task_objects import RELEASE_MAT_COLORS
+from ...sim.assets.colors import RELEASE_MAT_COLORS
 from ...sim.embodiment import ARMS
 from .. import predicates
 from ..base import Task
