@@ -91,7 +91,7 @@ def test_mrope_positions_follow_the_token_layout_with_injected_embeddings(vlm, r
     monkeypatch.setattr(policy.vlm.model.language_model, "forward", spy)
     with torch.no_grad():
         seq = policy.assemble(*_encode_args(batch))
-        policy._backbone(seq)
+        policy.run_backbone(seq)
     assert torch.equal(seen["position_ids"], seq["position_ids"])  # the decoder gets exactly these
     pos = seq["position_ids"][:, 0]  # (3, L): temporal, height, width rows
     image = seq["mm_token_type_ids"][0].bool()
@@ -273,7 +273,7 @@ def test_backbone_matches_qwen3_vl_forward(vlm, root):
     batch = collate(ds, pre, [20, len(ds) - 40])
     with torch.no_grad():
         seq = policy.assemble(*_encode_args(batch))
-        ours = policy._backbone(seq)[0].last_hidden_state
+        ours = policy.run_backbone(seq)[0].last_hidden_state
         keys = (
             "inputs_embeds",
             "attention_mask",
@@ -291,8 +291,10 @@ def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
     _, policy, pre, _, _ = _setup(vlm, root, memory="chunk", history=2, think="none")
     policy.eval()
     seen = []
-    vision = policy._vision
-    monkeypatch.setattr(policy, "_vision", lambda pv, grid: seen.append(len(grid)) or vision(pv, grid))
+    vision = policy.vision_features
+    monkeypatch.setattr(
+        policy, "vision_features", lambda pv, grid: seen.append(len(grid)) or vision(pv, grid)
+    )
     for t, obs, _ in _scripted_observations(33):
         batch = pre(obs)
         if t == 32:  # a full bank (frames 0 and 16): compare with encoding every image afresh
@@ -607,18 +609,18 @@ def test_padded_history_frames_are_never_processed(vlm, root):
     cfg, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="none")
     step = next(s for s in pre.steps if type(s).__name__ == "ActiveArenaVLMInputsStep")
     seen = []
-    real = step._processor.image_processor
+    real = step.processor.image_processor
 
     class Counting:
         def __call__(self, images, **kw):
             seen.append(len(images))
             return real(images=images, **kw)
 
-    step._processor.image_processor = Counting()
+    step.processor.image_processor = Counting()
     try:
         batch = collate(ds, pre, [20, len(ds) - 40])  # frame 20: 1 history frame present; later: all 4
     finally:
-        step._processor.image_processor = real
+        step.processor.image_processor = real
     valid = batch["observation.vlm.frame_valid"]
     assert valid.sum(1).tolist() == [2, 5] and seen == [7]
     assert (batch[PIXELS][~valid] == 0).all() and (batch[PIXELS][valid].abs().sum((-1, -2)) > 0).all()
@@ -633,18 +635,18 @@ def test_images_are_processed_on_the_policy_device(vlm, root):
     step = next(s for s in pre.steps if type(s).__name__ == "ActiveArenaVLMInputsStep")
     assert step.device == cfg.device and step.get_config()["device"] == cfg.device
     calls = []
-    real = step._processor.image_processor
+    real = step.processor.image_processor
 
     class Recording:
         def __call__(self, images, **kw):
             calls.append((kw.get("device"), {im.device for im in images}))
             return real(images=images, **kw)
 
-    step._processor.image_processor = Recording()
+    step.processor.image_processor = Recording()
     try:
         step.device = "cuda"
         collate(ds, pre, [20])
     finally:
-        step._processor.image_processor = real
+        step.processor.image_processor = real
     expected = torch.device("cuda") if torch.cuda.is_available() else torch.device("cpu")
     assert calls == [(expected, {expected})]

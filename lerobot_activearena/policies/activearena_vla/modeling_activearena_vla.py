@@ -189,7 +189,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             "images": images,
         }
 
-    def _vision(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
+    def vision_features(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
         """Vision tower per image (each image attends only to itself): its merged tokens and DeepStack
         features, so a memory frame's can be kept and reused at later chunks."""
         out = self.vlm.model.get_image_features(pixel_values, grid)
@@ -197,7 +197,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         deep = [torch.split(d, sizes) for d in out.deepstack_features]
         return [(e, [d[i] for d in deep]) for i, e in enumerate(out.pooler_output)]
 
-    def _backbone(self, seq: dict, use_cache: bool = False, vision_cache: dict | None = None):
+    def run_backbone(self, seq: dict, use_cache: bool = False, vision_cache: dict | None = None):
         """The language model over the assembled sequence, image tokens from the vision tower. Memory
         frames found in ``vision_cache`` ((sample, frame) -> bank entry) reuse the entry's features;
         the others are computed and stored there. Returns the output and each image's features."""
@@ -207,7 +207,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         feats: list = [vision_cache[k].get("vision") if k in vision_cache else None for k in images]
         todo = [i for i, f in enumerate(feats) if f is None]
         if todo:
-            for i, f in zip(todo, self._vision(torch.cat([rows[i] for i in todo]), grid[todo]), strict=True):
+            for i, f in zip(
+                todo, self.vision_features(torch.cat([rows[i] for i in todo]), grid[todo]), strict=True
+            ):
                 feats[i] = f
                 if images[i] in vision_cache:
                     vision_cache[images[i]]["vision"] = f
@@ -237,7 +239,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         its LM loss. Arguments as ``assemble``."""
         seq = self.assemble(*args)
         kind, input_ids = seq["kind"], seq["input_ids"]
-        h = self._backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
+        h = self.run_backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
         if not (kind == THINK).any():
             return h, kind, None
         span = kind == THINK
@@ -418,7 +420,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         for _ in range(max_tokens):
             if seq is None or not use_cache:
                 seq = self.assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
-                out = self._backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
+                out = self.run_backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
                 last = (
                     torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1)
                     .max(1)

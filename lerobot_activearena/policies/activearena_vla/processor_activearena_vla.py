@@ -138,6 +138,11 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
 
         self._processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.vlm_path, "processor")
 
+    @property
+    def processor(self):
+        """The backbone's Hugging Face processor (tokenizer and image processor) this step uses."""
+        return self._processor
+
     def _tokenize(self, texts: list[str]) -> tuple[torch.Tensor, torch.Tensor]:
         tok = self._processor.tokenizer(
             texts, padding=True, padding_side="right", return_tensors="pt", add_special_tokens=False
