@@ -67,6 +67,7 @@ def test_every_dressed_part_stays_inside_its_objects_collision_extents():
         "shoe",
         "seal",
         "coaster",
+        "button",
     } <= set(dressed)
 
 
@@ -92,6 +93,7 @@ def _episode(task, seed):
         "place_container_plate_rotate_view",  # plate
         "place_shoe_rotate_view",  # shoe
         "stamp_seal_rotate_view",  # seal
+        "count_target_press_button",  # buttons
     ],
 )
 def test_a_dressed_look_changes_no_state_action_or_annotation(task, monkeypatch):

@@ -109,7 +109,7 @@ def add_button(spec, name, pos, yaw=0.0, number: int = 1, cap_rgba=(0.85, 0.15, 
     """Static push button with a spring-loaded cap (``functional.press``) and its number on a label
     plate in front of the cap (readable from the robot's side)."""
     b = static_body(spec, name, pos, yaw)
-    add_geom(
+    base = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_BOX,
         (0.06, 0.04, 0.012),
@@ -133,6 +133,11 @@ def add_button(spec, name, pos, yaw=0.0, number: int = 1, cap_rgba=(0.85, 0.15, 
     )
     # The base is welded to the world, so parent filtering does not apply: the cap touches only the robot.
     g.contype, g.conaffinity = 0, 2
+    base_look, cap_look = dressing.button(
+        (0.06, 0.04), 0.024, 0.022, 0.021, 0.014, (0.2, 0.2, 0.22, 1), cap_rgba
+    )
+    dress(spec, b, name, [base], base_look)
+    dress(spec, cap, f"{name}_cap", [g], cap_look)
     mat = add_texture_material(spec, f"{name}_digit", digit_image(str(number)))
     # Number label on the base's top, on the robot's side of the cap (-x: the sampler yaws +x outward).
     add_geom(

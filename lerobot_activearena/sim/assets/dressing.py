@@ -8,7 +8,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from ..look.dress import Dress
-from ..look.meshes import lathe, scaled
+from ..look.meshes import extrude, lathe, scaled
 from .base import add_texture_material
 
 METAL = (0.78, 0.78, 0.8, 1.0)
@@ -190,3 +190,40 @@ def coaster(radius: float, rgba) -> list[Dress]:
         (0.0, 0.006),
     ]
     return [Dress(lathe(profile, segments=40), rgba)]
+
+
+def rounded_rectangle(half_x: float, half_y: float, corner: float, n: int = 6) -> list[tuple[float, float]]:
+    """A counter-clockwise outline of a rectangle (half sizes) with quarter-circle corners."""
+    pts = []
+    for cx, cy, start in ((1, 1, 0), (-1, 1, 90), (-1, -1, 180), (1, -1, 270)):
+        ox, oy = cx * (half_x - corner), cy * (half_y - corner)
+        for a in np.radians(np.linspace(start, start + 90, n)):
+            pts.append((ox + corner * np.cos(a), oy + corner * np.sin(a)))
+    return pts
+
+
+def button(
+    half: tuple[float, float],
+    height: float,
+    cap_at: float,
+    cap_radius: float,
+    cap_height: float,
+    rgba,
+    cap_rgba,
+) -> tuple[list[Dress], list[Dress]]:
+    """A push button: a slab with rounded corners and a metal bezel round the cap (on the base), and
+    a cap with a domed top (on the cap's body). Returns (base parts, cap parts)."""
+    slab = Dress(extrude(rounded_rectangle(*half, corner=0.008), height), rgba)
+    bezel_profile = [
+        (cap_radius + 0.0005, 0.0),
+        (cap_radius + 0.004, 0.0),
+        (cap_radius + 0.003, 0.003),
+        (cap_radius + 0.0005, 0.003),
+    ]
+    bezel = Dress(lathe(bezel_profile, segments=40), METAL, pos=(cap_at, 0.0, height))
+    dome = [
+        (0.0, 0.0),
+        (cap_radius, 0.0),
+        *_arc(cap_radius, 0.6 * cap_height, 0.4 * cap_height, 8),
+    ]
+    return [slab, bezel], [Dress(lathe(dome, segments=40), cap_rgba)]
