@@ -68,6 +68,8 @@ def test_every_dressed_part_stays_inside_its_objects_collision_extents():
         "seal",
         "coaster",
         "button",
+        "switch",
+        "electronic_scale",
     } <= set(dressed)
 
 
@@ -94,6 +96,7 @@ def _episode(task, seed):
         "place_shoe_rotate_view",  # shoe
         "stamp_seal_rotate_view",  # seal
         "count_target_press_button",  # buttons
+        "turn_switch_rotate_view",  # switch (a dressed hinged part)
     ],
 )
 def test_a_dressed_look_changes_no_state_action_or_annotation(task, monkeypatch):

@@ -236,14 +236,16 @@ def add_switch(spec, name, pos, yaw=0.0, rgba=(0.92, 0.92, 0.9, 1)):
     mark) up; pressing that end down rocks it over to on (``functional.press``'s joint: 0 = off,
     ``SWITCH_ON`` = on; it stays where it is put)."""
     b = free_body(spec, name, pos, yaw)
-    add_geom(b, mujoco.mjtGeom.mjGEOM_BOX, (0.045, 0.03, 0.012), (0, 0, 0.012), rgba, 0.45, f"{name}_body")
+    base = add_geom(
+        b, mujoco.mjtGeom.mjGEOM_BOX, (0.045, 0.03, 0.012), (0, 0, 0.012), rgba, 0.45, f"{name}_body"
+    )
     rocker = b.add_body()
     rocker.name = f"{name}_rocker"
     rocker.pos = (0, 0, 0.029)
     rocker.quat = quat_axis_angle([0, 1, 0], -SWITCH_TILT)  # +x end up: off
     rocker.gravcomp = 1.0
     hinge(rocker, f"{name}_joint", 0.0, SWITCH_ON, damping=0.02, frictionloss=0.01)
-    add_geom(
+    rocker_geom = add_geom(
         rocker,
         mujoco.mjtGeom.mjGEOM_BOX,
         (0.038, 0.02, 0.005),
@@ -252,6 +254,11 @@ def add_switch(spec, name, pos, yaw=0.0, rgba=(0.92, 0.92, 0.9, 1)):
         0.015,
         f"{name}_rocker_geom",
     )
+    base_look, rocker_look = dressing.switch(
+        (0.045, 0.03), 0.024, (0.038, 0.02, 0.005), rgba, (0.8, 0.1, 0.1, 1)
+    )
+    dress(spec, b, name, [base], base_look)
+    dress(spec, rocker, f"{name}_rocker", [rocker_geom], rocker_look)
     add_geom(
         rocker,
         mujoco.mjtGeom.mjGEOM_BOX,

@@ -227,3 +227,25 @@ def button(
         *_arc(cap_radius, 0.6 * cap_height, 0.4 * cap_height, 8),
     ]
     return [slab, bezel], [Dress(lathe(dome, segments=40), cap_rgba)]
+
+
+def electronic_scale(half: tuple[float, float], height: float, rgba) -> list[Dress]:
+    """A kitchen scale: a dark housing with rounded corners and a brushed platform inset on top."""
+    housing_h = height - 0.006
+    housing = Dress(extrude(rounded_rectangle(*half, corner=0.012), housing_h), DARK)
+    inset = (half[0] - 0.012, half[1] - 0.004)
+    platform = Dress(
+        extrude(rounded_rectangle(*inset, corner=0.01), 0.006), rgba, pos=(0.012, 0.0, housing_h)
+    )
+    return [housing, platform]
+
+
+def switch(
+    half: tuple[float, float], height: float, rocker_half: tuple[float, float, float], rgba, rocker_rgba
+):
+    """A rocker switch: a base with rounded corners (on the base) and a rounded rocker (on the
+    rocker's hinged body, centred on it). Returns (base parts, rocker parts)."""
+    base = Dress(extrude(rounded_rectangle(*half, corner=0.008), height), rgba)
+    hx, hy, hz = rocker_half
+    rocker = Dress(extrude(rounded_rectangle(hx, hy, corner=0.005), 2 * hz), rocker_rgba, pos=(0.0, 0.0, -hz))
+    return [base], [rocker]

@@ -173,7 +173,7 @@ def add_display_stand(spec, name, pos, yaw=0.0, rgba=(0.9, 0.9, 0.92, 1)):
 @register_asset("electronic_scale", footprint=0.08, role="task")
 def add_electronic_scale(spec, name, pos, yaw=0.0):
     mat = text_texture(spec, f"{name}_display", "0.00 g", bg=(40, 70, 50), fg=(120, 255, 140), size=(96, 48))
-    return compound(
+    info = compound(
         spec,
         name,
         "electronic_scale",
@@ -192,6 +192,8 @@ def add_electronic_scale(spec, name, pos, yaw=0.0):
         0.5,
         functional=Functional(support=Support(0.024, (0.075, 0.065))),
     )
+    dress_parts(spec, name, range(1), dressing.electronic_scale((0.075, 0.065), 0.024, (0.82, 0.83, 0.85, 1)))
+    return info
 
 
 @register_asset(
