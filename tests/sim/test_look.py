@@ -114,6 +114,14 @@ def test_lathed_and_extruded_meshes_are_closed_and_outward_facing():
         extrude(outline[::-1], 0.02)
     with pytest.raises(ValueError, match="r >= 0"):
         lathe([(-0.01, 0), (0.02, 0.1)])
+    # turned: a can laid along x keeps its volume, bounds follow, normals still face outward
+    from lerobot_activearena.sim.look.meshes import rotated
+
+    laid = rotated(can, (0, 1, 0), np.pi / 2)
+    assert laid.volume() == pytest.approx(can.volume(), rel=1e-9)
+    lo, hi = laid.bounds()
+    assert np.allclose(lo, [0, -r, -r], atol=1e-9) and np.allclose(hi, [h, r, r], atol=1e-9)
+    assert _faces_agree_with_normals(laid, 0.99)
 
 
 def _seen_ids(model, data, cam: str, size=(96, 128)) -> np.ndarray:

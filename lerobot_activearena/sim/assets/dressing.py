@@ -8,7 +8,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from ..look.dress import Dress
-from ..look.meshes import extrude, lathe, scaled
+from ..look.meshes import extrude, lathe, rotated, scaled
 from .base import add_texture_material
 
 METAL = (0.78, 0.78, 0.8, 1.0)
@@ -249,3 +249,22 @@ def switch(
     hx, hy, hz = rocker_half
     rocker = Dress(extrude(rounded_rectangle(hx, hy, corner=0.005), 2 * hz), rocker_rgba, pos=(0.0, 0.0, -hz))
     return [base], [rocker]
+
+
+def hammer(handle_rgba, head_rgba) -> list[Dress]:
+    """A hammer: a round handle tapering towards the head (along x, -0.1 to 0.1 m) and a head with
+    bevelled faces across it (along y, centred at x 0.11)."""
+    handle = [
+        (0.0, 0.0),
+        (0.011, 0.0),
+        (0.012, 0.008),
+        (0.012, 0.12),
+        (0.009, 0.19),
+        (0.009, 0.2),
+        (0.0, 0.2),
+    ]
+    head = [(0.0, 0.0), (0.016, 0.0), (0.018, 0.004), (0.018, 0.096), (0.016, 0.1), (0.0, 0.1)]
+    return [
+        Dress(rotated(lathe(handle, segments=24), (0, 1, 0), np.pi / 2), handle_rgba, pos=(-0.1, 0.0, 0.012)),
+        Dress(rotated(lathe(head, segments=24), (1, 0, 0), -np.pi / 2), head_rgba, pos=(0.11, -0.05, 0.018)),
+    ]

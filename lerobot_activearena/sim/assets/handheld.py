@@ -93,7 +93,7 @@ def add_patch_block(spec, name, pos, yaw=0.0, patch_color: str = "red"):
     "hammer", footprint=0.11, role="task", randomize=lambda rng: {"handle": random_rgb(rng, 0.3, 0.9)}
 )
 def add_hammer(spec, name, pos, yaw=0.0, handle=(0.6, 0.4, 0.2)):
-    return compound(
+    info = compound(
         spec,
         name,
         "hammer",
@@ -112,6 +112,8 @@ def add_hammer(spec, name, pos, yaw=0.0, handle=(0.6, 0.4, 0.2)):
             tool_head=ToolHead((0.11, 0.0, 0.018), (0.018, 0.05, 0.018)),
         ),
     )
+    dress_parts(spec, name, range(2), dressing.hammer(with_alpha(handle), (0.3, 0.3, 0.33, 1)))
+    return info
 
 
 @register_asset(

@@ -88,6 +88,17 @@ def scaled(mesh: MeshData, sx: float, sy: float, sz: float = 1.0) -> MeshData:
     return MeshData(mesh.vertices * s, mesh.faces, _unit(mesh.normals / s), mesh.texcoords)
 
 
+def rotated(mesh: MeshData, axis, angle: float) -> MeshData:
+    """``mesh`` turned by ``angle`` (rad) about ``axis`` through the origin (a lathed handle laid
+    along x); normals turn with it, texture coordinates stay."""
+    axis = _unit(np.asarray(axis, float))
+    x, y, z = axis
+    c, s = math.cos(angle), math.sin(angle)
+    k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+    rot = np.eye(3) * c + s * k + (1 - c) * np.outer(axis, axis)
+    return MeshData(mesh.vertices @ rot.T, mesh.faces, _unit(mesh.normals @ rot.T), mesh.texcoords)
+
+
 def _triangulate(poly: np.ndarray) -> list[tuple[int, int, int]]:
     """Ear clipping of a simple counter-clockwise polygon."""
     idx = list(range(len(poly)))
