@@ -177,7 +177,7 @@ def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
     (``functional.press``'s joint: 0 = open, ``STAPLER_OPEN`` = pressed shut; press point at the front end
     of the arm, in the arm body's frame)."""
     b = free_body(spec, name, pos, yaw)
-    add_geom(
+    plate = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_BOX,
         (0.075, 0.02, 0.006),
@@ -186,7 +186,7 @@ def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
         0.2,
         f"{name}_body",
     )
-    add_geom(
+    post = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_BOX,
         (0.012, 0.016, 0.012),
@@ -201,9 +201,12 @@ def add_stapler(spec, name, pos, yaw=0.0, rgba=(0.1, 0.1, 0.12, 1)):
     arm.quat = quat_axis_angle([0, 1, 0], -STAPLER_OPEN)  # front end raised
     arm.gravcomp = 1.0
     hinge(arm, f"{name}_joint", 0.0, STAPLER_OPEN, damping=0.05, stiffness=0.6, springref=-0.15)
-    add_geom(
+    arm_geom = add_geom(
         arm, mujoco.mjtGeom.mjGEOM_BOX, (0.068, 0.017, 0.008), (0.066, 0, 0.0), rgba, 0.05, f"{name}_arm_geom"
     )
+    base_look, arm_look = dressing.stapler(rgba, (0.15, 0.15, 0.16, 1))
+    dress(spec, b, name, [plate, post], base_look)
+    dress(spec, arm, f"{name}_arm", [arm_geom], arm_look)
     return ObjectInfo(
         name,
         "stapler",

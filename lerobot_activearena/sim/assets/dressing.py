@@ -268,3 +268,23 @@ def hammer(handle_rgba, head_rgba) -> list[Dress]:
         Dress(rotated(lathe(handle, segments=24), (0, 1, 0), np.pi / 2), handle_rgba, pos=(-0.1, 0.0, 0.012)),
         Dress(rotated(lathe(head, segments=24), (1, 0, 0), -np.pi / 2), head_rgba, pos=(0.11, -0.05, 0.018)),
     ]
+
+
+def stapler(rgba, base_rgba) -> tuple[list[Dress], list[Dress]]:
+    """A desk stapler: a base plate and a rear post with rounded corners (on the base), and a top arm
+    with a rounded nose, its side profile extruded across its width (on the hinged arm's body, which
+    sits on the post: the arm runs from x -0.002 to 0.134 m there). Returns (base, arm) parts."""
+    plate = Dress(extrude(rounded_rectangle(0.075, 0.02, corner=0.012), 0.012), base_rgba)
+    post = Dress(
+        extrude(rounded_rectangle(0.012, 0.016, corner=0.004), 0.024), base_rgba, pos=(-0.062, 0.0, 0.012)
+    )
+    side = [
+        (-0.002, -0.008),
+        (0.126, -0.008),
+        (0.134, -0.003),
+        (0.134, 0.001),
+        (0.124, 0.008),
+        (-0.002, 0.008),
+    ]
+    arm = rotated(extrude(side, 0.034), (1, 0, 0), np.pi / 2)
+    return [plate, post], [Dress(arm, rgba, pos=(0.0, 0.017, 0.0))]
