@@ -165,6 +165,6 @@ def test_an_expert_that_crashes_fails_its_episode_in_the_env_not_the_run(monkeyp
     obs, _ = env.reset(seed=2)
     for _ in range(3):
         obs, *_ = env.step(obs["environment_state"])
-    assert env._driver.failure == "expert crashed: IndexError: a bug in a task script"
+    assert env.expert_gave_up == "expert crashed: IndexError: a bug in a task script"
     assert "the click_bell_rotate_view expert crashed" in caplog.text
     env.close()
