@@ -288,3 +288,25 @@ def stapler(rgba, base_rgba) -> tuple[list[Dress], list[Dress]]:
     ]
     arm = rotated(extrude(side, 0.034), (1, 0, 0), np.pi / 2)
     return [plate, post], [Dress(arm, rgba, pos=(0.0, 0.017, 0.0))]
+
+
+def fan(rgba, dark) -> list[Dress]:
+    """A desk fan (its axis along x, facing -x): a bevelled base, a motor housing with a rounded back,
+    and a guard ring around three blades (the stand and the hub stay as they are)."""
+    turn_to_x = ((0, 1, 0), np.pi / 2)  # lathe / extrusion axis z -> x
+    base = [(0.0, 0.0), (0.045, 0.0), (0.045, 0.01), (0.04, 0.016), (0.0, 0.016)]
+    housing = [(0.0, 0.0), (0.017, 0.0), (0.019, 0.004), (0.019, 0.06), (0.015, 0.068), (0.0, 0.07)]
+    ring = [(0.046, 0.0), (0.052, 0.0), (0.052, 0.008), (0.046, 0.008)]
+    t = np.linspace(0.0, 2 * np.pi, 16, endpoint=False)
+    blade = np.stack([0.028 + 0.016 * np.cos(t), 0.009 * np.sin(t)], axis=1)  # an oval, hub to rim
+    parts = [
+        Dress(lathe(base, segments=40), dark),
+        Dress(rotated(lathe(housing, segments=32), *turn_to_x), dark, pos=(-0.04, 0.0, 0.11)),
+        Dress(rotated(lathe(ring, segments=48), *turn_to_x), rgba, pos=(-0.049, 0.0, 0.11)),
+    ]
+    for k in range(3):
+        a = 2 * np.pi * k / 3
+        rot = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+        outline = [tuple(p) for p in blade @ rot.T]
+        parts.append(Dress(rotated(extrude(outline, 0.003), *turn_to_x), rgba, pos=(-0.047, 0.0, 0.11)))
+    return parts

@@ -230,7 +230,7 @@ def add_fan(spec, name, pos, yaw=0.0, rgba=(0.2, 0.5, 0.85, 1)):
     body's -x side (the front), hub. Grasped across the housing above the base, near the centre of
     mass (the guard stays 2.8 cm clear of the fingers)."""
     dark = (0.2, 0.2, 0.22, 1)
-    return compound(
+    info = compound(
         spec,
         name,
         "fan",
@@ -252,6 +252,8 @@ def add_fan(spec, name, pos, yaw=0.0, rgba=(0.2, 0.5, 0.85, 1)):
         0.35,
         functional=Functional(grasp=((0.0, 0.0, 0.11),), grasp_axis=(0.0, 1.0, 0.0), front=(-1.0, 0.0, 0.0)),
     )
+    dress_parts(spec, name, (0, 2, 3), dressing.fan(rgba, dark))
+    return info
 
 
 XAXIS_90 = quat_axis_angle([1, 0, 0], np.pi / 2)
