@@ -20,7 +20,7 @@ from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 # (label, profiler key: (file suffix, function name)); cumulative times, so parts may nest
 PARTS = [
     ("physics (mj_step)", ("~", "<built-in method mujoco._functions.mj_step>")),
-    ("visibility (per-step observation)", ("tasks/episode.py", "_observe")),
+    ("visibility (per-step observation)", ("episodes/episode.py", "_observe")),
     ("expert IK (mink solve)", ("expert/ik.py", "solve")),
 ]
 

@@ -56,6 +56,13 @@ def parser() -> argparse.ArgumentParser:
         default=None,
         help="head video HEIGHTxWIDTH, 3:4 (default 384x512, the paper's); rendered at that size",
     )
+    p.add_argument(
+        "--search-overshoot",
+        type=float,
+        default=None,
+        help="recovery demonstrations: the probability that the expert's search sweeps an empty end "
+        "sector on to the torso's joint limit before turning back (default 0: the benchmark's expert)",
+    )
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
     p.add_argument("--executor", default="local", choices=["local", "slurm"])
     p.add_argument(
@@ -152,6 +159,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         episodes_per_shard=pick("episodes_per_shard"),
         max_objects=MAX_OBJECTS,
         image_size=image_size(pick("image_size")),
+        search_overshoot=float(pick("search_overshoot")),
     )
 
 

@@ -42,6 +42,7 @@ class BuildPlan:
     episodes_per_shard: int = 10
     max_objects: int = 16
     image_size: tuple[int, int] = HEAD_SIZE  # head video (height, width), 3:4
+    search_overshoot: float = 0.0  # recovery demonstrations (``ExpertContext``); 0: the benchmark's expert
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -58,6 +59,8 @@ class BuildPlan:
         if self.episodes_per_shard < 1:
             raise ValueError(f"--episodes-per-shard must be >= 1, got {self.episodes_per_shard}")
         self.image_size = validate_head_size(*self.image_size)
+        if not 0.0 <= self.search_overshoot <= 1.0:
+            raise ValueError(f"--search-overshoot is a probability in [0, 1], got {self.search_overshoot}")
         self.tasks = [t for sel in self.tasks for t in task_names(sel)]
         self.shards = self._make_shards()
 
@@ -84,6 +87,8 @@ class BuildPlan:
         from .features import dataset_features  # the feature set is part of a build's identity
 
         d = asdict(self)
+        if not self.search_overshoot:  # builds made before the option keep their identity
+            del d["search_overshoot"]
         d["features"] = json.loads(json.dumps(dataset_features(self.max_objects, self.image_size)))
         d["shards"] = [asdict(s) for s in self.shards]
         return d

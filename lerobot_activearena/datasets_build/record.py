@@ -38,10 +38,14 @@ def episode_keyframes(result: EpisodeResult) -> dict[str, np.ndarray]:
 
 
 def record_episode(
-    task: str, seed: int, split: str, image_size: tuple[int, int] = HEAD_SIZE
+    task: str,
+    seed: int,
+    split: str,
+    image_size: tuple[int, int] = HEAD_SIZE,
+    search_overshoot: float = 0.0,
 ) -> RecordedEpisode:
     """Run the expert and keep the head image of every frame (the frame the annotation describes),
-    rendered at ``image_size`` (height, width)."""
+    rendered at ``image_size`` (height, width); ``search_overshoot``: ``run_expert_episode``'s."""
     images: list[np.ndarray] = []
     result = run_expert_episode(
         task,
@@ -49,6 +53,7 @@ def record_episode(
         split,
         on_frame=lambda t, sim, frame, action: images.append(sim.render_head()),
         image_size=image_size,
+        search_overshoot=search_overshoot,
     )
     keyframes = episode_keyframes(result) if result.success else {}
     return RecordedEpisode(result, images, keyframes)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import logging
 import math
 import time
+import zlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -104,11 +105,24 @@ class ExpertDriver:
         sim: ActiveArenaSim,
         perception: PerceptionMemory,
         contain_errors: bool = False,
+        search_overshoot: float = 0.0,
     ):
         ik, gaze = shared_kinematics()
         self.task = task
         self.writer = AnnotationWriter(sim, perception)
-        self.ctx = ExpertContext(sim, scene.objects, perception, ik, gaze, n_subtasks=len(task.subtasks))
+        rng = None
+        if search_overshoot > 0.0:  # its own stream: the scene's sampling is not touched
+            rng = np.random.default_rng([int(scene.seed), zlib.crc32(f"overshoot/{task.name}".encode())])
+        self.ctx = ExpertContext(
+            sim,
+            scene.objects,
+            perception,
+            ik,
+            gaze,
+            n_subtasks=len(task.subtasks),
+            search_overshoot=search_overshoot,
+            rng=rng,
+        )
         self._script = task.expert(self.ctx, scene)
         self.finished = False
         self.failure: str | None = None
@@ -147,17 +161,20 @@ def run_expert_episode(
     split: str = "id",
     on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None,
     image_size: tuple[int, int] = HEAD_SIZE,
+    search_overshoot: float = 0.0,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
     (e.g. to render video). ``image_size``: the head image's (height, width); the annotations'
-    pixel-space fields (boxes, camera intrinsics) follow it."""
+    pixel-space fields (boxes, camera intrinsics) follow it. ``search_overshoot``: the probability of a
+    recovery demonstration per empty end sector of a search (``ExpertContext``; 0 = the benchmark's
+    expert)."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
     episode = Episode(task, scene, max_penetration=PENETRATION_LIMIT, image_size=image_size)
     sim = episode.sim
-    driver = ExpertDriver(task, scene, sim, episode.perception)
+    driver = ExpertDriver(task, scene, sim, episode.perception, search_overshoot=search_overshoot)
     frames, actions, states = [], [], []
     failure = None
     for t in range(task.max_episode_steps + 1):

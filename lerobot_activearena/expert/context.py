@@ -32,8 +32,18 @@ class ExpertContext:
         ik: ArmIK,
         gaze: Gaze,
         n_subtasks: int = 1,
+        search_overshoot: float = 0.0,
+        rng: np.random.Generator | None = None,
     ):
+        if not 0.0 <= search_overshoot <= 1.0:
+            raise ValueError(f"search_overshoot is a probability in [0, 1], got {search_overshoot}")
+        if search_overshoot > 0.0 and rng is None:
+            raise ValueError("search_overshoot > 0 needs an rng (seeded from the scene seed)")
         self.sim, self.perception, self.ik, self.gaze = sim, perception, ik, gaze
+        # Recovery demonstrations for datasets (0 = the benchmark's expert): the probability that a
+        # search sweep that found nothing in an end sector goes on to the torso's joint limit before it
+        # turns back, so a memory-free policy sees what to do after an overshoot (``search``).
+        self.search_overshoot, self.rng = search_overshoot, rng
         self.n_subtasks = n_subtasks
         self.objects = list(objects)
         self.info = {o.name: o for o in sim.info.objects}
@@ -102,6 +112,12 @@ class ExpertContext:
                 del self.trailing[side]
         self.frame += 1
         return self.action.copy()
+
+    def overshoots(self, sector: int) -> bool:
+        """Whether this empty end sector's sweep goes on to the joint limit (``search_overshoot``)."""
+        if self.search_overshoot == 0.0 or self.views[sector][0] == 0.0:
+            return False  # no draw: the default expert's episodes are unchanged
+        return bool(self.rng.random() < self.search_overshoot)
 
     def require_idle(self, side: str) -> None:
         """Raise if the ``side`` arm is still making a trailing motion (``motion.await_trailing``)."""

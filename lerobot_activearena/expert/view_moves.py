@@ -124,6 +124,13 @@ def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
             )
             if ctx.perception.visible[i]:
                 break
+            if ctx.overshoots(s):  # a recovery demonstration: on to the limit, then back
+                limit = embodiment.TORSO_YAW_RANGE[int(views[s][0] > 0)]
+                yield from move_head_torso_to(
+                    ctx, limit, views[s][1], CAMERA_SEARCH, stop_when=lambda: bool(ctx.perception.visible[i])
+                )
+                if ctx.perception.visible[i]:
+                    break
             yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
             ctx.explored.add(s)
             if ctx.perception.visible[i]:

@@ -349,6 +349,23 @@ def test_bad_arguments_get_clear_errors():
     ]
 
 
+def test_recovery_demonstrations_are_an_opt_in_part_of_the_plan(tmp_path):
+    plan = make_plan(
+        _parse_build_args(["--repo-id", "a/b", "--root", "/x", "--tasks", BELL, "--episodes", "1"])
+    )
+    assert plan.search_overshoot == 0.0 and "search_overshoot" not in plan.to_json()  # old builds resume
+    recipe = tmp_path / "r.json"
+    recipe.write_text(json.dumps({"repo_id": "a/b", "tasks": BELL, "episodes": 1, "search_overshoot": 0.5}))
+    from_recipe = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x"]))
+    assert from_recipe.search_overshoot == 0.5 and from_recipe.to_json()["search_overshoot"] == 0.5
+    flag = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x", "--search-overshoot", "1"]))
+    assert flag.search_overshoot == 1.0
+    plan.save(tmp_path / "plan.json")
+    assert not flag.same_as(tmp_path / "plan.json")  # a resume with another value is refused
+    with pytest.raises(ValueError, match="probability"):
+        BuildPlan(repo_id="a/b", split="id", tasks=[BELL], episodes=1, search_overshoot=1.5)
+
+
 def test_bad_recipes_get_clear_errors(tmp_path, capsys):
     def error_of(recipe: dict | None, *argv):
         path = tmp_path / "r.json"

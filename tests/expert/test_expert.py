@@ -260,3 +260,29 @@ def test_a_trailing_retreat_runs_alongside_and_guards_its_arm():
     list(motion.hold(ctx, 3))
     np.testing.assert_allclose(arm_of(ctx.action, "left"), stopped)  # halted: it stays
     list(arm_paths.move_arm_joint(ctx, "left", out))  # and is free to command again
+
+
+def test_search_overshoot_demonstrates_turning_back_from_the_joint_limit(expert_episode):
+    """Recovery demonstrations for datasets: with ``search_overshoot=1`` the bell's search sweeps the
+    empty first sector on to the torso limit, turns back and still solves the scene; 0 (the default)
+    is the benchmark's expert, unchanged."""
+    from lerobot_activearena.episodes.rollout import run_expert_episode
+    from lerobot_activearena.expert.context import ExpertContext
+    from lerobot_activearena.sim.action import TORSO_YAW
+    from lerobot_activearena.sim.embodiment import TORSO_YAW_RANGE
+
+    task = "click_bell_rotate_view"
+    plain = expert_episode(task, 0, "id")  # seed 0: the bell lies in the second sector searched
+    yaw = np.array(plain.actions)[:, TORSO_YAW]
+    assert yaw.min() > TORSO_YAW_RANGE[0] + 0.2 and yaw[-1] > 0.5
+    same = run_expert_episode(task, 0, "id", search_overshoot=0.0)
+    np.testing.assert_array_equal(np.array(same.actions), np.array(plain.actions))
+    recovered = run_expert_episode(task, 0, "id", search_overshoot=1.0)
+    ryaw = np.array(recovered.actions)[:, TORSO_YAW]
+    assert recovered.success and ryaw.min() == pytest.approx(TORSO_YAW_RANGE[0])
+    assert ryaw[-1] == pytest.approx(yaw[-1], abs=0.05)  # back across to where the bell is
+    assert len(plain.actions) < len(recovered.actions) <= len(plain.actions) + 15
+    with pytest.raises(ValueError, match="probability"):
+        ExpertContext(None, [], None, None, None, search_overshoot=2.0)
+    with pytest.raises(ValueError, match="rng"):
+        ExpertContext(None, [], None, None, None, search_overshoot=0.5)
