@@ -310,3 +310,76 @@ def fan(rgba, dark) -> list[Dress]:
         outline = [tuple(p) for p in blade @ rot.T]
         parts.append(Dress(rotated(extrude(outline, 0.003), *turn_to_x), rgba, pos=(-0.047, 0.0, 0.11)))
     return parts
+
+
+def _shaded(rgba, towards: float = 0.5, weight: float = 0.4):
+    """``rgba`` mixed towards grey ``towards``: a rim that reads on black and white alike."""
+    return (*((1 - weight) * c + weight * towards for c in rgba[:3]), rgba[3])
+
+
+def pad(half_x: float, half_y: float, height: float, rgba, corner: float = 0.01) -> list[Dress]:
+    """A mat or pad: a rounded slab with a stitched-looking rim (a shade towards grey) 4 mm wide."""
+    rim = 0.004
+    return [
+        Dress(extrude(rounded_rectangle(half_x, half_y, corner), 0.85 * height), _shaded(rgba)),
+        Dress(extrude(rounded_rectangle(half_x - rim, half_y - rim, corner - rim / 2), height), rgba),
+    ]
+
+
+def _ring_halves(
+    half_x: float, half_y: float, wall: float, corner: float, n: int = 6
+) -> list[list[tuple[float, float]]]:
+    """The wall of a rounded box seen from above, as two simple counter-clockwise U-shapes (the
+    halves y <= 0 and y >= 0) that ``extrude`` can triangulate."""
+    outer = rounded_rectangle(half_x, half_y, corner, n)
+    inner = rounded_rectangle(half_x - wall, half_y - wall, max(corner - wall, 0.002), n)
+    halves = []
+    for sign in (-1, 1):
+        # rounded_rectangle starts at +x and runs counter-clockwise: the lower half is its second
+        # half, the upper its first; each goes from one side (x = +-half_x) to the other
+        o = [p for p in outer if sign * p[1] >= 0]
+        i = [p for p in inner if sign * p[1] >= 0]
+        if sign < 0:  # from (-x, 0) under to (+x, 0)
+            o = [(-half_x, 0.0), *o, (half_x, 0.0)]
+            i = [(-(half_x - wall), 0.0), *i, (half_x - wall, 0.0)]
+        else:  # from (+x, 0) over to (-x, 0)
+            o = [(half_x, 0.0), *o, (-half_x, 0.0)]
+            i = [(half_x - wall, 0.0), *i, (-(half_x - wall), 0.0)]
+        halves.append(o + i[::-1])
+    return halves
+
+
+def open_box(
+    half_x: float, half_y: float, wall: float, height: float, rgba, corner: float = 0.018, material=None
+):
+    """A tray or basket: a rounded floor ``wall`` thick and rounded walls up to ``height``."""
+    parts = [Dress(extrude(rounded_rectangle(half_x, half_y, corner), wall), rgba, material=material)]
+    for half in _ring_halves(half_x, half_y, wall, corner):
+        parts.append(Dress(extrude(half, height), rgba, material=material))
+    return parts
+
+
+def food_container(half_x: float, half_y: float, body_height: float, lid_height: float, rgba, lid_rgba):
+    """A food container: a rounded tub and a rounded lid on top of it."""
+    corner = 0.4 * min(half_x, half_y)
+    return [
+        Dress(extrude(rounded_rectangle(half_x, half_y, corner), body_height), rgba),
+        Dress(
+            extrude(rounded_rectangle(half_x, half_y, corner), lid_height), lid_rgba, pos=(0, 0, body_height)
+        ),
+    ]
+
+
+def basket_weave(rgb, size: int = 64, cells: int = 4) -> np.ndarray:
+    """A seamless (size, size, 3) uint8 wicker tile: cells of three strands, horizontal and vertical
+    in turn, with dark gaps between the strands."""
+    y, x = np.mgrid[0:size, 0:size]
+    cell = size // cells
+    horizontal = ((x // cell + y // cell) % 2) == 0
+    along = np.where(horizontal, y, x) % cell  # position across the strands of the cell
+    strand = cell // 3
+    t = (along % strand) / strand  # 0..1 across one strand
+    shade = 0.75 + 0.35 * np.sin(np.pi * t)  # rounded strands
+    shade = np.where((along % strand) == 0, 0.45, shade)  # the gaps
+    img = np.clip(np.asarray(rgb, float)[None, None, :3] * shade[..., None], 0.0, 1.0)
+    return (img * 255 + 0.5).astype(np.uint8)

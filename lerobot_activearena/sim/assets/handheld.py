@@ -205,18 +205,21 @@ def add_coffee_box(spec, name, pos, yaw=0.0):
     randomize=lambda rng: {"lid": with_alpha(random_rgb(rng, 0.2, 0.9))},
 )
 def add_container(spec, name, pos, yaw=0.0, lid=(0.2, 0.6, 0.3, 1)):
-    return compound(
+    tub = (0.92, 0.92, 0.9, 0.95)
+    info = compound(
         spec,
         name,
         "container",
         pos,
         yaw,
         [
-            ("box", (0.045, 0.035, 0.025), (0, 0, 0.025), (0.92, 0.92, 0.9, 0.95)),
+            ("box", (0.045, 0.035, 0.025), (0, 0, 0.025), tub),
             ("box", (0.045, 0.035, 0.005), (0, 0, 0.055), lid),  # flush: an overhang caught the pads
         ],
         0.12,
     )
+    dress_parts(spec, name, range(2), dressing.food_container(0.045, 0.035, 0.05, 0.01, tub, lid))
+    return info
 
 
 YAXIS_90 = quat_axis_angle([0, 1, 0], np.pi / 2)

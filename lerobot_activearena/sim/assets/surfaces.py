@@ -8,7 +8,7 @@ import numpy as np
 
 from ..look.dress import dress
 from . import dressing
-from .base import ObjectInfo, add_geom, free_body, static_body
+from .base import ObjectInfo, add_geom, add_texture_material, free_body, static_body
 from .colors import BLOCK_COLORS, MAT_COLORS, NEUTRAL_PAD
 from .functional import Container, Functional, Support
 from .parts import dress_parts, open_box, random_rgb, with_alpha
@@ -61,9 +61,10 @@ def add_color_pad(spec, name, pos, yaw=0.0, color: str = "red", half: float = 0.
     if color not in colors:
         raise ValueError(f"unknown pad colour {color!r}; choose from {sorted(colors)}")
     b = static_body(spec, name, pos, yaw)
-    add_geom(
+    slab = add_geom(
         b, mujoco.mjtGeom.mjGEOM_BOX, (half, half, 0.002), (0, 0, 0.002), colors[color], None, f"{name}_body"
     )
+    dress(spec, b, name, [slab], dressing.pad(half, half, 0.004, colors[color]))
     return ObjectInfo(
         name,
         "color_pad",
@@ -89,7 +90,7 @@ def add_mat(spec, name, pos, yaw=0.0, color_name: str = "black", half=(0.075, 0.
     if color_name not in MAT_COLORS:
         raise ValueError(f"unknown mat colour {color_name!r}; choose from {sorted(MAT_COLORS)}")
     b = static_body(spec, name, pos, yaw)
-    add_geom(
+    slab = add_geom(
         b,
         mujoco.mjtGeom.mjGEOM_BOX,
         (*half, 0.002),
@@ -98,6 +99,7 @@ def add_mat(spec, name, pos, yaw=0.0, color_name: str = "black", half=(0.075, 0.
         None,
         f"{name}_body",
     )
+    dress(spec, b, name, [slab], dressing.pad(*half, 0.004, with_alpha(MAT_COLORS[color_name])))
     if text:
         bg = tuple(int(255 * c) for c in MAT_COLORS[color_name])
         mat = text_texture(spec, f"{name}_text", text, bg=bg, fg=(250, 250, 250), size=(256, 96), fill=0.8)
@@ -203,7 +205,7 @@ def add_electronic_scale(spec, name, pos, yaw=0.0):
     randomize=lambda rng: {"rgba": with_alpha(random_rgb(rng, 0.3, 0.9), 1.0)},
 )
 def add_plastic_box(spec, name, pos, yaw=0.0, rgba=(0.3, 0.55, 0.85, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "plastic_box",
@@ -213,11 +215,13 @@ def add_plastic_box(spec, name, pos, yaw=0.0, rgba=(0.3, 0.55, 0.85, 1)):
         0.2,
         functional=Functional(container=Container(0.006, (0.08, 0.06), 0.07)),
     )
+    dress_parts(spec, name, range(5), dressing.open_box(0.086, 0.066, 0.006, 0.07, rgba))
+    return info
 
 
 @register_asset("bread_basket", footprint=0.11, role="task")
 def add_bread_basket(spec, name, pos, yaw=0.0, rgba=(0.62, 0.42, 0.2, 1)):
-    return compound(
+    info = compound(
         spec,
         name,
         "bread_basket",
@@ -227,3 +231,8 @@ def add_bread_basket(spec, name, pos, yaw=0.0, rgba=(0.62, 0.42, 0.2, 1)):
         0.2,
         functional=Functional(container=Container(0.008, (0.085, 0.06), 0.05)),
     )
+    # texture coordinates are metres: one 64-px tile (4 cells of 3 strands) every 6 cm
+    weave = add_texture_material(spec, f"{name}_weave", dressing.basket_weave(rgba), texrepeat=(16, 16))
+    look = dressing.open_box(0.093, 0.068, 0.008, 0.05, (1, 1, 1, 1), corner=0.03, material=weave)
+    dress_parts(spec, name, range(5), look)
+    return info
