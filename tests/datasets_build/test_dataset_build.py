@@ -236,8 +236,8 @@ def test_lerobots_streaming_dataset_reads_the_build(built):
 def test_failed_expert_episodes_are_skipped_recorded_and_replaced(tmp_path, monkeypatch):
     real = shard_mod.record_episode
 
-    def flaky(task, seed, split, image_size):
-        rec = real(task, seed, split, image_size)
+    def flaky(task, seed, split, image_size, search_overshoot):
+        rec = real(task, seed, split, image_size, search_overshoot)
         if seed == 0:
             rec.result.success, rec.result.failure = False, "forced failure for the test"
         return rec
@@ -309,7 +309,7 @@ def test_resume_does_not_rebuild_completed_shards(tmp_path, monkeypatch):
     summary = build_dataset(
         plan, tmp_path / "partial", work_dir=work, workers=1, keep_shards=True, progress=False
     )
-    assert calls == [(BELL, 1, "id", (384, 512))]  # only the missing shard ran
+    assert calls == [(BELL, 1, "id", (384, 512), 0.0)]  # only the missing shard ran
     assert (work / "shards" / plan.shards[0].name / "shard.json").stat().st_mtime_ns == stamp
     assert summary["episodes"] == 2
 
