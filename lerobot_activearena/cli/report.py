@@ -32,7 +32,7 @@ def main(argv: list[str] | None = None) -> None:
         type=Path,
         metavar="DIR",
         help="also copy each activearena-eval run's small records (run.json, policy config, eval_info.json "
-        "without video paths, episode logs; no checkpoints or videos) to DIR/<run folder>, to commit",
+        "without video paths, gzipped episode logs; no checkpoints or videos) to DIR/<run folder>, to commit",
     )
     args = p.parse_args(argv)
     if args.inline_video_mb < 0:

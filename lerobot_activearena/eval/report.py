@@ -9,6 +9,7 @@ the episode logs.
 from __future__ import annotations
 
 import csv
+import gzip
 import json
 import math
 import os
@@ -93,12 +94,7 @@ def load_run(spec: str) -> Run:
             f"{info_path} not found: pass lerobot-eval output folders (with eval_info.json)"
         )
     info = json.loads(info_path.read_text())
-    episodes = [
-        json.loads(line)
-        for f in sorted((run_dir / "episodes").glob("*.jsonl"))
-        for line in f.read_text().splitlines()
-        if line.strip()
-    ]
+    episodes = [json.loads(line) for line in episode_log_lines(run_dir / "episodes") if line.strip()]
     splits = {e["split"] for e in episodes}
     if split is None:
         if len(splits) != 1:
@@ -314,11 +310,22 @@ def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0)
     return {"leaderboard": lb, "failures": fl, "per_task": pt, "html": html_info}
 
 
+def episode_log_lines(folder: Path) -> list[str]:
+    """The lines of a folder's episode logs, ``*.jsonl`` and gzipped ``*.jsonl.gz`` (exported records)."""
+    lines = []
+    for f in sorted(folder.glob("*.jsonl")):
+        lines += f.read_text().splitlines()
+    for f in sorted(folder.glob("*.jsonl.gz")):
+        lines += gzip.decompress(f.read_bytes()).decode().splitlines()
+    return lines
+
+
 def export_records(run_dirs: list[Path], dest: Path) -> list[Path]:
     """The small records behind a table, to commit beside it: per activearena-eval run folder its
     ``run.json``, ``policy/config.json`` and per split ``eval_info.json`` (video paths removed: the
-    videos stay behind) and ``episodes/*.jsonl``; no checkpoints, no videos. Copies go to
-    ``dest/<run folder name>``, which must not exist yet."""
+    videos stay behind) and ``episodes/*.jsonl`` gzipped (``.jsonl.gz``, byte-reproducible: no time
+    stamp; the per-step targets make a 35-task protocol's logs ~25 MB raw); no checkpoints, no
+    videos. Copies go to ``dest/<run folder name>``, which must not exist yet."""
     written = []
     for run_dir in run_dirs:
         run_dir = Path(run_dir)
@@ -341,6 +348,7 @@ def export_records(run_dirs: list[Path], dest: Path) -> list[Path]:
             (target / split / "episodes").mkdir(parents=True)
             (target / split / "eval_info.json").write_text(json.dumps(info, indent=2))
             for log in sorted((run_dir / split / "episodes").glob("*.jsonl")):
-                shutil.copy2(log, target / split / "episodes" / log.name)
+                packed = gzip.compress(log.read_bytes(), compresslevel=9, mtime=0)
+                (target / split / "episodes" / f"{log.name}.gz").write_bytes(packed)
         written.append(target)
     return written

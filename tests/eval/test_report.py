@@ -1,5 +1,6 @@
 """`activearena-report` on hand-made lerobot-eval outputs with known answers."""
 
+import gzip
 import json
 import os
 import re
@@ -206,7 +207,9 @@ def test_exported_records_rebuild_the_same_table_without_videos(tmp_path):
     main([str(run), "--out", str(tmp_path / "rep"), "--export-records", str(tmp_path / "records")])
     copy = tmp_path / "records" / "act_bell"
     files = sorted(str(f.relative_to(copy)) for f in copy.rglob("*") if f.is_file())
-    assert files == ["id/episodes/log.jsonl", "id/eval_info.json", "policy/config.json", "run.json"]
+    assert files == ["id/episodes/log.jsonl.gz", "id/eval_info.json", "policy/config.json", "run.json"]
+    packed = (copy / "id/episodes/log.jsonl.gz").read_bytes()
+    assert gzip.decompress(packed) == (run / "id/episodes/log.jsonl").read_bytes()
     assert "video_paths" not in (copy / "id" / "eval_info.json").read_text()
     main([str(copy), "--out", str(tmp_path / "rep2")])
     for table in ("leaderboard.csv", "failures.csv", "per_task.csv"):
