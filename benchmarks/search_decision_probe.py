@@ -66,7 +66,10 @@ def main() -> None:
     policy.to("cpu").eval()
     cpu = {"device_processor": {"device": "cpu"}}
     pre, post = make_pre_post_processors(
-        policy.config, pretrained_path=args.checkpoint, preprocessor_overrides=cpu, postprocessor_overrides=cpu
+        policy.config,
+        pretrained_path=args.checkpoint,
+        preprocessor_overrides=cpu,
+        postprocessor_overrides=cpu,
     )
 
     def torso_change(image, state) -> float:
@@ -83,7 +86,7 @@ def main() -> None:
             if index is not None and len(picks[kind]) < args.pairs:
                 picks[kind].append(index)
         rows: dict[str, list[float]] = {}
-        for fi, ri in zip(picks["found"], picks["recovery"]):
+        for fi, ri in zip(picks["found"], picks["recovery"], strict=False):
             found, recovery = dataset[fi], dataset[ri]
             for image_kind, image in (("found", found), ("recovery", recovery)):
                 for state_kind, state in (("found", found), ("recovery", recovery)):
