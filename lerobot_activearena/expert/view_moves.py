@@ -110,30 +110,27 @@ def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
     it.focus, it.stage, it.info_complete = i, STAGE_SEARCH, False
     it.search_targets = it.search_targets | {i}
     if i not in ctx.memory:
+
+        def seen() -> bool:
+            return bool(ctx.perception.visible[i])
+
         views = ctx.views  # lower sectors first, then (two-level) the upper ones
         order = sorted(
             range(len(views)),
             key=lambda s: (s in ctx.explored, views[s][1] != SEARCH_PITCH, abs(views[s][0] - ctx.yaw)),
         )
         for s in order:
-            yield from move_head_torso_to(
-                ctx,
-                *views[s],
-                CAMERA_SEARCH,
-                stop_when=lambda: bool(ctx.perception.visible[i]),
-            )
-            if ctx.perception.visible[i]:
+            yield from move_head_torso_to(ctx, *views[s], CAMERA_SEARCH, stop_when=seen)
+            if seen():
                 break
             if ctx.overshoots(s):  # a recovery demonstration: on to the limit, then back
                 limit = embodiment.TORSO_YAW_RANGE[int(views[s][0] > 0)]
-                yield from move_head_torso_to(
-                    ctx, limit, views[s][1], CAMERA_SEARCH, stop_when=lambda: bool(ctx.perception.visible[i])
-                )
-                if ctx.perception.visible[i]:
+                yield from move_head_torso_to(ctx, limit, views[s][1], CAMERA_SEARCH, stop_when=seen)
+                if seen():
                     break
             yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
             ctx.explored.add(s)
-            if ctx.perception.visible[i]:
+            if seen():
                 break
         else:
             raise ExpertError(f"{ctx.objects[i]} not found in any search sector")

@@ -361,12 +361,10 @@ def open_box(
 
 def food_container(half_x: float, half_y: float, body_height: float, lid_height: float, rgba, lid_rgba):
     """A food container: a rounded tub and a rounded lid on top of it."""
-    corner = 0.4 * min(half_x, half_y)
+    outline = rounded_rectangle(half_x, half_y, 0.4 * min(half_x, half_y))
     return [
-        Dress(extrude(rounded_rectangle(half_x, half_y, corner), body_height), rgba),
-        Dress(
-            extrude(rounded_rectangle(half_x, half_y, corner), lid_height), lid_rgba, pos=(0, 0, body_height)
-        ),
+        Dress(extrude(outline, body_height), rgba),
+        Dress(extrude(outline, lid_height), lid_rgba, pos=(0, 0, body_height)),
     ]
 
 
