@@ -184,12 +184,12 @@ def test_baseline_presets_parse_with_the_papers_settings():
     import lerobot.policies  # noqa: F401  (registers LeRobot's policy configs, as lerobot-train does)
 
     presets = {p.stem: p for p in BASELINES.glob("*.json")}
-    assert sorted(presets) == ["act", "act_cpu", "diffusion", "fastwam", "pi05", "smolvla"]
+    assert sorted(presets) == ["act", "act_cpu", "act_cpu_jitter", "diffusion", "fastwam", "pi05", "smolvla"]
     cfgs = {
         name: TrainPipelineConfig.from_pretrained(path, cli_args=["--dataset.root=/nonexistent"]).policy
         for name, path in presets.items()
     }
-    assert all(cfg.type == name.removesuffix("_cpu") for name, cfg in cfgs.items())
+    assert all(cfg.type == name.split("_")[0] for name, cfg in cfgs.items())
     # the CPU recipe's ACT: 17 M parameters, trained from scratch (backbone at the full learning rate)
     act_cpu = cfgs["act_cpu"]
     assert (act_cpu.dim_model, act_cpu.dim_feedforward, act_cpu.n_encoder_layers, act_cpu.chunk_size) == (
@@ -200,6 +200,7 @@ def test_baseline_presets_parse_with_the_papers_settings():
     )
     assert act_cpu.pretrained_backbone_weights is None
     assert act_cpu.optimizer_lr_backbone == act_cpu.optimizer_lr == 1e-4
+    assert cfgs["act_cpu_jitter"] == act_cpu  # the same policy; only the image augmentation differs
     # pi0.5: head image + 18-D state, the two wrist slots masked, 5 flow-matching steps, from pi05_base
     pi05 = cfgs["pi05"]
     assert (pi05.empty_cameras, pi05.num_inference_steps, str(pi05.pretrained_path)) == (
@@ -214,3 +215,24 @@ def test_baseline_presets_parse_with_the_papers_settings():
     readme = (BASELINES.parents[1] / "README.md").read_text()
     for hub_id in ("lerobot/pi05_base", "lerobot/fastwam_base", "lerobot/smolvla_base"):
         assert hub_id in readme, f"configs/README.md should name {hub_id}"
+
+
+def test_jitter_preset_changes_colours_not_geometry():
+    """``act_cpu_jitter`` adds colour jitter (for the OOD split's held-out materials and light) to the
+    CPU recipe's shift: through LeRobot's own ``ImageTransforms``, images keep their shape and range,
+    and their colour statistics move, which the plain preset's shift alone leaves almost unchanged."""
+    import torch
+    from lerobot.transforms.transforms import ImageTransforms
+
+    def transforms(name):
+        cfg = TrainPipelineConfig.from_pretrained(BASELINES / f"{name}.json", cli_args=["--dataset.root=/x"])
+        return ImageTransforms(cfg.dataset.image_transforms)
+
+    torch.manual_seed(0)
+    image = torch.rand(3, 96, 128) * 0.5 + 0.25
+    jitter, plain = transforms("act_cpu_jitter"), transforms("act_cpu")
+    jittered = [jitter(image) for _ in range(20)]
+    assert all(j.shape == image.shape and j.min() >= 0.0 and j.max() <= 1.0 for j in jittered)
+    channel_means = torch.stack([j.mean(dim=(1, 2)) for j in jittered])
+    plain_means = torch.stack([plain(image).mean(dim=(1, 2)) for _ in range(20)])
+    assert channel_means.std(dim=0).max() > 5 * plain_means.std(dim=0).max()
