@@ -5,7 +5,8 @@ The toy car and the bread loaf are built here too but are task objects of ``plac
 
 None of these resembles a task category: no cups, bottles, cans, plain blocks, printed food boxes,
 plates or mouse-like ellipsoids. Most are a few primitives; the donut, scissors rings, pencil and
-hourglass use small code-built meshes (< 200 vertices each). Colours are drawn from plausible
+hourglass use small code-built meshes (< 200 vertices each), and the round ones are drawn as lathed
+meshes over their primitives (``look=``, ``dressing_clutter.py``). Colours are drawn from plausible
 palettes, kept away from the table's tan."""
 
 from __future__ import annotations
@@ -14,7 +15,9 @@ import math
 
 import numpy as np
 
+from . import dressing_clutter as looks
 from .functional import Functional
+from .parts import dress_parts
 from .registry import register_asset
 from .shapes import compound, quat_axis_angle
 
@@ -27,7 +30,7 @@ STEM, LEAF, STEEL, DARK = (
     (0.72, 0.73, 0.76, 1),
     (0.1, 0.1, 0.11, 1),
 )
-WHITE, WOOD = (0.96, 0.96, 0.95, 1), (0.6, 0.4, 0.2, 1)
+WHITE, WOOD, GOLD = (0.96, 0.96, 0.95, 1), (0.6, 0.4, 0.2, 1), (0.9, 0.75, 0.2, 1)
 PLASTICS = [
     (0.85, 0.12, 0.1),
     (0.1, 0.35, 0.85),
@@ -51,12 +54,15 @@ def _pick(palette, amount=0.05):
     return lambda rng: _jitter(palette[int(rng.integers(len(palette)))], rng, amount)
 
 
-def _simple(category, footprint, family, parts, mass, colors=None, functional=None, role="distractor"):
+def _simple(
+    category, footprint, family, parts, mass, colors=None, functional=None, role="distractor", look=None
+):
     """Register an object made of ``parts`` (see ``shapes.compound``); part colours given as
     'main' are replaced by the ``rgba`` parameter, randomised by ``colors(rng)``. A callable part
     ``fn(spec, name)`` returns a part built at build time (meshes need the object's name).
     ``functional``: its metadata where a task uses it (a grasp); ``role="task"`` where some task
-    names the category (ID clutter never uses it)."""
+    names the category (ID clutter never uses it). ``look``: ``(replaced, fn)``, the part indices
+    drawn instead as the meshes ``fn(rgba)`` returns (``dressing_clutter.py``)."""
     default = (0.7, 0.7, 0.7, 1) if colors is None else colors(np.random.default_rng(0))
 
     def build(spec, name, pos, yaw=0.0, rgba=default):
@@ -64,7 +70,11 @@ def _simple(category, footprint, family, parts, mass, colors=None, functional=No
         for p in parts:
             p = p(spec, name) if callable(p) else p
             resolved.append((p[0], p[1], p[2], rgba if p[3] == "main" else p[3], *p[4:]))
-        return compound(spec, name, category, pos, yaw, resolved, mass, functional=functional)
+        info = compound(spec, name, category, pos, yaw, resolved, mass, functional=functional)
+        if look is not None:
+            replaced, draw = look
+            dress_parts(spec, name, replaced, draw(rgba))
+        return info
 
     register_asset(
         category,
@@ -203,6 +213,7 @@ _simple(
     ],
     0.18,
     _pick([(0.7, 0.8, 0.25)]),
+    look=((0, 1), looks.pear),
 )
 _simple(
     "tomato",
@@ -315,6 +326,7 @@ _simple(
     ],
     0.4,
     _pick([(0.95, 0.95, 0.93), (0.2, 0.45, 0.7), (0.75, 0.2, 0.15), (0.3, 0.55, 0.4)]),
+    look=((0, 1, 3, 4), looks.teapot),
 )
 _simple(
     "kettle",
@@ -330,6 +342,7 @@ _simple(
     ],
     0.6,
     _pick([STEEL, (0.93, 0.93, 0.9), (0.8, 0.15, 0.12), (0.15, 0.15, 0.16)], 0.03),
+    look=((0, 1, 4), looks.kettle),
 )
 _simple(
     "pepper_grinder",
@@ -343,6 +356,7 @@ _simple(
     ],
     0.25,
     _pick([(0.45, 0.28, 0.12), (0.25, 0.15, 0.08), (0.1, 0.1, 0.1)]),
+    look=((0, 1, 2, 3), looks.pepper_grinder),
 )
 _simple(
     "rolling_pin",
@@ -451,6 +465,7 @@ _simple(
     ],
     0.08,
     _pick([(0.85, 0.85, 0.8), (0.2, 0.45, 0.85), (0.1, 0.1, 0.1), (0.85, 0.15, 0.1), (0.95, 0.85, 0.1)]),
+    look=((0, 1), looks.tape_roll),
 )
 _simple(
     "sponge",
@@ -474,6 +489,7 @@ _simple(
     ],
     0.2,
     _pick([(0.97, 0.95, 0.88), (0.85, 0.15, 0.15), (0.95, 0.6, 0.75), (0.6, 0.3, 0.7)], 0.03),
+    look=((0, 1), looks.candle),
 )
 _simple(
     "flower_pot",
@@ -486,6 +502,7 @@ _simple(
     ],
     0.5,
     _pick([(0.9, 0.3, 0.5), (0.95, 0.85, 0.15), (0.85, 0.15, 0.15), (0.6, 0.3, 0.8)]),
+    look=((0,), lambda _: looks.flower_pot()),
 )
 _simple(
     "cactus",
@@ -503,6 +520,7 @@ _simple(
         ),
     ],
     0.35,
+    look=((0,), lambda _: looks.cactus_pot((0.85, 0.8, 0.7, 1))),
 )
 _simple(
     "glasses_case",
@@ -566,6 +584,7 @@ _simple(
     ],
     0.05,
     _pick([(0.95, 0.95, 0.92), (0.08, 0.08, 0.08)], 0.02),
+    look=((0, 1, 2, 3), looks.chess_pawn),
 )
 _simple(
     "lightbulb",
@@ -576,6 +595,7 @@ _simple(
         ("cyl", (0.013, 0.013, 0), (0, 0, 0.013), STEEL),
     ],
     0.05,
+    look=((0, 1), lambda _: looks.lightbulb()),
 )
 _simple("tennis_ball", 0.035, "ball", [("sph", (0.033,), (0, 0, 0.033), (0.8, 0.95, 0.2, 1))], 0.06)
 _simple(
@@ -601,6 +621,7 @@ _simple(
         _ring("handle2", 0.013, 0.003, (-0.035, 0, 0.1), (0.9, 0.75, 0.2, 1)),
     ],
     0.3,
+    look=((1, 2), lambda _: looks.trophy_cup(GOLD)),
 )
 _simple(
     "toy_robot",

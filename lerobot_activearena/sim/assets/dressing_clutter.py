@@ -1,0 +1,191 @@
+"""How the round distractors look: lathed profiles drawn in place of their stacked cylinders and
+spheres (``distractors.py`` names which parts each replaces). Profiles run from the object's foot
+(z = 0) up, in metres; every one stays inside the object's collision extents
+(``tests/sim/test_dressing.py``). Kept small (16-24 segments) so that a dense OOD table of them
+costs little to draw."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..look.dress import Dress
+from ..look.meshes import lathe
+
+SEGMENTS = 20
+STEEL = (0.72, 0.73, 0.76, 1.0)
+DARK = (0.1, 0.1, 0.11, 1.0)
+SOIL = (0.25, 0.17, 0.1, 1.0)
+TERRACOTTA = (0.75, 0.38, 0.2, 1.0)
+
+
+def _lathe(profile) -> object:
+    return lathe(profile, segments=SEGMENTS)
+
+
+def _dome(r: float, z0: float, height: float, n: int = 6, start_deg: float = 0.0):
+    """Quarter ellipse from (r, z0) to the axis at z0 + height (the axis point last)."""
+    phi = np.radians(np.linspace(start_deg, 90.0, n))
+    pts = [(r * np.cos(p), z0 + height * np.sin(p)) for p in phi]
+    return [(max(float(x), 0.0), float(z)) for x, z in pts[:-1]] + [(0.0, z0 + height)]
+
+
+def candle(rgba) -> list[Dress]:
+    """A pillar candle with a soft, sunken top on a brass dish."""
+    dish = [(0.0, 0.0), (0.04, 0.0), (0.045, 0.006), (0.043, 0.008), (0.03, 0.007), (0.0, 0.007)]
+    wax = [(0.0, 0.007), (0.024, 0.007), (0.024, 0.084), (0.021, 0.088), (0.012, 0.085), (0.0, 0.084)]
+    return [Dress(_lathe(dish), (0.8, 0.65, 0.25, 1.0)), Dress(_lathe(wax), rgba)]
+
+
+def chess_pawn(rgba) -> list[Dress]:
+    """A turned pawn: foot, waist, collar and head."""
+    profile = [
+        (0.0, 0.0),
+        (0.022, 0.0),
+        (0.022, 0.005),
+        (0.017, 0.009),
+        (0.012, 0.016),
+        (0.009, 0.04),
+        (0.015, 0.054),
+        (0.016, 0.058),
+        (0.01, 0.06),
+        *[
+            (0.016 * np.cos(a), 0.07 + 0.016 * np.sin(a))
+            for a in np.radians([-40.0, -15.0, 10.0, 35.0, 60.0, 80.0])
+        ],
+        (0.0, 0.086),
+    ]
+    return [Dress(_lathe(profile), rgba)]
+
+
+def pepper_grinder(rgba) -> list[Dress]:
+    """A waisted wooden mill with a steel knob."""
+    body = [
+        (0.0, 0.0),
+        (0.022, 0.0),
+        (0.024, 0.004),
+        (0.024, 0.02),
+        (0.018, 0.027),
+        (0.015, 0.045),
+        (0.019, 0.075),
+        (0.016, 0.104),
+        (0.022, 0.112),
+        (0.024, 0.122),
+        (0.021, 0.133),
+        (0.0, 0.136),
+    ]
+    knob = [(0.0, 0.135), (0.007, 0.135), *_dome(0.008, 0.14, 0.008, 4)]
+    return [Dress(_lathe(body), rgba), Dress(_lathe(knob), STEEL)]
+
+
+def kettle(rgba) -> list[Dress]:
+    """A kettle's body tapering to its lid, on a dark base, with a knob."""
+    base = [(0.0, 0.0), (0.055, 0.0), (0.058, 0.004), (0.058, 0.012), (0.0, 0.012)]
+    body = [(0.0, 0.011), (0.055, 0.011), (0.055, 0.085), (0.05, 0.108), (0.038, 0.122), (0.0, 0.124)]
+    knob = [(0.0, 0.123), (0.006, 0.123), (0.008, 0.128), *_dome(0.012, 0.129, 0.005, 4)]
+    return [Dress(_lathe(base), DARK), Dress(_lathe(body), rgba), Dress(_lathe(knob), DARK)]
+
+
+def trophy_cup(rgba) -> list[Dress]:
+    """A trophy's stem and open cup (the handles and plinth stay as they are)."""
+    profile = [
+        (0.0, 0.024),
+        (0.013, 0.024),
+        (0.008, 0.03),
+        (0.006, 0.06),
+        (0.01, 0.074),
+        (0.02, 0.08),
+        (0.027, 0.095),
+        (0.03, 0.124),
+        (0.027, 0.124),
+        (0.024, 0.1),
+        (0.0, 0.094),
+    ]
+    return [Dress(_lathe(profile), rgba)]
+
+
+def _pot(r_foot: float, r_rim: float, height: float, rim: float) -> list[tuple[float, float]]:
+    """A flower pot's outside and rim, closed at the soil line."""
+    return [
+        (0.0, 0.0),
+        (r_foot, 0.0),
+        (r_foot + 0.002, 0.002),
+        (r_rim - 0.004, height - rim),
+        (r_rim, height - rim + 0.002),
+        (r_rim, height),
+        (r_rim - 0.006, height),
+        (0.0, height - 0.008),
+    ]
+
+
+def flower_pot() -> list[Dress]:
+    return [Dress(_lathe(_pot(0.034, 0.045, 0.08, 0.016)), TERRACOTTA)]
+
+
+def cactus_pot(rgba) -> list[Dress]:
+    return [Dress(_lathe(_pot(0.026, 0.035, 0.05, 0.012)), rgba)]
+
+
+def lightbulb() -> list[Dress]:
+    """A screw base with threads and a pear-shaped glass bulb."""
+    threads = [(0.0, 0.0), (0.006, 0.0), (0.011, 0.002)]
+    for z in np.arange(0.005, 0.025, 0.004):
+        threads += [(0.013, float(z)), (0.0115, float(z) + 0.002)]
+    threads += [(0.013, 0.026), (0.0, 0.026)]
+    glass = [
+        (0.0, 0.025),
+        (0.013, 0.025),
+        (0.016, 0.033),
+        *[
+            (0.03 * np.cos(a), 0.05 + 0.03 * np.sin(a))
+            for a in np.radians([-40.0, -15.0, 10.0, 35.0, 60.0, 80.0])
+        ],
+        (0.0, 0.08),
+    ]
+    return [Dress(_lathe(threads), STEEL), Dress(_lathe(glass), (0.98, 0.98, 0.85, 0.9))]
+
+
+def pear(rgba) -> list[Dress]:
+    """A pear's round bottom narrowing to its neck."""
+    profile = [
+        (0.0, 0.0),
+        (0.017, 0.003),
+        (0.029, 0.012),
+        (0.035, 0.03),
+        (0.033, 0.046),
+        (0.026, 0.058),
+        (0.021, 0.07),
+        (0.021, 0.08),
+        (0.017, 0.091),
+        (0.009, 0.097),
+        (0.0, 0.099),
+    ]
+    return [Dress(_lathe(profile), rgba)]
+
+
+def teapot(rgba) -> list[Dress]:
+    """A teapot's belly, shoulder, lid and knob in one turned piece (spout and handle stay)."""
+    belly = [
+        (0.06 * np.cos(a), 0.052 + 0.05 * np.sin(a)) for a in np.radians([-60.0, -35.0, -10.0, 15.0, 40.0])
+    ]
+    profile = [
+        (0.0, 0.0),
+        (0.038, 0.0),
+        (0.04, 0.004),
+        *belly,
+        (0.025, 0.1),
+        (0.02, 0.1),
+        (0.02, 0.104),
+        (0.017, 0.109),
+        (0.005, 0.112),
+        (0.007, 0.118),
+        (0.004, 0.124),
+        (0.0, 0.125),
+    ]
+    return [Dress(_lathe(profile), rgba)]
+
+
+def tape_roll(rgba) -> list[Dress]:
+    """A roll of tape around a cardboard core, hollow through the middle."""
+    tape = [(0.028, 0.0), (0.042, 0.0), (0.042, 0.026), (0.028, 0.026), (0.028, 0.0)]  # a closed loop
+    core = [(0.0235, 0.0), (0.0278, 0.0), (0.0278, 0.026), (0.0235, 0.026), (0.0235, 0.0)]
+    return [Dress(_lathe(tape), rgba), Dress(_lathe(core), (0.55, 0.45, 0.35, 1.0))]
