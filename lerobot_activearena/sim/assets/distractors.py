@@ -30,7 +30,7 @@ STEM, LEAF, STEEL, DARK = (
     (0.72, 0.73, 0.76, 1),
     (0.1, 0.1, 0.11, 1),
 )
-WHITE, WOOD, GOLD = (0.96, 0.96, 0.95, 1), (0.6, 0.4, 0.2, 1), (0.9, 0.75, 0.2, 1)
+WHITE, WOOD = (0.96, 0.96, 0.95, 1), (0.6, 0.4, 0.2, 1)
 PLASTICS = [
     (0.85, 0.12, 0.1),
     (0.1, 0.35, 0.85),
@@ -62,7 +62,7 @@ def _simple(
     ``fn(spec, name)`` returns a part built at build time (meshes need the object's name).
     ``functional``: its metadata where a task uses it (a grasp); ``role="task"`` where some task
     names the category (ID clutter never uses it). ``look``: ``(replaced, fn)``, the part indices
-    drawn instead as the meshes ``fn(rgba)`` returns (``dressing_clutter.py``)."""
+    drawn instead as the meshes ``fn(spec, name, rgba)`` returns (``dressing_clutter.py``)."""
     default = (0.7, 0.7, 0.7, 1) if colors is None else colors(np.random.default_rng(0))
 
     def build(spec, name, pos, yaw=0.0, rgba=default):
@@ -73,7 +73,7 @@ def _simple(
         info = compound(spec, name, category, pos, yaw, resolved, mass, functional=functional)
         if look is not None:
             replaced, draw = look
-            dress_parts(spec, name, replaced, draw(rgba))
+            dress_parts(spec, name, replaced, draw(spec, name, rgba))
         return info
 
     register_asset(
@@ -381,6 +381,7 @@ _simple(
     ],
     0.4,
     _pick(PLASTICS[:8] + [(0.35, 0.1, 0.1), (0.1, 0.15, 0.35)]),
+    look=((0, 1), looks.book),
 )
 _simple(
     "remote_control",
@@ -476,6 +477,7 @@ _simple(
         ("box", (0.05, 0.032, 0.005), (0, 0, 0.029), (0.1, 0.55, 0.2, 1)),
     ],
     0.03,
+    look=((0, 1), looks.sponge),
 )
 _simple(
     "candle",
@@ -502,7 +504,7 @@ _simple(
     ],
     0.5,
     _pick([(0.9, 0.3, 0.5), (0.95, 0.85, 0.15), (0.85, 0.15, 0.15), (0.6, 0.3, 0.8)]),
-    look=((0,), lambda _: looks.flower_pot()),
+    look=((0,), looks.flower_pot),
 )
 _simple(
     "cactus",
@@ -520,7 +522,7 @@ _simple(
         ),
     ],
     0.35,
-    look=((0,), lambda _: looks.cactus_pot((0.85, 0.8, 0.7, 1))),
+    look=((0,), looks.cactus_pot),
 )
 _simple(
     "glasses_case",
@@ -595,7 +597,7 @@ _simple(
         ("cyl", (0.013, 0.013, 0), (0, 0, 0.013), STEEL),
     ],
     0.05,
-    look=((0, 1), lambda _: looks.lightbulb()),
+    look=((0, 1), looks.lightbulb),
 )
 _simple("tennis_ball", 0.035, "ball", [("sph", (0.033,), (0, 0, 0.033), (0.8, 0.95, 0.2, 1))], 0.06)
 _simple(
@@ -608,6 +610,7 @@ _simple(
     ],
     0.15,
     _pick([(0.4, 0.65, 0.9), (0.95, 0.6, 0.75), (0.5, 0.8, 0.5), (0.6, 0.45, 0.8)]),
+    look=((0,), looks.tissue_box),
 )
 _simple(
     "trophy",
@@ -621,7 +624,7 @@ _simple(
         _ring("handle2", 0.013, 0.003, (-0.035, 0, 0.1), (0.9, 0.75, 0.2, 1)),
     ],
     0.3,
-    look=((1, 2), lambda _: looks.trophy_cup(GOLD)),
+    look=((1, 2), looks.trophy_cup),
 )
 _simple(
     "toy_robot",

@@ -1,21 +1,28 @@
-"""How the round distractors look: lathed profiles drawn in place of their stacked cylinders and
-spheres (``distractors.py`` names which parts each replaces). Profiles run from the object's foot
-(z = 0) up, in metres; every one stays inside the object's collision extents
-(``tests/sim/test_dressing.py``). Kept small (16-24 segments) so that a dense OOD table of them
-costs little to draw."""
+"""How distractors look: lathed profiles drawn in place of the round ones' stacked cylinders and
+spheres, and extruded slabs with code-drawn textures in place of the flat ones' boxes (a book's
+boards and pages, a sponge, a tissue box). ``distractors.py`` names which parts each replaces; every
+function takes ``(spec, name, rgba)`` (textures need the object's name) and returns its meshes.
+Profiles run from the object's foot (z = 0) up, in metres; every mesh stays inside the object's
+collision extents (``tests/sim/test_dressing.py``). Kept small (20 segments, 64-pixel textures) so
+that a dense OOD table of them costs little to draw."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..look.dress import Dress
-from ..look.meshes import lathe
+from ..look.meshes import extrude, lathe
+from ..look.textures import make_texture
+from .base import add_texture_material
+from .dressing import rounded_rectangle
 
 SEGMENTS = 20
 STEEL = (0.72, 0.73, 0.76, 1.0)
 DARK = (0.1, 0.1, 0.11, 1.0)
 SOIL = (0.25, 0.17, 0.1, 1.0)
 TERRACOTTA = (0.75, 0.38, 0.2, 1.0)
+GOLD = (0.9, 0.75, 0.2, 1.0)
+PAPER = (0.95, 0.93, 0.86)
 
 
 def _lathe(profile) -> object:
@@ -29,14 +36,14 @@ def _dome(r: float, z0: float, height: float, n: int = 6, start_deg: float = 0.0
     return [(max(float(x), 0.0), float(z)) for x, z in pts[:-1]] + [(0.0, z0 + height)]
 
 
-def candle(rgba) -> list[Dress]:
+def candle(spec, name, rgba) -> list[Dress]:
     """A pillar candle with a soft, sunken top on a brass dish."""
     dish = [(0.0, 0.0), (0.04, 0.0), (0.045, 0.006), (0.043, 0.008), (0.03, 0.007), (0.0, 0.007)]
     wax = [(0.0, 0.007), (0.024, 0.007), (0.024, 0.084), (0.021, 0.088), (0.012, 0.085), (0.0, 0.084)]
     return [Dress(_lathe(dish), (0.8, 0.65, 0.25, 1.0)), Dress(_lathe(wax), rgba)]
 
 
-def chess_pawn(rgba) -> list[Dress]:
+def chess_pawn(spec, name, rgba) -> list[Dress]:
     """A turned pawn: foot, waist, collar and head."""
     profile = [
         (0.0, 0.0),
@@ -57,7 +64,7 @@ def chess_pawn(rgba) -> list[Dress]:
     return [Dress(_lathe(profile), rgba)]
 
 
-def pepper_grinder(rgba) -> list[Dress]:
+def pepper_grinder(spec, name, rgba) -> list[Dress]:
     """A waisted wooden mill with a steel knob."""
     body = [
         (0.0, 0.0),
@@ -77,7 +84,7 @@ def pepper_grinder(rgba) -> list[Dress]:
     return [Dress(_lathe(body), rgba), Dress(_lathe(knob), STEEL)]
 
 
-def kettle(rgba) -> list[Dress]:
+def kettle(spec, name, rgba) -> list[Dress]:
     """A kettle's body tapering to its lid, on a dark base, with a knob."""
     base = [(0.0, 0.0), (0.055, 0.0), (0.058, 0.004), (0.058, 0.012), (0.0, 0.012)]
     body = [(0.0, 0.011), (0.055, 0.011), (0.055, 0.085), (0.05, 0.108), (0.038, 0.122), (0.0, 0.124)]
@@ -85,8 +92,8 @@ def kettle(rgba) -> list[Dress]:
     return [Dress(_lathe(base), DARK), Dress(_lathe(body), rgba), Dress(_lathe(knob), DARK)]
 
 
-def trophy_cup(rgba) -> list[Dress]:
-    """A trophy's stem and open cup (the handles and plinth stay as they are)."""
+def trophy_cup(spec, name, rgba) -> list[Dress]:
+    """A trophy's stem and open gold cup (the handles and plinth stay as they are)."""
     profile = [
         (0.0, 0.024),
         (0.013, 0.024),
@@ -100,7 +107,7 @@ def trophy_cup(rgba) -> list[Dress]:
         (0.024, 0.1),
         (0.0, 0.094),
     ]
-    return [Dress(_lathe(profile), rgba)]
+    return [Dress(_lathe(profile), GOLD)]
 
 
 def _pot(r_foot: float, r_rim: float, height: float, rim: float) -> list[tuple[float, float]]:
@@ -117,15 +124,15 @@ def _pot(r_foot: float, r_rim: float, height: float, rim: float) -> list[tuple[f
     ]
 
 
-def flower_pot() -> list[Dress]:
+def flower_pot(spec, name, rgba) -> list[Dress]:
     return [Dress(_lathe(_pot(0.034, 0.045, 0.08, 0.016)), TERRACOTTA)]
 
 
-def cactus_pot(rgba) -> list[Dress]:
-    return [Dress(_lathe(_pot(0.026, 0.035, 0.05, 0.012)), rgba)]
+def cactus_pot(spec, name, rgba) -> list[Dress]:
+    return [Dress(_lathe(_pot(0.026, 0.035, 0.05, 0.012)), (0.85, 0.8, 0.7, 1.0))]
 
 
-def lightbulb() -> list[Dress]:
+def lightbulb(spec, name, rgba) -> list[Dress]:
     """A screw base with threads and a pear-shaped glass bulb."""
     threads = [(0.0, 0.0), (0.006, 0.0), (0.011, 0.002)]
     for z in np.arange(0.005, 0.025, 0.004):
@@ -144,7 +151,7 @@ def lightbulb() -> list[Dress]:
     return [Dress(_lathe(threads), STEEL), Dress(_lathe(glass), (0.98, 0.98, 0.85, 0.9))]
 
 
-def pear(rgba) -> list[Dress]:
+def pear(spec, name, rgba) -> list[Dress]:
     """A pear's round bottom narrowing to its neck."""
     profile = [
         (0.0, 0.0),
@@ -162,7 +169,7 @@ def pear(rgba) -> list[Dress]:
     return [Dress(_lathe(profile), rgba)]
 
 
-def teapot(rgba) -> list[Dress]:
+def teapot(spec, name, rgba) -> list[Dress]:
     """A teapot's belly, shoulder, lid and knob in one turned piece (spout and handle stay)."""
     belly = [
         (0.06 * np.cos(a), 0.052 + 0.05 * np.sin(a)) for a in np.radians([-60.0, -35.0, -10.0, 15.0, 40.0])
@@ -184,8 +191,64 @@ def teapot(rgba) -> list[Dress]:
     return [Dress(_lathe(profile), rgba)]
 
 
-def tape_roll(rgba) -> list[Dress]:
+def tape_roll(spec, name, rgba) -> list[Dress]:
     """A roll of tape around a cardboard core, hollow through the middle."""
     tape = [(0.028, 0.0), (0.042, 0.0), (0.042, 0.026), (0.028, 0.026), (0.028, 0.0)]  # a closed loop
     core = [(0.0235, 0.0), (0.0278, 0.0), (0.0278, 0.026), (0.0235, 0.026), (0.0235, 0.0)]
     return [Dress(_lathe(tape), rgba), Dress(_lathe(core), (0.55, 0.45, 0.35, 1.0))]
+
+
+# ---- flat ones: extruded slabs with textures ----------------------------------------------------
+def _material(spec, name: str, img: np.ndarray, tile_m: float) -> str:
+    """A material repeating ``img`` once every ``tile_m`` metres (extruded meshes' texture
+    coordinates are in metres)."""
+    return add_texture_material(spec, name, img, texrepeat=(1.0 / tile_m, 1.0 / tile_m))
+
+
+def page_edges(size: int = 64, pages: int = 32) -> np.ndarray:
+    """A seamless tile of paper edges: thin grey lines between pages along the tile's rows."""
+    y = np.arange(size)[:, None] * np.ones((1, size))
+    shade = np.where((y * pages // size) % 2 == 0, 1.0, 0.86)
+    img = np.asarray(PAPER)[None, None, :] * shade[..., None]
+    return (np.clip(img, 0, 1) * 255 + 0.5).astype(np.uint8)
+
+
+def diagonal_stripes(rgb, size: int = 64, stripes: int = 4) -> np.ndarray:
+    """A seamless tile of ``rgb`` and white diagonal stripes (a printed carton)."""
+    y, x = np.mgrid[0:size, 0:size]
+    band = ((x + y) * stripes // size) % 2 == 0
+    img = np.where(band[..., None], np.asarray(rgb[:3], float), np.asarray((0.97, 0.97, 0.95)))
+    return (img * 255 + 0.5).astype(np.uint8)
+
+
+def book(spec, name, rgba) -> list[Dress]:
+    """Two cloth-covered boards joined by a spine, with the page block between them."""
+    cloth = _material(spec, f"{name}_cloth", make_texture("fabric", 7, tuple(rgba[:3]), 64), 0.03)
+    pages = _material(spec, f"{name}_pages", page_edges(), 0.016)
+    board = extrude(rounded_rectangle(0.1, 0.07, 0.004), 0.003)
+    return [
+        Dress(board, material=cloth),
+        Dress(board, material=cloth, pos=(0.0, 0.0, 0.027)),
+        Dress(
+            extrude(rounded_rectangle(0.003, 0.07, 0.0015), 0.024), material=cloth, pos=(-0.097, 0.0, 0.003)
+        ),
+        Dress(
+            extrude(rounded_rectangle(0.0965, 0.067, 0.001), 0.024), material=pages, pos=(0.0025, 0.0, 0.003)
+        ),
+    ]
+
+
+def sponge(spec, name, rgba) -> list[Dress]:
+    """A porous yellow block under a green scouring pad."""
+    foam = _material(spec, f"{name}_foam", make_texture("concrete", 3, (0.98, 0.86, 0.25), 64), 0.02)
+    pad = _material(spec, f"{name}_pad", make_texture("carpet", 5, (0.15, 0.6, 0.25), 64), 0.02)
+    return [
+        Dress(extrude(rounded_rectangle(0.05, 0.032, 0.006), 0.024), material=foam),
+        Dress(extrude(rounded_rectangle(0.05, 0.032, 0.004), 0.01), material=pad, pos=(0.0, 0.0, 0.024)),
+    ]
+
+
+def tissue_box(spec, name, rgba) -> list[Dress]:
+    """A carton printed with diagonal stripes of its colour (the tissue stays as it is)."""
+    print_ = _material(spec, f"{name}_print", diagonal_stripes(rgba), 0.04)
+    return [Dress(extrude(rounded_rectangle(0.065, 0.05, 0.004), 0.09), material=print_)]
