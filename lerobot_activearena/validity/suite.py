@@ -320,12 +320,30 @@ def markdown_table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def summary_table(rows: list[dict]) -> str:
+    """One line per (task, split), one column per adversary: successes / episodes and the most
+    common failure state among the failures (``MISSED`` where the target is not met)."""
+    advs = [a for a in ADVERSARIES if any(r["adversary"] == a for r in rows)]
+    cells: dict[tuple, dict[str, str]] = collections.defaultdict(dict)
+    for r in rows:
+        top = max(r["failure_states"].items(), key=lambda kv: kv[1], default=None)
+        text = f"{r['successes']}/{r['episodes']}" + (f" ({top[0]} {top[1]})" if top else "")
+        cells[(r["task"], r["split"])][r["adversary"]] = text + ("" if r["met"] else " MISSED")
+    lines = ["| task | split | " + " | ".join(advs) + " |", "|---|---|" + "---|" * len(advs)]
+    for (task, split), by_adv in cells.items():
+        lines.append(f"| {task} | {split} | " + " | ".join(by_adv.get(a, "-") for a in advs) + " |")
+    return "\n".join(lines)
+
+
 def write_report(rows: list[dict], out_dir: str | Path) -> str:
-    """Write ``validity.md`` and ``validity.csv`` under ``out_dir``; return the Markdown table."""
+    """Write ``validity.md`` (a summary, then the full table) and ``validity.csv`` under ``out_dir``;
+    return the full Markdown table."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     table = markdown_table(rows)
-    (out_dir / "validity.md").write_text("# ActiveArena validity suite\n\n" + table + "\n")
+    (out_dir / "validity.md").write_text(
+        "# ActiveArena validity suite\n\n" + summary_table(rows) + "\n\n## Every row\n\n" + table + "\n"
+    )
     with open(out_dir / "validity.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(

@@ -24,6 +24,7 @@ from lerobot_activearena.validity.suite import (
     records_path,
     run_suite,
     summarise,
+    summary_table,
     targets_met,
     write_report,
 )
@@ -113,6 +114,26 @@ def test_targets():
     assert targets_met(row("fixed_view_expert", 2)) and not targets_met(row("fixed_view_expert", 3))
     assert targets_met(row("expert", 48)) and not targets_met(row("expert", 47))
     assert not targets_met(row("random", 0, 0))  # nothing measured
+
+
+def test_summary_table_shows_each_adversary_and_flags_a_missed_target():
+    def rec(adv, seed, success, state="DM"):
+        return {
+            "task": "t",
+            "split": "id",
+            "adversary": adv,
+            "seed": seed,
+            "success": success,
+            "failure_state": None if success else state,
+            "failure_reason": "step limit 9 reached",
+            "seconds": 0.1,
+        }
+
+    records = [rec("random", s, False, "CO" if s < 3 else "DM") for s in range(5)]
+    records += [rec("expert", s, s > 0) for s in range(5)]  # 4/5: below >= 95 %
+    lines = summary_table(summarise(records)).splitlines()
+    assert lines[0] == "| task | split | random | expert |"
+    assert lines[2] == "| t | id | 0/5 (CO 3) | 4/5 (DM 1) MISSED |"
 
 
 def test_cli_rejects_unknown_adversary_and_split(capsys):
