@@ -322,16 +322,20 @@ def markdown_table(rows: list[dict]) -> str:
 
 def summary_table(rows: list[dict]) -> str:
     """One line per (task, split), one column per adversary: successes / episodes and the most
-    common failure state among the failures (``MISSED`` where the target is not met)."""
+    common failure state among the failures (``MISSED`` where the target is not met). The split
+    column is left out when every row has the same split."""
     advs = [a for a in ADVERSARIES if any(r["adversary"] == a for r in rows)]
     cells: dict[tuple, dict[str, str]] = collections.defaultdict(dict)
     for r in rows:
         top = max(r["failure_states"].items(), key=lambda kv: kv[1], default=None)
         text = f"{r['successes']}/{r['episodes']}" + (f" ({top[0]} {top[1]})" if top else "")
         cells[(r["task"], r["split"])][r["adversary"]] = text + ("" if r["met"] else " MISSED")
-    lines = ["| task | split | " + " | ".join(advs) + " |", "|---|---|" + "---|" * len(advs)]
+    one_split = len({split for _, split in cells}) == 1
+    head = ["task"] + ([] if one_split else ["split"]) + advs
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for (task, split), by_adv in cells.items():
-        lines.append(f"| {task} | {split} | " + " | ".join(by_adv.get(a, "-") for a in advs) + " |")
+        first = [task] + ([] if one_split else [split])
+        lines.append("| " + " | ".join(first + [by_adv.get(a, "-") for a in advs]) + " |")
     return "\n".join(lines)
 
 

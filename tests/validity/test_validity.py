@@ -132,8 +132,12 @@ def test_summary_table_shows_each_adversary_and_flags_a_missed_target():
     records = [rec("random", s, False, "CO" if s < 3 else "DM") for s in range(5)]
     records += [rec("expert", s, s > 0) for s in range(5)]  # 4/5: below >= 95 %
     lines = summary_table(summarise(records)).splitlines()
+    assert lines[0] == "| task | random | expert |"  # one split: no split column
+    assert lines[2] == "| t | 0/5 (CO 3) | 4/5 (DM 1) MISSED |"
+    ood = [{**r, "split": "ood"} for r in records[:5]]
+    lines = summary_table(summarise(records + ood)).splitlines()
     assert lines[0] == "| task | split | random | expert |"
-    assert lines[2] == "| t | id | 0/5 (CO 3) | 4/5 (DM 1) MISSED |"
+    assert "| t | ood | 0/5 (CO 3) | - |" in lines
 
 
 def test_cli_rejects_unknown_adversary_and_split(capsys):
