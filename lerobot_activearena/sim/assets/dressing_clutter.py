@@ -14,7 +14,7 @@ from ..look.dress import Dress
 from ..look.meshes import extrude, lathe
 from ..look.textures import make_texture
 from .base import add_texture_material
-from .dressing import rounded_rectangle
+from .dressing import _arc, rounded_rectangle
 
 SEGMENTS = 20
 STEEL = (0.72, 0.73, 0.76, 1.0)
@@ -29,11 +29,10 @@ def _lathe(profile) -> object:
     return lathe(profile, segments=SEGMENTS)
 
 
-def _dome(r: float, z0: float, height: float, n: int = 6, start_deg: float = 0.0):
-    """Quarter ellipse from (r, z0) to the axis at z0 + height (the axis point last)."""
-    phi = np.radians(np.linspace(start_deg, 90.0, n))
-    pts = [(r * np.cos(p), z0 + height * np.sin(p)) for p in phi]
-    return [(max(float(x), 0.0), float(z)) for x, z in pts[:-1]] + [(0.0, z0 + height)]
+def _ellipse(rx: float, rz: float, zc: float, degrees) -> list[tuple[float, float]]:
+    """Profile points on an ellipse centred on the axis at height ``zc``, at ``degrees`` above the
+    horizontal (a pawn's head, a bulb's glass, a teapot's belly)."""
+    return [(rx * np.cos(a), zc + rz * np.sin(a)) for a in np.radians(degrees)]
 
 
 def candle(spec, name, rgba) -> list[Dress]:
@@ -55,10 +54,7 @@ def chess_pawn(spec, name, rgba) -> list[Dress]:
         (0.015, 0.054),
         (0.016, 0.058),
         (0.01, 0.06),
-        *[
-            (0.016 * np.cos(a), 0.07 + 0.016 * np.sin(a))
-            for a in np.radians([-40.0, -15.0, 10.0, 35.0, 60.0, 80.0])
-        ],
+        *_ellipse(0.016, 0.016, 0.07, [-40.0, -15.0, 10.0, 35.0, 60.0, 80.0]),
         (0.0, 0.086),
     ]
     return [Dress(_lathe(profile), rgba)]
@@ -80,7 +76,7 @@ def pepper_grinder(spec, name, rgba) -> list[Dress]:
         (0.021, 0.133),
         (0.0, 0.136),
     ]
-    knob = [(0.0, 0.135), (0.007, 0.135), *_dome(0.008, 0.14, 0.008, 4)]
+    knob = [(0.0, 0.135), (0.007, 0.135), *_arc(0.008, 0.14, 0.008, 4)]
     return [Dress(_lathe(body), rgba), Dress(_lathe(knob), STEEL)]
 
 
@@ -88,7 +84,7 @@ def kettle(spec, name, rgba) -> list[Dress]:
     """A kettle's body tapering to its lid, on a dark base, with a knob."""
     base = [(0.0, 0.0), (0.055, 0.0), (0.058, 0.004), (0.058, 0.012), (0.0, 0.012)]
     body = [(0.0, 0.011), (0.055, 0.011), (0.055, 0.085), (0.05, 0.108), (0.038, 0.122), (0.0, 0.124)]
-    knob = [(0.0, 0.123), (0.006, 0.123), (0.008, 0.128), *_dome(0.012, 0.129, 0.005, 4)]
+    knob = [(0.0, 0.123), (0.006, 0.123), (0.008, 0.128), *_arc(0.012, 0.129, 0.005, 4)]
     return [Dress(_lathe(base), DARK), Dress(_lathe(body), rgba), Dress(_lathe(knob), DARK)]
 
 
@@ -142,10 +138,7 @@ def lightbulb(spec, name, rgba) -> list[Dress]:
         (0.0, 0.025),
         (0.013, 0.025),
         (0.016, 0.033),
-        *[
-            (0.03 * np.cos(a), 0.05 + 0.03 * np.sin(a))
-            for a in np.radians([-40.0, -15.0, 10.0, 35.0, 60.0, 80.0])
-        ],
+        *_ellipse(0.03, 0.03, 0.05, [-40.0, -15.0, 10.0, 35.0, 60.0, 80.0]),
         (0.0, 0.08),
     ]
     return [Dress(_lathe(threads), STEEL), Dress(_lathe(glass), (0.98, 0.98, 0.85, 0.9))]
@@ -171,9 +164,7 @@ def pear(spec, name, rgba) -> list[Dress]:
 
 def teapot(spec, name, rgba) -> list[Dress]:
     """A teapot's belly, shoulder, lid and knob in one turned piece (spout and handle stay)."""
-    belly = [
-        (0.06 * np.cos(a), 0.052 + 0.05 * np.sin(a)) for a in np.radians([-60.0, -35.0, -10.0, 15.0, 40.0])
-    ]
+    belly = _ellipse(0.06, 0.05, 0.052, [-60.0, -35.0, -10.0, 15.0, 40.0])
     profile = [
         (0.0, 0.0),
         (0.038, 0.0),
