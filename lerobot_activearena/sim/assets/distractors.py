@@ -5,8 +5,9 @@ The toy car and the bread loaf are built here too but are task objects of ``plac
 
 None of these resembles a task category: no cups, bottles, cans, plain blocks, printed food boxes,
 plates or mouse-like ellipsoids. Most are a few primitives; the donut, scissors rings, pencil and
-hourglass use small code-built meshes (< 200 vertices each), and the round ones are drawn as lathed
-meshes over their primitives (``look=``, ``dressing_clutter.py``). Colours are drawn from plausible
+hourglass use small code-built meshes (< 200 vertices each); fourteen are drawn as code-built meshes
+over their primitives, lathed (the round ones) or extruded and textured (a book, a sponge, a tissue
+box) (``look=``, ``dressing_clutter.py``). Colours are drawn from plausible
 palettes, kept away from the table's tan."""
 
 from __future__ import annotations
