@@ -376,6 +376,10 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(n_action_steps=20, device="cpu")
     with pytest.raises(ValueError, match="attn_implementation must be one of .*sdpa"):
         ActiveArenaOFTConfig(attn_implementation="flash3", device="cpu")
+    with pytest.raises(ValueError, match="memory_ablation must be one of"):
+        ActiveArenaOFTConfig(memory_ablation="noise", device="cpu")
+    with pytest.raises(ValueError, match="memory_ablation=blank .* this policy has no memory"):
+        ActiveArenaOFTConfig(memory="none", memory_ablation="blank", device="cpu")
 
 
 def test_local_vlm_and_dataset_paths_are_stored_absolute(vlm, tmp_path, monkeypatch):
@@ -650,3 +654,48 @@ def test_images_are_processed_on_the_policy_device(vlm, root):
         step.processor.image_processor = real
     expected = torch.device("cuda") if torch.cuda.is_available() else torch.device("cpu")
     assert calls == [(expected, {expected})]
+
+
+def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root):
+    """memory_ablation=blank (evaluation): the memory frames reach the backbone as gray images in the
+    same slots with the same state tokens; the bank keeps the real frames; the chunk changes."""
+    _, policy, pre, _, _ = _setup(vlm, root, memory="chunk", history=2, think="none")
+    policy.eval()
+    for t, obs, _ in _scripted_observations(33):
+        batch = pre(obs)
+        if t == 32:
+            break
+        policy.select_action(batch)
+    real = policy.history_batch(batch)
+    policy.config.memory_ablation = "blank"
+    blank = policy.history_batch(batch)
+    assert [e["t"] for e in policy.memory(0)] == [0, 16]
+    assert torch.equal(real[2], blank[2]) and torch.equal(real[3], blank[3])  # valid slots, states
+    assert torch.count_nonzero(real[0][0, :2]) > 0 and torch.count_nonzero(blank[0][0, :2]) == 0
+    assert torch.equal(real[0][0, 2], blank[0][0, 2])  # the current frame is untouched
+    assert all(torch.count_nonzero(e["pixels"]) > 0 for e in policy.memory(0))
+    args = (
+        batch["observation.vlm.prefix_ids"],
+        batch["observation.vlm.prompt_ids"],
+        batch["observation.vlm.prompt_mask"],
+    )
+    with torch.no_grad():
+        a_real = policy.encode(*real[:4], *args)[0]
+        a_blank = policy.encode(*blank[:4], *args)[0]
+    assert not torch.allclose(a_real, a_blank)
+
+
+def test_small_presets_differ_only_in_their_memory():
+    """configs/policy/small: the CPU-sized pair of the paper's memory comparison."""
+    small = CONFIGS / "small"
+    chunk = json.loads((small / "oft_subtask_action_12_ws.json").read_text())
+    free = json.loads((small / "oft_subtask_no_0_ws.json").read_text())
+    for cfg in (chunk, free):
+        cfg.pop("job_name")
+    diff = {k for k in chunk["policy"] if chunk["policy"][k] != free["policy"].get(k)}
+    assert diff == {"memory", "history"} and {k for k in chunk if chunk[k] != free[k]} == {"policy"}
+    fields = {k: v for k, v in chunk["policy"].items() if k not in ("type", "vlm_path")}
+    cfg = ActiveArenaOFTConfig(**fields)
+    assert cfg.observation_delta_indices == [-16 * k for k in range(12, 0, -1)] + [0]
+    assert cfg.image_max_pixels == 96 * 128 and not cfg.gradient_checkpointing
+    assert chunk["policy"]["scheduler_decay_steps"] == chunk["steps"]

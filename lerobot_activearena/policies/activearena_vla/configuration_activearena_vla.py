@@ -21,6 +21,7 @@ from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
 IMAGE_KEY = "observation.images.head"
 THINK_TARGETS = ("none", "instruction", "subtask")
+MEMORY_ABLATIONS = ("none", "blank")
 DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
 WEIGHT_DTYPES = ("float32", "bfloat16")
@@ -35,6 +36,9 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     memory: str = "chunk"
     history: int = 12
     use_state: bool = True
+    # Evaluation-only ablation: "blank" replaces every memory image with a uniform gray one (the memory's
+    # state tokens and frame slots stay), so a trained checkpoint can be scored without what it saw.
+    memory_ablation: str = "none"
     # ActiveArena-Fixed: learn only the 16 arm and gripper dimensions; every output chunk holds the
     # torso yaw and head pitch at home (evaluate with configs/env/activearena_fixed_*.json)
     fixed_view: bool = False
@@ -107,6 +111,7 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             ("dtype", DTYPES),
             ("weights_dtype", WEIGHT_DTYPES),
             ("attn_implementation", ATTENTION),
+            ("memory_ablation", MEMORY_ABLATIONS),
         ):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")
@@ -114,6 +119,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(f"--policy.history must be >= 0, got {self.history}")
         if self.memory == "none":
             self.history = 0
+        if self.memory_ablation != "none" and (self.history == 0 or self.uses_planner_memory):
+            raise ValueError(
+                f"--policy.memory_ablation={self.memory_ablation} blanks the frames of a chunk, motion or "
+                f"subtask memory; this policy has {'a planner' if self.uses_planner_memory else 'no'} memory"
+            )
         if not 1 <= self.n_action_steps <= self.chunk_size:
             raise ValueError(
                 f"n_action_steps ({self.n_action_steps}) must be in 1..chunk_size ({self.chunk_size})"

@@ -49,6 +49,15 @@ def real_steps(batch: dict[str, Tensor], target: Tensor) -> Tensor:
     return torch.ones(target.shape[:2], dtype=torch.bool, device=target.device)
 
 
+def blank_entry(entry: dict) -> dict:
+    """A memory entry's blanked twin for ``memory_ablation=blank``: the same slot, grid and state, its
+    image uniform gray (zeros after the processor's 0.5 mean / std), its vision features computed
+    from that gray image once and kept on the entry."""
+    if "blank" not in entry:
+        entry["blank"] = dict(entry, pixels=torch.zeros_like(entry["pixels"]), vision=None)
+    return entry["blank"]
+
+
 def stack_frames(entries: list[list[dict]], slots: int, with_state: bool = True):
     """Per sample, its stored frames (dicts with ``pixels``, ``grid``, ``state``; oldest first, the
     last one the current frame) in the last of ``slots`` left-padded slots. Returns ``pixels``, ``grid``,

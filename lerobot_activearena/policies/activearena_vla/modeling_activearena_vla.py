@@ -20,7 +20,7 @@ from torch import Tensor, nn
 
 from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_vla import ActiveArenaVLAConfig
-from .helpers import in_precision, stack_frames, weights_dtype
+from .helpers import blank_entry, in_precision, stack_frames, weights_dtype
 from .processor_activearena_vla import (
     FRAME_VALID,
     GRID,
@@ -331,7 +331,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 "grid": batch[GRID][b, -1],
                 "state": None if cur_state is None else cur_state[b],
             }
-            rows.append([*(self._bank[b][-history:] if history else []), current])
+            memory = self._bank[b][-history:] if history else []
+            if self.config.memory_ablation == "blank":
+                memory = [blank_entry(e) for e in memory]
+            rows.append([*memory, current])
         return stack_frames(rows, history + 1)
 
     @torch.no_grad()
