@@ -1,0 +1,64 @@
+"""The README's and docs/results.md's leaderboard are what `activearena-results-page` writes from the
+committed records: the pages match, a changed record changes the table, bad manifests are named."""
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from lerobot_activearena.cli.results_page import main as results_page
+from lerobot_activearena.eval.results_page import leaderboard_table, load_rows, render_pages, replace_block
+
+ROOT = Path(__file__).resolve().parents[2]
+MANIFEST = ROOT / "docs" / "results" / "leaderboard.json"
+
+
+def test_committed_pages_match_the_records(monkeypatch):
+    monkeypatch.chdir(ROOT)
+    results_page(["--check"])  # exits 1 with a diff when a page is out of date
+
+
+def _one_row_manifest(tmp_path: Path, record: str) -> Path:
+    spec = json.loads(MANIFEST.read_text())
+    row = next(r for r in spec["rows"] if record in r["records"])
+    spec["rows"] = [dict(row, records=[record])]
+    (tmp_path / "records").mkdir()
+    shutil.copytree(MANIFEST.parent / "records" / record, tmp_path / "records" / record)
+    (tmp_path / "leaderboard.json").write_text(json.dumps(spec))
+    return tmp_path / "leaderboard.json"
+
+
+def test_a_changed_record_changes_the_table(tmp_path):
+    record = "act_cpu_count_target_100demos"
+    manifest = _one_row_manifest(tmp_path, record)
+    spec, rows = load_rows(manifest)
+    assert "| 8 / 0 |" in leaderboard_table(spec, rows, 35)  # count: 4 of 50 ID
+    info_path = tmp_path / "records" / record / "id" / "eval_info.json"
+    info = json.loads(info_path.read_text())
+    successes = info["per_task"][0]["metrics"]["successes"]
+    first_failure = successes.index(False)
+    successes[first_failure] = True  # one more success: 5 of 50
+    info_path.write_text(json.dumps(info))
+    spec, rows = load_rows(manifest)
+    assert "| 10 / 0 |" in leaderboard_table(spec, rows, 35)
+
+    page = tmp_path / "page.md"
+    page.write_text("# x\n<!-- generated:leaderboard -->\nold\n<!-- /generated:leaderboard -->\ntail\n")
+    text = render_pages(manifest, [page], 35)[page]
+    assert "old" not in text and "| 10 / 0 |" in text and text.endswith("tail\n")
+
+
+def test_bad_manifests_and_pages_are_named(tmp_path):
+    manifest = _one_row_manifest(tmp_path, "act_cpu_count_target_100demos")
+    spec = json.loads(manifest.read_text())
+    spec["rows"][0]["records"] = ["no_such_run"]
+    manifest.write_text(json.dumps(spec))
+    with pytest.raises(FileNotFoundError, match="no_such_run.*--export-records"):
+        load_rows(manifest)
+    del spec["rows"][0]["hardware"]
+    manifest.write_text(json.dumps(spec))
+    with pytest.raises(ValueError, match=r"lacks \['hardware'\]"):
+        load_rows(manifest)
+    with pytest.raises(ValueError, match="generated:leaderboard"):
+        replace_block("no markers here", "leaderboard", "x")
