@@ -1,7 +1,7 @@
 """Discovery shim: LeRobot imports installed ``lerobot_env_*`` distributions by name
 (``register_third_party_plugins``); importing this registers ``--env.type=activearena`` and the
 policy types ``activearena_expert``, ``activearena_oft``, ``activearena_groot``, ``activearena_fast``,
-``activearena_planner`` and ``activearena_plan``."""
+``activearena_planner``, ``activearena_plan`` and ``activearena_remote``."""
 
 from lerobot_activearena.envs import configs as env_configs
 from lerobot_activearena.policies import (
@@ -11,6 +11,7 @@ from lerobot_activearena.policies import (
     activearena_oft,
     activearena_plan,
     activearena_planner,
+    activearena_remote,
 )
 
 __all__ = [
@@ -20,5 +21,6 @@ __all__ = [
     "activearena_oft",
     "activearena_plan",
     "activearena_planner",
+    "activearena_remote",
     "env_configs",
 ]

@@ -51,6 +51,9 @@ if [ ! -f "$STAMP" ]; then
   echo "[bootstrap] installing lerobot_activearena and its dependencies (first run: several minutes)" >&2
   "$VENV/bin/python" -m pip install -q --upgrade pip >/dev/null
   "$VENV/bin/python" -m pip install -q -e "$ROOT[test]"
+  # the remote-policy tests serve policies with openpi's own server; its packages pin numpy < 2, which
+  # LeRobot cannot use, and the server needs only msgpack and websockets: installed without dependencies
+  "$VENV/bin/python" -m pip install -q --no-deps openpi-client==0.1.2 openpi-server==0.1.0
   rm -f "$VENV"/.installed-*
   touch "$STAMP"
 fi

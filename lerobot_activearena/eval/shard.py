@@ -171,6 +171,12 @@ def run_shard(
                     if callable(getattr(policy, "rollout_stats", None))
                     else None,
                 )
+        except Exception as exc:  # name what did not finish; what did is recorded and resumes
+            raise RuntimeError(
+                f"{shard.name}: episodes {batch} did not finish ({type(exc).__name__}: {exc}). The "
+                f"episodes finished before are recorded in {folder}; fix the cause and re-run the command "
+                "to resume"
+            ) from exc
         finally:
             close_envs(envs)
         if snapshots:
