@@ -16,7 +16,10 @@ from lerobot_activearena.cli.eval import main as activearena_eval
 from lerobot_activearena.policies.activearena_remote.configuration_activearena_remote import (
     ActiveArenaRemoteConfig,
 )
-from lerobot_activearena.policies.activearena_remote.modeling_activearena_remote import OBSERVATION_KEYS
+from lerobot_activearena.policies.activearena_remote.modeling_activearena_remote import (
+    OBSERVATION_KEYS,
+    VLA_EVAL_OBSERVATION_KEYS,
+)
 
 SERVERS = Path(__file__).resolve().parents[1] / "helpers" / "policy_servers.py"
 TASK = "click_bell_rotate_view"
@@ -56,8 +59,11 @@ def _shard_records(run: Path) -> list[dict]:
     return [json.loads(x) for f in sorted(run.glob("records/**/*.jsonl")) for x in f.read_text().splitlines()]
 
 
-def test_a_replayed_expert_scores_what_the_expert_scores(tmp_path):
-    server, url = _serve("replay", "--task", TASK, "--episodes", "0,1")
+@pytest.mark.parametrize("protocol", ["openpi", "vla_eval"])
+def test_a_replayed_expert_scores_what_the_expert_scores(tmp_path, protocol):
+    server, url = _serve(
+        "replay" if protocol == "openpi" else "vla_replay", "--task", TASK, "--episodes", "0,1"
+    )
     try:
         common = [f"--tasks={TASK}", "--splits=id", "--episodes=2"]
         activearena_eval(
@@ -66,7 +72,8 @@ def test_a_replayed_expert_scores_what_the_expert_scores(tmp_path):
             + [f"--out={tmp_path / 'expert'}"]
         )
         activearena_eval(
-            ["--policy.type=activearena_remote", f"--policy.url={url}", "--policy.n_action_steps=16"]
+            ["--policy.type=activearena_remote", f"--policy.url={url}", f"--policy.protocol={protocol}"]
+            + ["--policy.n_action_steps=16"]
             + SMALL
             + common
             + [f"--out={tmp_path / 'remote'}"]
@@ -135,6 +142,33 @@ def test_a_failing_server_names_the_episode_and_keeps_finished_ones(tmp_path, ki
     assert json.loads((tmp_path / "log.jsonl").read_text().splitlines()[0])["activearena/step"]["value"] == 0
 
 
+def test_a_vla_eval_server_receives_the_documented_keys_and_its_errors_are_named(tmp_path):
+    log = tmp_path / "received.jsonl"
+    server, url = _serve("vla_error", "--log", str(log))
+    run = tmp_path / "run"
+    args = ["--policy.type=activearena_remote", f"--policy.url={url}", "--policy.protocol=vla_eval", *SMALL]
+    args += [f"--tasks={TASK}", "--splits=id", "--episodes=2", "--env.episode_length=3", f"--out={run}"]
+    try:
+        with pytest.raises(RuntimeError, match=r"(?s)episodes \[1\] did not finish.*failed on purpose"):
+            activearena_eval(args)
+    finally:
+        server.kill()
+    received = [json.loads(x) for x in log.read_text().splitlines()]
+    assert [next(iter(r)) for r in received[:5]] == [
+        "episode_start",
+        "images",
+        "images",
+        "images",
+        "episode_start",
+    ]
+    obs = received[1]
+    assert set(obs) == set(VLA_EVAL_OBSERVATION_KEYS)
+    assert obs["images"]["value"]["head"] == {"type": "ndarray", "dtype": "uint8", "shape": [96, 128, 3]}
+    assert obs["state"] == {"type": "ndarray", "dtype": "float32", "shape": [18]}
+    assert obs["task_description"]["value"] == "Press the bell's top center using the left arm."
+    assert [r["episode"] for r in _shard_records(run)] == [0]
+
+
 def test_bad_remote_configs_are_named():
     with pytest.raises(ValueError, match="--policy.url must be a websocket address"):
         ActiveArenaRemoteConfig(url="http://localhost:8000")
@@ -144,7 +178,7 @@ def test_bad_remote_configs_are_named():
         ActiveArenaRemoteConfig(n_action_steps=0)
 
 
-def test_the_docs_table_is_the_code_table():
+def test_the_docs_tables_are_the_code_tables():
     docs = (Path(__file__).resolve().parents[2] / "docs" / "remote.md").read_text()
-    for key, value in OBSERVATION_KEYS.items():
+    for key, value in {**OBSERVATION_KEYS, **VLA_EVAL_OBSERVATION_KEYS}.items():
         assert f"| `{key}` | {value} |" in docs, key

@@ -11,7 +11,7 @@ from lerobot.optim.optimizers import AdamWConfig
 from lerobot.utils.constants import OBS_STATE
 
 IMAGE_KEY = "observation.images.head"
-PROTOCOLS = ("openpi",)
+PROTOCOLS = ("openpi", "vla_eval")
 
 
 @PreTrainedConfig.register_subclass("activearena_remote")
@@ -19,7 +19,7 @@ PROTOCOLS = ("openpi",)
 class ActiveArenaRemoteConfig(PreTrainedConfig):
     # The policy server, e.g. ws://gpu-node:8000 (openpi: `scripts/serve_policy.py --port 8000`).
     url: str = "ws://localhost:8000"
-    # Wire protocol: openpi (openpi_client.websocket_client_policy's messages).
+    # Wire protocol: openpi (openpi_client.websocket_client_policy's messages) | vla_eval (allenai's harness).
     protocol: str = "openpi"
     # Steps of each returned action chunk executed before the server is asked again (1..chunk length).
     n_action_steps: int = 8

@@ -1,6 +1,8 @@
 """A policy that lives in another process: each env of a batch has its own connection to the policy
-server; at a chunk boundary the env's head image, state and instruction go out under the keys of
-``OBSERVATION_KEYS``, and the first ``n_action_steps`` actions of the returned chunk are executed."""
+server; when its queue is empty the env's head image, state and instruction go out under the keys of
+the protocol's table (``OBSERVATION_KEYS``: openpi, ``VLA_EVAL_OBSERVATION_KEYS``: vla-eval), and the
+first ``n_action_steps`` actions of the returned chunk are executed (one, when the server answers a
+single action: vla-eval servers chunk on their side)."""
 
 from __future__ import annotations
 
@@ -14,7 +16,7 @@ from torch import Tensor, nn
 
 from ...sim.action import ACTION_DIM
 from .configuration_activearena_remote import IMAGE_KEY, ActiveArenaRemoteConfig
-from .websocket_client import OpenPIClient, RemotePolicyError
+from .websocket_client import OpenPIClient, RemotePolicyError, VlaEvalClient
 
 # What the server receives (openpi protocol) and what it must answer; docs/remote.md shows this table.
 OBSERVATION_KEYS = {
@@ -24,7 +26,14 @@ OBSERVATION_KEYS = {
     "prompt": "str: the episode's instruction",
     "activearena/step": "int: env steps since the episode began (0: a new episode, reset any memory)",
 }
-ANSWER_KEYS = {"actions": "float (H, 18): absolute joint targets in the state's layout, H >= 1"}
+VLA_EVAL_OBSERVATION_KEYS = {
+    "images": "{'head': uint8 (H, W, 3)}: the head camera, RGB, at the env's size",
+    "state": "float32 (18,): as `observation/state`",
+    "task_description": "str: the episode's instruction",
+}
+ANSWER_KEYS = {
+    "actions": "float (18,) or (H, 18): absolute joint targets in the state's layout (a chunk of H >= 1)"
+}
 
 
 class ActiveArenaRemotePolicy(PreTrainedPolicy):
@@ -37,7 +46,8 @@ class ActiveArenaRemotePolicy(PreTrainedPolicy):
         self.config = config
         self.register_buffer("_device_anchor", torch.zeros(1), persistent=False)
         self._unused = nn.Identity()
-        self._clients: list[OpenPIClient] = []
+        self._clients: list[OpenPIClient | VlaEvalClient] = []
+        self._episode_open: set[int] = set()  # vla-eval: envs whose server holds an open episode
         self.reset()
 
     def get_optim_params(self) -> list:
@@ -51,28 +61,41 @@ class ActiveArenaRemotePolicy(PreTrainedPolicy):
         self._queues: list[deque] = []
         self._steps: list[int] = []
 
-    def _client(self, b: int) -> OpenPIClient:
+    def _client(self, b: int) -> OpenPIClient | VlaEvalClient:
+        kind = OpenPIClient if self.config.protocol == "openpi" else VlaEvalClient
         while len(self._clients) <= b:
-            self._clients.append(
-                OpenPIClient(self.config.url, self.config.connect_timeout_s, self.config.timeout_s)
-            )
+            self._clients.append(kind(self.config.url, self.config.connect_timeout_s, self.config.timeout_s))
         return self._clients[b]
 
     def observation(self, batch: dict[str, Tensor], b: int) -> dict:
         """Env ``b``'s observation in the server's keys (``OBSERVATION_KEYS``)."""
         image = batch[IMAGE_KEY][b]
         image = (image.float().clamp(0, 1) * 255).round().to(torch.uint8).permute(1, 2, 0)
-        task = batch.get("task")
+        image = np.ascontiguousarray(image.cpu().numpy())
+        state = batch[OBS_STATE][b].float().cpu().numpy()
+        if self.config.protocol == "vla_eval":
+            return {"images": {"head": image}, "state": state, "task_description": self._prompt(batch, b)}
         return {
-            "observation/image": np.ascontiguousarray(image.cpu().numpy()),
-            "observation/state": batch[OBS_STATE][b].float().cpu().numpy(),
-            "prompt": task[b] if isinstance(task, (list, tuple)) else "",
+            "observation/image": image,
+            "observation/state": state,
+            "prompt": self._prompt(batch, b),
             "activearena/step": self._steps[b],
         }
 
+    @staticmethod
+    def _prompt(batch: dict[str, Tensor], b: int) -> str:
+        task = batch.get("task")
+        return task[b] if isinstance(task, (list, tuple)) else ""
+
     def chunk(self, batch: dict[str, Tensor], b: int) -> np.ndarray:
         """Ask env ``b``'s server for a chunk; returns its first ``n_action_steps`` actions."""
-        answer = self._client(b).infer(self.observation(batch, b))
+        client = self._client(b)
+        if self._steps[b] == 0 and isinstance(client, VlaEvalClient):
+            if b in self._episode_open:
+                client.end_episode()
+            client.start_episode({"name": self._prompt(batch, b), "benchmark": "activearena"})
+            self._episode_open.add(b)
+        answer = client.infer(self.observation(batch, b))
         actions = np.asarray(answer.get("actions") if isinstance(answer, dict) else None)
         if actions.ndim == 1:
             actions = actions[None]
