@@ -182,3 +182,25 @@ def test_the_docs_tables_are_the_code_tables():
     docs = (Path(__file__).resolve().parents[2] / "docs" / "remote.md").read_text()
     for key, value in {**OBSERVATION_KEYS, **VLA_EVAL_OBSERVATION_KEYS}.items():
         assert f"| `{key}` | {value} |" in docs, key
+
+
+def test_lerobot_eval_plays_a_remote_policy_with_one_connection_per_env(tmp_path):
+    log = tmp_path / "received.jsonl"
+    server, url = _serve("log", "--log", str(log))
+    exe = Path(sys.executable).with_name("lerobot-eval")
+    try:
+        subprocess.run(
+            [str(exe), "--policy.type=activearena_remote", f"--policy.url={url}", "--policy.device=cpu"]
+            + ["--env.type=activearena", f"--env.task={TASK}", "--env.observation_height=96"]
+            + ["--env.observation_width=128", "--env.episode_length=20", "--eval.n_episodes=2"]
+            + ["--eval.batch_size=2", f"--output_dir={tmp_path / 'eval'}"],
+            check=True,
+            capture_output=True,
+            timeout=600,
+        )
+    finally:
+        server.kill()
+    steps = [json.loads(x)["activearena/step"]["value"] for x in log.read_text().splitlines()]
+    assert steps == [0, 0, 8, 8, 16, 16]  # two envs, each asking at its chunk boundaries
+    info = json.loads((tmp_path / "eval" / "eval_info.json").read_text())
+    assert info["overall"]["n_episodes"] == 2
