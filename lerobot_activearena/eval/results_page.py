@@ -38,6 +38,9 @@ class Row:
     # task -> split -> per-episode success; split -> failure state -> count
     success: dict[str, dict[str, list[bool]]] = field(default_factory=dict)
     failures: dict[str, dict[str, int]] = field(default_factory=dict)
+    task_failures: dict[str, dict[str, dict[str, int]]] = field(
+        default_factory=dict
+    )  # task -> split -> state
 
 
 def load_rows(manifest: Path) -> tuple[dict, list[Row]]:
@@ -53,6 +56,7 @@ def load_rows(manifest: Path) -> tuple[dict, list[Row]]:
         row = Row(**entry)
         success: dict[str, dict[str, list[bool]]] = defaultdict(lambda: defaultdict(list))
         failures: dict[str, dict[str, int]] = defaultdict(lambda: dict.fromkeys(FAILURES, 0))
+        per_task: dict = defaultdict(lambda: defaultdict(lambda: dict.fromkeys(FAILURES, 0)))
         for record in row.records:
             folder = records_dir / record
             if not (folder / "run.json").is_file():
@@ -67,8 +71,10 @@ def load_rows(manifest: Path) -> tuple[dict, list[Row]]:
                 for ep in run.episodes:
                     if not ep["success"] and ep.get("failure_state") in FAILURES:
                         failures[run.split][ep["failure_state"]] += 1
+                        per_task[ep["task"]][run.split][ep["failure_state"]] += 1
         row.success = {t: dict(s) for t, s in success.items()}
         row.failures = dict(failures)
+        row.task_failures = {t: {sp: dict(c) for sp, c in v.items()} for t, v in per_task.items()}
         rows.append(row)
     return spec, rows
 
@@ -156,6 +162,28 @@ def _cell_range(row: Row) -> str:
     return " / ".join(parts)
 
 
+def comparison_table(spec: dict, rows: list[Row]) -> str:
+    """The manifest's ``comparison``: the named rows side by side on its task, ID and OOD success and
+    the ID failures by state (the memory comparison: the same policy with and without memory)."""
+    comp = spec["comparison"]
+    task, by_name = comp["task"], {r.name: r for r in rows}
+    missing = [n for n in comp["rows"] if n not in by_name]
+    if missing:
+        raise ValueError(f"the manifest's comparison names rows it does not hold: {missing}")
+    head = ["policy", "memory", "ID", "OOD", "ID failures DM / CO / CR", "training"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for name in comp["rows"]:
+        row = by_name[name]
+        splits = row.success.get(task, {})
+        counts = row.task_failures.get(task, {}).get("id", dict.fromkeys(FAILURES, 0))
+        ident = " / ".join(str(counts[k]) for k in FAILURES)
+        lines.append(
+            f"| {row.policy} | {row.memory or '-'} | {_pct(splits.get('id', []))} | "
+            f"{_pct(splits.get('ood', []))} | {ident} | {row.training} |"
+        )
+    return "\n".join(lines)
+
+
 def replace_block(text: str, name: str, content: str, where: str = "page") -> str:
     """``text`` with the block between the ``generated:name`` markers replaced by ``content``."""
     pattern = re.compile(
@@ -178,6 +206,8 @@ def render_pages(manifest: Path, pages: list[Path], n_tasks: int) -> dict[Path, 
     out = {}
     for page in pages:
         text = replace_block(page.read_text(), "leaderboard", table, str(page))
+        if "<!-- generated:comparison -->" in text:
+            text = replace_block(text, "comparison", comparison_table(spec, rows), str(page))
         if "<!-- generated:rows -->" in text:
             link = Path(os.path.relpath(records_dir, page.resolve().parent)).as_posix()
             text = replace_block(text, "rows", rows_section(spec, rows, link), str(page))

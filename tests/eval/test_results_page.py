@@ -8,7 +8,13 @@ from pathlib import Path
 import pytest
 
 from lerobot_activearena.cli.results_page import main as results_page
-from lerobot_activearena.eval.results_page import leaderboard_table, load_rows, render_pages, replace_block
+from lerobot_activearena.eval.results_page import (
+    comparison_table,
+    leaderboard_table,
+    load_rows,
+    render_pages,
+    replace_block,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 MANIFEST = ROOT / "docs" / "results" / "leaderboard.json"
@@ -62,3 +68,18 @@ def test_bad_manifests_and_pages_are_named(tmp_path):
         load_rows(manifest)
     with pytest.raises(ValueError, match="generated:leaderboard"):
         replace_block("no markers here", "leaderboard", "x")
+
+
+def test_the_comparison_table_reads_the_rows_failures_on_its_task(tmp_path):
+    manifest = _one_row_manifest(tmp_path, "act_cpu_count_target_100demos")
+    spec = json.loads(manifest.read_text())
+    name = spec["rows"][0]["name"]
+    spec["comparison"] = {"task": "count_target_press_button", "rows": [name]}
+    manifest.write_text(json.dumps(spec))
+    spec, rows = load_rows(manifest)
+    table = comparison_table(spec, rows).splitlines()
+    # 4 of 50 ID solved, 0 OOD; ID failures: 1 DM, 41 CO, 4 CR (the committed episode records)
+    assert table[2].split(" | ")[2:5] == ["8", "0", "1 / 41 / 4"]
+    spec["comparison"]["rows"] = ["nobody"]
+    with pytest.raises(ValueError, match="comparison names rows it does not hold"):
+        comparison_table(spec, rows)
