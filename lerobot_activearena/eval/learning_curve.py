@@ -68,6 +68,9 @@ def open_loop_error(policy_dir: Path, repo_id: str, root: Path, batch_size: int 
         for batch in loader:
             obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}
             obs["task"] = batch["task"]
+            obs.update(
+                {k: v for k, v in batch.items() if k.startswith("observation.") and k.endswith("_is_pad")}
+            )
             pred = post(policy.predict_action_chunk(pre(obs))).cpu().numpy()
             target, pad = batch["action"].numpy(), batch["action_is_pad"].numpy()
             steps = min(pred.shape[1], target.shape[1])

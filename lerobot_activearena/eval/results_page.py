@@ -35,6 +35,7 @@ class Row:
     commands: list[str]
     memory: str = ""
     note: str = ""
+    leaderboard: bool = True  # False: an ablation, shown in the comparison and the rows only
     # task -> split -> per-episode success; split -> failure state -> count
     success: dict[str, dict[str, list[bool]]] = field(default_factory=dict)
     failures: dict[str, dict[str, int]] = field(default_factory=dict)
@@ -114,7 +115,7 @@ def leaderboard_table(spec: dict, rows: list[Row], n_tasks: int) -> str:
     tasks = spec["tasks"]
     head = ["policy", "memory", *[f"`{_short(t)}` ID / OOD" for t in tasks], f"all {n_tasks} tasks ID / OOD"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    for row in rows:
+    for row in (r for r in rows if r.leaderboard):
         cells = [row.policy, row.memory or "-"]
         cells += [_cell(row, t) for t in tasks] + [_all_tasks(row, n_tasks)]
         lines.append("| " + " | ".join(cells) + " |")
