@@ -140,62 +140,75 @@ def run_shard(
     want_video = set(shard.episodes[:videos])
     fps = env_cfg.fps
     ran = 0
-    for start in range(0, len(pending), batch_size):
-        batch = pending[start : start + batch_size]
-        envs = env_cfg.create_envs(n_envs=len(batch), use_async_envs=use_async_envs)
-        vec = next(iter(next(iter(envs.values())).values()))
-        record = batch[0] in want_video and not video_path(run_dir, shard, batch[0]).exists()
-        frames: list[np.ndarray] = []
+    # one vector env per batch size, kept for the shard's later batches: starting the env processes
+    # (imports, scene build) costs more than a batch of short episodes; each rollout resets with its seeds
+    opened: dict[int, dict] = {}
+    try:
+        for start in range(0, len(pending), batch_size):
+            batch = pending[start : start + batch_size]
+            if len(batch) not in opened:
+                opened[len(batch)] = env_cfg.create_envs(n_envs=len(batch), use_async_envs=use_async_envs)
+            envs = opened[len(batch)]
+            vec = next(iter(next(iter(envs.values())).values()))
+            record = batch[0] in want_video and not video_path(run_dir, shard, batch[0]).exists()
+            frames: list[np.ndarray] = []
 
-        def render(env, frames=frames):
-            frames.append(env.envs[0].render() if hasattr(env, "envs") else env.call("render")[0])
+            def render(env, frames=frames):
+                frames.append(env.envs[0].render() if hasattr(env, "envs") else env.call("render")[0])
 
-        snapshots: list[list[dict]] = []  # the policy's own counts after every step
+            snapshots: list[list[dict]] = []  # the policy's own counts after every step
 
-        def snapshot(policy, snapshots=snapshots):
-            snapshots.append(policy.rollout_stats())
+            def snapshot(policy, snapshots=snapshots):
+                snapshots.append(policy.rollout_stats())
 
-        try:
-            with torch.no_grad(), torch.autocast(device_type=device.type) if cfg.use_amp else nullcontext():
-                data = lerobot_eval.rollout(
-                    vec,
-                    policy,
-                    env_pre,
-                    env_post,
-                    preprocessor,
-                    postprocessor,
-                    seeds=[plan.seed_base + k for k in batch],
-                    render_callback=render if record else None,
-                    # LeRobot's hook after every select_action (named for world-model latents)
-                    predicted_latents_callback=snapshot
-                    if callable(getattr(policy, "rollout_stats", None))
-                    else None,
+            try:
+                with (
+                    torch.no_grad(),
+                    torch.autocast(device_type=device.type) if cfg.use_amp else nullcontext(),
+                ):
+                    data = lerobot_eval.rollout(
+                        vec,
+                        policy,
+                        env_pre,
+                        env_post,
+                        preprocessor,
+                        postprocessor,
+                        seeds=[plan.seed_base + k for k in batch],
+                        render_callback=render if record else None,
+                        # LeRobot's hook after every select_action (named for world-model latents)
+                        predicted_latents_callback=snapshot
+                        if callable(getattr(policy, "rollout_stats", None))
+                        else None,
+                    )
+            except Exception as exc:  # name what did not finish; what did is recorded and resumes
+                raise RuntimeError(
+                    f"{shard.name}: episodes {batch} did not finish ({type(exc).__name__}: {exc}). The "
+                    f"episodes finished before are recorded in {folder}; fix the cause and re-run the command "
+                    "to resume"
+                ) from exc
+            if snapshots:
+                write_policy_stats(folder, shard, batch, stats_at_episode_ends(snapshots, data["done"]))
+            if record:
+                last = int(torch.argmax(data["done"][0].to(int)))
+                path = video_path(run_dir, shard, batch[0])
+                path.parent.mkdir(parents=True, exist_ok=True)
+                write_video(str(path), np.stack(frames[: last + 2]), fps)
+            got = read_records(folder)
+            missing = [k for k in batch if (shard.task, shard.split, k) not in got]
+            if missing:
+                raise RuntimeError(
+                    f"{shard.name}: episodes {missing} ended without an episode record in {folder}"
                 )
-        except Exception as exc:  # name what did not finish; what did is recorded and resumes
-            raise RuntimeError(
-                f"{shard.name}: episodes {batch} did not finish ({type(exc).__name__}: {exc}). The "
-                f"episodes finished before are recorded in {folder}; fix the cause and re-run the command "
-                "to resume"
-            ) from exc
-        finally:
-            close_envs(envs)
-        if snapshots:
-            write_policy_stats(folder, shard, batch, stats_at_episode_ends(snapshots, data["done"]))
-        if record:
-            last = int(torch.argmax(data["done"][0].to(int)))
-            path = video_path(run_dir, shard, batch[0])
-            path.parent.mkdir(parents=True, exist_ok=True)
-            write_video(str(path), np.stack(frames[: last + 2]), fps)
-        got = read_records(folder)
-        missing = [k for k in batch if (shard.task, shard.split, k) not in got]
-        if missing:
-            raise RuntimeError(
-                f"{shard.name}: episodes {missing} ended without an episode record in {folder}"
+            ran += len(batch)
+            log.info(
+                "%s: %d/%d episodes",
+                shard.name,
+                len(shard.episodes) - len(pending) + ran,
+                len(shard.episodes),
             )
-        ran += len(batch)
-        log.info(
-            "%s: %d/%d episodes", shard.name, len(shard.episodes) - len(pending) + ran, len(shard.episodes)
-        )
+    finally:
+        for envs in opened.values():
+            close_envs(envs)
     return {"episodes": len(shard.episodes), "ran": ran}
 
 
