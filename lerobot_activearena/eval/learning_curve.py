@@ -45,9 +45,11 @@ def image_size(policy_dir: Path) -> tuple[int, int]:
     return int(h), int(w)
 
 
-def open_loop_error(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32) -> dict:
-    """Mean absolute error between the predicted and the recorded action chunk over every frame of a
-    dataset (padded steps past an episode's end excluded), overall and per action group."""
+def chunk_errors(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32):
+    """Per dataset batch (in order): the batch and the absolute error between the predicted and the
+    recorded action chunk, (B, steps, ACTION_DIM) in joint units, zero on padded steps past an
+    episode's end, with the (B, steps, 1) mask of the real steps. History policies get the batch's
+    ``*_is_pad`` flags, so frames before an episode's start are dropped as in training."""
     import torch
     from lerobot.configs.policies import PreTrainedConfig
     from lerobot.datasets.factory import resolve_delta_timestamps
@@ -62,8 +64,6 @@ def open_loop_error(policy_dir: Path, repo_id: str, root: Path, batch_size: int 
     pre, post = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
     ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
     loader = torch.utils.data.DataLoader(ds, batch_size=batch_size, shuffle=False, num_workers=0)
-    total = np.zeros(ACTION_DIM)
-    count = np.zeros(ACTION_DIM)
     with torch.no_grad():
         for batch in loader:
             obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}
@@ -75,12 +75,22 @@ def open_loop_error(policy_dir: Path, repo_id: str, root: Path, batch_size: int 
             target, pad = batch["action"].numpy(), batch["action_is_pad"].numpy()
             steps = min(pred.shape[1], target.shape[1])
             valid = ~pad[:, :steps, None]
-            err = np.abs(pred[:, :steps] - target[:, :steps]) * valid
-            total += err.sum(axis=(0, 1))
-            count += np.broadcast_to(valid, err.shape).sum(axis=(0, 1))
+            yield batch, np.abs(pred[:, :steps] - target[:, :steps]) * valid, valid
+
+
+def open_loop_error(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32) -> dict:
+    """Mean absolute error between the predicted and the recorded action chunk over every frame of a
+    dataset (padded steps past an episode's end excluded), overall and per action group."""
+    total = np.zeros(ACTION_DIM)
+    count = np.zeros(ACTION_DIM)
+    frames = 0
+    for _, err, valid in chunk_errors(policy_dir, repo_id, root, batch_size):
+        total += err.sum(axis=(0, 1))
+        count += np.broadcast_to(valid, err.shape).sum(axis=(0, 1))
+        frames += len(err)
     per_dim = total / np.maximum(count, 1)
     return {
-        "frames": len(ds),
+        "frames": frames,
         "l1": float(per_dim.mean()),
         **{f"l1_{name}": float(per_dim[idx].mean()) for name, idx in GROUPS.items()},
     }

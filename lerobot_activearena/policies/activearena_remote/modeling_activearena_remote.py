@@ -106,18 +106,21 @@ class ActiveArenaRemotePolicy(PreTrainedPolicy):
             )
         return actions[: self.config.n_action_steps]
 
-    @torch.no_grad()
-    def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+    def _start(self, batch: dict[str, Tensor]) -> int:
+        """The batch's env count; at an episode's first step, empty queues and step counters."""
         n = batch[IMAGE_KEY].shape[0]
         if not self._steps:
-            self._steps = [0] * n
+            self._queues, self._steps = [deque() for _ in range(n)], [0] * n
+        return n
+
+    @torch.no_grad()
+    def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
+        n = self._start(batch)
         return torch.stack([torch.from_numpy(self.chunk(batch, b)) for b in range(n)])
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
-        n = batch[IMAGE_KEY].shape[0]
-        if not self._queues:
-            self._queues, self._steps = [deque() for _ in range(n)], [0] * n
+        n = self._start(batch)
         for b in range(n):
             if not self._queues[b]:
                 self._queues[b].extend(torch.from_numpy(self.chunk(batch, b).copy()))
