@@ -13,6 +13,13 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("out_dir", type=Path)
     p.add_argument("--hidden", type=int, default=64, help="text and vision width")
     p.add_argument("--layers", type=int, default=2, help="text decoder layers")
+    p.add_argument(
+        "--patch",
+        type=int,
+        default=16,
+        help="vision patch side in pixels (tiny only); 32 with --policy.image_max_pixels=49152 reads "
+        "192 x 256 images as 12 tokens each",
+    )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument(
         "--architecture",
@@ -27,6 +34,10 @@ def main(argv: list[str] | None = None) -> None:
         p.error(f"{args.out_dir} already holds a model; pass --overwrite to replace it")
     if args.hidden % 4 or args.hidden < 32:
         p.error("--hidden must be a multiple of 4 and >= 32")
+    if args.patch < 8 or args.patch % 8:
+        p.error(f"--patch must be a multiple of 8 and >= 8, got {args.patch}")
+    if args.patch != 16 and args.architecture != "tiny":
+        p.error("--patch applies to the tiny architecture only (the 2B model has 16 px patches)")
     from ..policies.activearena_vla.tiny_vlm import make_tiny_vlm
     from ..tasks.registry import task_texts
 
@@ -37,10 +48,11 @@ def main(argv: list[str] | None = None) -> None:
         seed=args.seed,
         architecture=args.architecture,
         texts=task_texts(),
+        patch=args.patch,
     )
     n = sum(f.stat().st_size for f in out.iterdir())
     what = (
-        f"tiny Qwen3-VL ({args.layers} layers, width {args.hidden})"
+        f"tiny Qwen3-VL ({args.layers} layers, width {args.hidden}, {args.patch} px patches)"
         if args.architecture == "tiny"
         else "random Qwen3-VL with the 2B model's dimensions (not pretrained)"
     )

@@ -699,3 +699,50 @@ def test_small_presets_differ_only_in_their_memory():
     assert cfg.observation_delta_indices == [-16 * k for k in range(12, 0, -1)] + [0]
     assert cfg.image_max_pixels == 96 * 128 and not cfg.gradient_checkpointing
     assert chunk["policy"]["scheduler_decay_steps"] == chunk["steps"]
+
+
+def test_small_presets_at_192_x_256_differ_only_in_the_image(tmp_path):
+    """The _p32 pair reads 192 x 256 frames (where the buttons' digits are legible) with a 32 px patch
+    backbone: the same 12 tokens per image as the 96 x 128 pair, nothing else changed."""
+    small = CONFIGS / "small"
+    for name in ("oft_subtask_action_12_ws", "oft_subtask_no_0_ws"):
+        base = json.loads((small / f"{name}.json").read_text())
+        wide = json.loads((small / f"{name}_p32.json").read_text())
+        changed = {k for k in wide["policy"] if wide["policy"][k] != base["policy"][k]}
+        assert changed == {"vlm_path", "image_max_pixels"} and wide["policy"]["image_max_pixels"] == 192 * 256
+        assert wide["dataset"] == dict(base["dataset"], repo_id=base["dataset"]["repo_id"] + "_192")
+        assert {k for k in wide if wide[k] != base[k]} == {"policy", "dataset", "job_name"}
+
+
+def test_a_32_px_patch_backbone_reads_twice_the_resolution_as_the_same_tokens(tmp_path, root):
+    """make_tiny_vlm(patch=32) at image_max_pixels 192 * 256: a 192 x 256 frame becomes the 6 x 8
+    patch grid (12 merged tokens) that 16 px patches make of 96 x 128, every pixel in the patch
+    embedding; the policy trains on it; a budget below one token is named."""
+    from lerobot.processor import TransitionKey
+
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+        GRID,
+        ActiveArenaVLMInputsStep,
+    )
+    from lerobot_activearena.tasks.registry import task_texts
+
+    p16 = make_tiny_vlm(tmp_path / "p16", texts=task_texts())
+    p32 = make_tiny_vlm(tmp_path / "p32", texts=task_texts(), patch=32)
+    grids = {}
+    for vlm, patch, (h, w) in ((p16, 16, (96, 128)), (p32, 32, (192, 256))):
+        step = ActiveArenaVLMInputsStep(vlm_path=str(vlm), image_max_pixels=h * w)
+        out = step(
+            {
+                TransitionKey.OBSERVATION: {"observation.images.head": torch.rand(1, 3, h, w)},
+                TransitionKey.COMPLEMENTARY_DATA: {"task": "press the button"},
+            }
+        )
+        grids[h] = out[TransitionKey.OBSERVATION][GRID]
+        assert out[TransitionKey.OBSERVATION][PIXELS].shape[-2:] == (48, 3 * 2 * patch**2)  # 2 frames a patch
+    assert grids[96].tolist() == grids[192].tolist() == [[[1, 6, 8]]]
+    cfg, policy, pre, _, ds = _setup(p32, root, memory="chunk", history=2, think="subtask")
+    loss, _ = policy.forward(collate(ds, pre, [20, len(ds) - 10]))
+    loss.backward()
+    assert torch.isfinite(loss) and policy.vlm.model.visual.patch_embed.proj.weight.grad.abs().sum() > 0
+    with pytest.raises(ValueError, match="image_max_pixels=1024 is below one token"):
+        ActiveArenaVLMInputsStep(vlm_path=str(p32), image_max_pixels=1024)

@@ -132,11 +132,19 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
     # the 13 frames per sample happen there and do not hold up the training loop's CPU.
     device: str = "cpu"
     _processor: Any = field(default=None, init=False, repr=False)
+    _min_pixels: int = field(default=0, init=False, repr=False)
 
     def __post_init__(self):
         from transformers import AutoProcessor
 
         self._processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.vlm_path, "processor")
+        images = self._processor.image_processor
+        self._min_pixels = (images.patch_size * images.merge_size) ** 2  # one merged token
+        if self.image_max_pixels < self._min_pixels:
+            raise ValueError(
+                f"image_max_pixels={self.image_max_pixels} is below one token of {self.vlm_path!r} "
+                f"({self._min_pixels} pixels); raise --policy.image_max_pixels"
+            )
 
     @property
     def processor(self):
@@ -171,7 +179,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             return_tensors="pt",
             device=device,
             max_pixels=self.image_max_pixels,
-            min_pixels=16 * 16 * 4,
+            min_pixels=self._min_pixels,
         )
         pv, grid = (
             out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]),

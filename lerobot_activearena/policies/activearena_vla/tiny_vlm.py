@@ -71,9 +71,9 @@ QWEN3_VL_2B = {
 }
 
 
-def qwen3_vl_config(text: dict, vision: dict, ids: dict[str, int] | None = None):
-    """A Qwen3-VL config from text / vision dimensions (16 px patches, 2x2 merge, tied embeddings) and,
-    when given, the tokenizer's special-token ids."""
+def qwen3_vl_config(text: dict, vision: dict, ids: dict[str, int] | None = None, patch: int = 16):
+    """A Qwen3-VL config from text / vision dimensions (``patch`` px patches, 2x2 merge, tied
+    embeddings) and, when given, the tokenizer's special-token ids."""
     from transformers import Qwen3VLConfig
 
     tokens = {}
@@ -87,7 +87,7 @@ def qwen3_vl_config(text: dict, vision: dict, ids: dict[str, int] | None = None)
         text = dict(text, pad_token_id=ids["<|endoftext|>"])
     return Qwen3VLConfig(
         text_config=dict(text, tie_word_embeddings=True),
-        vision_config=dict(vision, patch_size=16, spatial_merge_size=2, temporal_patch_size=2),
+        vision_config=dict(vision, patch_size=patch, spatial_merge_size=2, temporal_patch_size=2),
         tie_word_embeddings=True,
         **tokens,
     )
@@ -101,12 +101,17 @@ def make_tiny_vlm(
     seed: int = 0,
     architecture: str = "tiny",
     texts: Sequence[str] = (),
+    patch: int = 16,
 ) -> Path:
     """Write a random Qwen3-VL, tokenizer and processor to ``out_dir``: tiny (``hidden`` / ``layers``), or
     with ``architecture="qwen3-vl-2b"`` the real 2B model's dimensions (saved in bfloat16, ~4.3 GB).
-    ``texts`` (e.g. the benchmark's instructions and subtasks) join the tiny tokenizer's corpus."""
+    ``texts`` (e.g. the benchmark's instructions and subtasks) join the tiny tokenizer's corpus.
+    ``patch`` (tiny only): the vision patch side in pixels; 32 reads a 192 x 256 image as the same 12
+    tokens that 16 px patches make of 96 x 128, with every pixel in the patch embedding."""
     if architecture not in ("tiny", "qwen3-vl-2b"):
         raise ValueError(f"architecture must be 'tiny' or 'qwen3-vl-2b', got {architecture!r}")
+    if architecture != "tiny" and patch != 16:
+        raise ValueError(f"the 2B architecture has 16 px patches; got patch={patch}")
     import torch
     from tokenizers import Tokenizer, decoders, models, pre_tokenizers, trainers
     from transformers import (
@@ -139,15 +144,15 @@ def make_tiny_vlm(
     tok.chat_template = CHAT_TEMPLATE
     ids = {t: tok.convert_tokens_to_ids(t) for t in SPECIAL_TOKENS}
     image_proc = Qwen2VLImageProcessor(
-        patch_size=16,
+        patch_size=patch,
         merge_size=2,
         temporal_patch_size=2,
         image_mean=[0.5] * 3,
         image_std=[0.5] * 3,
-        min_pixels=16 * 16 * 4,
+        min_pixels=patch * patch * 4,
         max_pixels=HEAD_WIDTH * HEAD_HEIGHT,
     )
-    video_proc = Qwen3VLVideoProcessor(patch_size=16, merge_size=2, temporal_patch_size=2)
+    video_proc = Qwen3VLVideoProcessor(patch_size=patch, merge_size=2, temporal_patch_size=2)
     processor = Qwen3VLProcessor(
         image_processor=image_proc, tokenizer=tok, video_processor=video_proc, chat_template=CHAT_TEMPLATE
     )
@@ -179,7 +184,7 @@ def make_tiny_vlm(
     }
     if architecture == "qwen3-vl-2b":
         text, vision = dict(QWEN3_VL_2B["text"]), dict(QWEN3_VL_2B["vision"])
-    config = qwen3_vl_config(text, vision, ids)
+    config = qwen3_vl_config(text, vision, ids, patch=patch)
     torch.manual_seed(seed)
     model = Qwen3VLForConditionalGeneration(config)
     if architecture != "tiny":
