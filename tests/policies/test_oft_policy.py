@@ -7,6 +7,7 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -743,6 +744,40 @@ def test_a_32_px_patch_backbone_reads_twice_the_resolution_as_the_same_tokens(tm
     cfg, policy, pre, _, ds = _setup(p32, root, memory="chunk", history=2, think="subtask")
     loss, _ = policy.forward(collate(ds, pre, [20, len(ds) - 10]))
     loss.backward()
-    assert torch.isfinite(loss) and policy.vlm.model.visual.patch_embed.proj.weight.grad.abs().sum() > 0
+    embed = policy.vlm.model.visual.patch_embed
+    assert torch.isfinite(loss) and embed.proj.weight.grad.abs().sum() > 0
+    assert type(embed).__name__ == "LinearPatchEmbed"
     with pytest.raises(ValueError, match="image_max_pixels=1024 is below one token"):
         ActiveArenaVLMInputsStep(vlm_path=str(p32), image_max_pixels=1024)
+
+
+@pytest.mark.parametrize("patch", [16, 32])
+def test_the_linear_patch_embedding_equals_qwens_convolution(tmp_path, patch):
+    """patch_embed_as_linear: the same embeddings and weight gradients as Qwen3-VL's Conv3d, the same
+    state dict (checkpoints unchanged); the policy loads its backbone that way."""
+    from transformers import Qwen3VLForConditionalGeneration
+
+    from lerobot_activearena.policies.activearena_vla.patch_embedding import (
+        LinearPatchEmbed,
+        patch_embed_as_linear,
+    )
+
+    path = make_tiny_vlm(tmp_path / "vlm", patch=patch)
+    conv = Qwen3VLForConditionalGeneration.from_pretrained(path)
+    linear = Qwen3VLForConditionalGeneration.from_pretrained(path)
+    patch_embed_as_linear(linear)
+    assert type(linear.model.visual.patch_embed) is LinearPatchEmbed
+    assert linear.state_dict().keys() == conv.state_dict().keys()
+    x = torch.randn(40, 3 * 2 * patch * patch)
+    outs = []
+    for model in (conv, linear):
+        y = model.model.visual.patch_embed(x)
+        (y**2).sum().backward()
+        outs.append((y, model.model.visual.patch_embed.proj.weight.grad))
+    assert outs[0][0].shape == (40, 64)
+    assert torch.allclose(outs[0][0], outs[1][0], atol=1e-5)
+    grad_conv, grad_linear = outs[0][1], outs[1][1]
+    assert (grad_conv - grad_linear).abs().max() < 1e-5 * grad_conv.abs().max() * x.shape[0]
+    other = SimpleNamespace(model=SimpleNamespace(visual=SimpleNamespace(patch_embed=torch.nn.Linear(2, 2))))
+    with pytest.raises(TypeError, match="expected Qwen3-VL's patch embedding, got Linear"):
+        patch_embed_as_linear(other)

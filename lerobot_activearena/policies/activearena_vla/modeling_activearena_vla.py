@@ -57,6 +57,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             dtype=weights_dtype(config),
             attn_implementation=config.attn_implementation,
         )
+        from .patch_embedding import patch_embed_as_linear
+
+        patch_embed_as_linear(self.vlm)
         if config.gradient_checkpointing:
             self.vlm.gradient_checkpointing_enable()
         vc = self.vlm.config

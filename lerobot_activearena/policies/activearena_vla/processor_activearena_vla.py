@@ -185,11 +185,14 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]),
             out["image_grid_thw"],
         )
-        pixels = pv.new_zeros((batch_size * n_frames, *pv.shape[1:]))
-        pixels[keep.to(pv.device)] = pv
         grid = grid.cpu()
-        grids = grid[:1].repeat(batch_size * n_frames, 1)
-        grids[keep] = grid
+        if bool(keep.all()):  # the usual case: no copy into a zeroed buffer (13 frames a sample)
+            pixels, grids = pv, grid
+        else:
+            pixels = pv.new_zeros((batch_size * n_frames, *pv.shape[1:]))
+            pixels[keep.to(pv.device)] = pv
+            grids = grid[:1].repeat(batch_size * n_frames, 1)
+            grids[keep] = grid
         obs[PIXELS] = pixels.reshape(batch_size, n_frames, *pv.shape[1:])
         obs[GRID] = grids.reshape(batch_size, n_frames, 3)
         obs[FRAME_VALID] = valid
