@@ -164,24 +164,26 @@ def _cell_range(row: Row) -> str:
 
 
 def comparison_table(spec: dict, rows: list[Row]) -> str:
-    """The manifest's ``comparison``: the named rows side by side on its task, ID and OOD success and
-    the ID failures by state (the memory comparison: the same policy with and without memory)."""
+    """The manifest's ``comparison``: the named rows side by side on its ``tasks``, ID / OOD success per
+    task and the ID failures by state (the memory comparison: the same policy with and without
+    memory); "-" where a row was not evaluated on a task."""
     comp = spec["comparison"]
-    task, by_name = comp["task"], {r.name: r for r in rows}
+    tasks, by_name = comp["tasks"], {r.name: r for r in rows}
     missing = [n for n in comp["rows"] if n not in by_name]
     if missing:
         raise ValueError(f"the manifest's comparison names rows it does not hold: {missing}")
-    head = ["policy", "memory", "ID", "OOD", "ID failures DM / CO / CR", "training"]
+    head = ["policy", "memory", *[f"`{_short(t)}` ID / OOD" for t in tasks]]
+    head += ["ID failures DM / CO / CR", "training"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for name in comp["rows"]:
         row = by_name[name]
-        splits = row.success.get(task, {})
-        counts = row.task_failures.get(task, {}).get("id", dict.fromkeys(FAILURES, 0))
-        ident = " / ".join(str(counts[k]) for k in FAILURES)
-        lines.append(
-            f"| {row.policy} | {row.memory or '-'} | {_pct(splits.get('id', []))} | "
-            f"{_pct(splits.get('ood', []))} | {ident} | {row.training} |"
-        )
+        fails = []
+        for task in (t for t in tasks if t in row.success):
+            counts = row.task_failures.get(task, {}).get("id", dict.fromkeys(FAILURES, 0))
+            fails.append(f"`{_short(task)}` " + " / ".join(str(counts[k]) for k in FAILURES))
+        cells = [row.policy, row.memory or "-", *[_cell(row, t) for t in tasks]]
+        cells += ["; ".join(fails) or "-", row.training]
+        lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 

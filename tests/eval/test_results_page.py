@@ -70,16 +70,17 @@ def test_bad_manifests_and_pages_are_named(tmp_path):
         replace_block("no markers here", "leaderboard", "x")
 
 
-def test_the_comparison_table_reads_the_rows_failures_on_its_task(tmp_path):
+def test_the_comparison_table_reads_the_rows_failures_on_its_tasks(tmp_path):
     manifest = _one_row_manifest(tmp_path, "act_cpu_count_target_100demos")
     spec = json.loads(manifest.read_text())
     name = spec["rows"][0]["name"]
-    spec["comparison"] = {"task": "count_target_press_button", "rows": [name]}
+    spec["comparison"] = {"tasks": ["click_bell_rotate_view", "count_target_press_button"], "rows": [name]}
     manifest.write_text(json.dumps(spec))
     spec, rows = load_rows(manifest)
     table = comparison_table(spec, rows).splitlines()
     # 4 of 50 ID solved, 0 OOD; ID failures: 1 DM, 41 CO, 4 CR (the committed episode records)
-    assert table[2].split(" | ")[2:5] == ["8", "0", "1 / 41 / 4"]
+    assert table[0].split(" | ")[2:4] == ["`click_bell` ID / OOD", "`count_target` ID / OOD"]
+    assert table[2].split(" | ")[2:5] == ["-", "8 / 0", "`count_target` 1 / 41 / 4"]  # no bell records
     spec["comparison"]["rows"] = ["nobody"]
     with pytest.raises(ValueError, match="comparison names rows it does not hold"):
         comparison_table(spec, rows)
