@@ -99,10 +99,9 @@ def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: 
     policy, so they cost nothing."""
     from lerobot.configs.types import FeatureType, PolicyFeature
 
-    from lerobot_activearena.annotations.keyframes import STRIDE
     from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
 
-    dim, history = 18, cfg.history
+    dim = 18
     cfg.input_features = {
         "observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512)),
         "observation.state": PolicyFeature(FeatureType.STATE, (dim,)),
@@ -111,23 +110,82 @@ def synthetic_setup(cfg: ActiveArenaOFTConfig, batch_size: int, episode_frames: 
     policy = ActiveArenaOFTPolicy(cfg).to(cfg.device)
     unit = {"mean": torch.zeros(dim), "std": torch.ones(dim), "min": -torch.ones(dim), "max": torch.ones(dim)}
     pre, _ = make_pre_post_processors(cfg, dataset_stats={"observation.state": unit, "action": unit})
+    return policy, pre, synthetic_batches(cfg, batch_size, episode_frames, all_valid)
+
+
+def sweep(policy, pre, cfg, args) -> None:
+    """Step time and peak memory per gradient-checkpointing choice, the usual and the all-valid batch,
+    on one model and optimizer (their states are allocated by the first step, as in training)."""
+    from lerobot_activearena.policies.activearena_vla.helpers import checkpoint_layers
+
+    cuda = args.device.startswith("cuda")
+    fused = {"fused": True} if args.fused_adamw else {}
+    opt = torch.optim.AdamW(
+        policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8, **fused
+    )
+    policy.train()
+    print(
+        f"sweep: batch {args.batch_size}, K={args.history}, {args.steps} timed steps after one warm-up each"
+    )
+    for layers in ("all", "vision", "language", "none"):
+        if layers == "none":
+            policy.vlm.gradient_checkpointing_disable()
+        else:
+            checkpoint_layers(policy.vlm, layers)
+        for valid in (False, True):  # the same batches for every choice
+            feed = synthetic_batches(cfg, args.batch_size, args.episode_frames, valid)
+            if cuda:
+                torch.cuda.empty_cache()
+                torch.cuda.reset_peak_memory_stats()
+            times, images = [], 0
+            try:
+                for step in range(args.steps + 1):
+                    raw = next(feed)
+                    if cuda:
+                        torch.cuda.synchronize()
+                    t0 = time.perf_counter()
+                    batch = pre(raw)
+                    loss, _ = policy.forward(batch)
+                    opt.zero_grad(set_to_none=True)
+                    loss.backward()
+                    torch.nn.utils.clip_grad_norm_(policy.parameters(), 1.0)
+                    opt.step()
+                    if cuda:
+                        torch.cuda.synchronize()
+                    if step:
+                        times.append(time.perf_counter() - t0)
+                    images = int(batch["observation.vlm.frame_valid"].sum())
+                step_s = sum(times) / len(times)
+                result = f"{step_s:.3f} s/step, {args.batch_size / step_s:.2f} samples/s"
+            except torch.OutOfMemoryError:
+                loss = batch = None
+                opt.zero_grad(set_to_none=True)
+                result = "out of memory"
+            print(
+                f"checkpointing {layers:>8}, {'all-valid' if valid else 'usual':>9} batch ({images:>3} images): "
+                f"{result}; peak {peak_memory(cuda)}",
+                flush=True,
+            )
+
+
+def synthetic_batches(cfg, batch_size: int, episode_frames: int, all_valid: bool):
+    """Dataset-shaped random batches (see ``synthetic_setup``)."""
+    from lerobot_activearena.annotations.keyframes import STRIDE
+
+    dim, history = 18, cfg.history
     g = torch.Generator().manual_seed(0)
-
-    def batches():
-        while True:
-            t = torch.randint(0, episode_frames, (batch_size,), generator=g)
-            present = torch.full_like(t, history) if all_valid else torch.clamp(t // STRIDE, max=history)
-            slot = torch.arange(history + 1)[None]
-            yield {
-                "observation.images.head": torch.rand(batch_size, history + 1, 3, 384, 512, generator=g),
-                "observation.images.head_is_pad": slot < (history - present)[:, None],
-                "observation.state": torch.randn(batch_size, history + 1, dim, generator=g),
-                "action": torch.randn(batch_size, cfg.chunk_size, dim, generator=g),
-                "action_is_pad": torch.zeros(batch_size, cfg.chunk_size, dtype=torch.bool),
-                "task": ["Press the bell's top center using the left arm."] * batch_size,
-            }
-
-    return policy, pre, batches()
+    while True:
+        t = torch.randint(0, episode_frames, (batch_size,), generator=g)
+        present = torch.full_like(t, history) if all_valid else torch.clamp(t // STRIDE, max=history)
+        slot = torch.arange(history + 1)[None]
+        yield {
+            "observation.images.head": torch.rand(batch_size, history + 1, 3, 384, 512, generator=g),
+            "observation.images.head_is_pad": slot < (history - present)[:, None],
+            "observation.state": torch.randn(batch_size, history + 1, dim, generator=g),
+            "action": torch.randn(batch_size, cfg.chunk_size, dim, generator=g),
+            "action_is_pad": torch.zeros(batch_size, cfg.chunk_size, dtype=torch.bool),
+            "task": ["Press the bell's top center using the left arm."] * batch_size,
+        }
 
 
 def main() -> None:
@@ -164,6 +222,22 @@ def main() -> None:
         help="activearena_groot's head: the paper's DiT-B (152 M parameters) or the tests' tiny one",
     )
     p.add_argument("--gradient-checkpointing", action="store_true")
+    p.add_argument(
+        "--checkpoint-layers",
+        choices=["all", "vision", "language"],
+        default="all",
+        help="with --gradient-checkpointing: the blocks that recompute (gradient_checkpointing_layers)",
+    )
+    p.add_argument("--fused-adamw", action="store_true", help="torch's fused AdamW kernel (CUDA)")
+    p.add_argument(
+        "--sweep",
+        action="store_true",
+        help="--synthetic: one model, then --steps timed steps for each checkpointing choice (all, vision, "
+        "language, none) with the usual and the all-valid batch; peak memory of each (OOM is reported)",
+    )
+    p.add_argument(
+        "--profile", action="store_true", help="print the top operators of one training step (torch.profiler)"
+    )
     p.add_argument(
         "--decode-tokens", type=int, default=32, help="greedy <think> tokens per chunk (subtask_max_tokens)"
     )
@@ -229,6 +303,7 @@ def main() -> None:
         history=args.history,
         think=think,
         gradient_checkpointing=args.gradient_checkpointing,
+        gradient_checkpointing_layers=args.checkpoint_layers,
         dtype=args.dtype,
         weights_dtype=args.weights_dtype,
         subtask_max_tokens=args.decode_tokens,
@@ -240,6 +315,8 @@ def main() -> None:
             )
         policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
         ds = None
+        if args.sweep:
+            return sweep(policy, pre, cfg, args)
     else:
         meta = LeRobotDatasetMetadata(args.repo_id, root=root)
         policy = make_policy(cfg, ds_meta=meta)
@@ -257,10 +334,22 @@ def main() -> None:
             )
         )
     loader = batches
-    opt = torch.optim.AdamW(policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8)
+    fused = {"fused": True} if args.fused_adamw else {}
+    opt = torch.optim.AdamW(
+        policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8, **fused
+    )
     cuda = args.device.startswith("cuda")
     policy.train()  # from_pretrained leaves the backbone in eval mode, where gradient checkpointing is off
     times, prep, images = [], [], 0
+
+    def train_step(raw):
+        batch = pre(raw)
+        loss, _ = policy.forward(batch)
+        opt.zero_grad()
+        loss.backward()
+        torch.nn.utils.clip_grad_norm_(policy.parameters(), 1.0)
+        opt.step()
+
     for step in range(args.steps + 1 if args.steps else 0):  # --steps 0: inference only
         raw = next(loader)
         if cuda:
@@ -281,6 +370,15 @@ def main() -> None:
             times.append(time.perf_counter() - t0)
             prep.append(t1 - t0)
         images = int(batch["observation.vlm.frame_valid"].sum())
+    if args.profile and args.steps:  # one more step, under the profiler (not in the times above)
+        activities = [torch.profiler.ProfilerActivity.CPU]
+        activities += [torch.profiler.ProfilerActivity.CUDA] if cuda else []
+        with torch.profiler.profile(activities=activities) as prof:
+            train_step(next(loader))
+            if cuda:
+                torch.cuda.synchronize()
+        sort = "cuda_time_total" if cuda else "cpu_time_total"
+        print(prof.key_averages().table(sort_by=sort, row_limit=25, max_name_column_width=60))
     n_params = sum(p.numel() for p in policy.parameters())
     peak = peak_memory(cuda)
     head_params = sum(p.numel() for n, p in policy.named_parameters() if not n.startswith("vlm."))
@@ -295,7 +393,8 @@ def main() -> None:
     print(
         f"precision: {'bfloat16 autocast' if cfg.autocast_bfloat16 else 'float32'} compute, "
         f"{next(policy.vlm.parameters()).dtype} weights; gradient checkpointing "
-        f"{'on' if policy.vlm.is_gradient_checkpointing and policy.vlm.training else 'off'}"
+        + (f"of {args.checkpoint_layers} layers" if args.gradient_checkpointing else "off")
+        + ("; fused AdamW" if args.fused_adamw else "")
     )
     print(f"attention: {attention_kernels(policy.vlm)}")
     if times:

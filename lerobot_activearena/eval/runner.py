@@ -14,7 +14,7 @@ from tqdm import tqdm
 from ..sharding import ProgressBars, one_core, run_local, submit_slurm
 from .merge import merge_run
 from .protocol import RUN_FILE, EvalPlan
-from .shard import records_dir, run_shard
+from .shard import forget_loaded_policy, records_dir, run_shard
 
 
 class EvalShardStep(PipelineStep):
@@ -168,7 +168,10 @@ def run_eval(
         return None
     if executor != "local":
         raise ValueError(f"executor must be 'local' or 'slurm', got {executor!r}")
-    run_local(
-        step, len(plan.shards), workers, run_dir / "logs", _Progress(plan, run_dir) if progress else None
-    )
+    try:
+        run_local(
+            step, len(plan.shards), workers, run_dir / "logs", _Progress(plan, run_dir) if progress else None
+        )
+    finally:
+        forget_loaded_policy()  # one worker runs in this process: the policy is kept for its shards only
     return merge_run(plan, run_dir)

@@ -85,6 +85,30 @@ def env_config(plan: EvalPlan, task: str, split: str, log_dir: Path | None):
     )
 
 
+_LOADED: dict = {}  # this process's policy and processors for the plan it last ran, and the RNG after loading
+
+
+def loaded_policy(run_dir: Path, plan: EvalPlan, load):
+    """``load()``'s policy and processors, kept for the worker's next shard of the same plan (loading a
+    2B backbone costs more than a short task's episodes). A shard that reuses them starts from the RNG
+    state loading left, so its episodes are those of a fresh process."""
+    from lerobot.utils.random_utils import get_rng_state, set_rng_state
+
+    key = (str(Path(run_dir).resolve()), json.dumps(plan.policy, sort_keys=True), plan.policy_path)
+    if _LOADED.get("key") != key:
+        _LOADED.clear()  # one policy at a time in memory
+        loaded = load()
+        _LOADED.update(key=key, loaded=loaded, rng=get_rng_state())
+        return loaded
+    set_rng_state(_LOADED["rng"])
+    return _LOADED["loaded"]
+
+
+def forget_loaded_policy() -> None:
+    """Drop the kept policy (a run ended, or a shard failed and may have left it unusable)."""
+    _LOADED.clear()
+
+
 def video_path(run_dir: Path, shard: EvalShard, episode: int) -> Path:
     return Path(run_dir) / "videos" / f"{shard.task}_{shard.split}_{episode:03d}.mp4"
 
@@ -128,14 +152,19 @@ def run_shard(
     # as lerobot-eval seeds its run: a shard that plays a whole task and split samples what lerobot-eval samples
     set_seed(plan.seed_base)
     device = get_safe_torch_device(cfg.device)
-    with _quiet_stats_warning(cfg):
-        policy = make_policy(cfg=cfg, env_cfg=env_cfg)
-    policy.eval()
-    preprocessor, postprocessor = make_pre_post_processors(
-        policy_cfg=cfg,
-        pretrained_path=cfg.pretrained_path,
-        preprocessor_overrides={"device_processor": {"device": str(policy.config.device)}},
-    )
+
+    def load():
+        with _quiet_stats_warning(cfg):
+            policy = make_policy(cfg=cfg, env_cfg=env_cfg)
+        policy.eval()
+        processors = make_pre_post_processors(
+            policy_cfg=cfg,
+            pretrained_path=cfg.pretrained_path,
+            preprocessor_overrides={"device_processor": {"device": str(policy.config.device)}},
+        )
+        return policy, *processors
+
+    policy, preprocessor, postprocessor = loaded_policy(run_dir, plan, load)
     env_pre, env_post = make_env_pre_post_processors(env_cfg=env_cfg, policy_cfg=cfg)
     want_video = set(shard.episodes[:videos])
     fps = env_cfg.fps
@@ -181,6 +210,7 @@ def run_shard(
                         else None,
                     )
             except Exception as exc:  # name what did not finish; what did is recorded and resumes
+                forget_loaded_policy()
                 raise RuntimeError(
                     f"{shard.name}: episodes {batch} did not finish ({type(exc).__name__}: {exc}). The "
                     f"episodes finished before are recorded in {folder}; fix the cause and re-run the command "

@@ -1,6 +1,7 @@
 """The gym env over the task registry: observation contract, manifests, fixed view, failure states,
 and the LeRobot EnvConfig's task suites."""
 
+import importlib
 import json
 
 import numpy as np
@@ -104,6 +105,13 @@ def test_config_builds_category_suites_of_task_envs():
     ]
     assert lazy._env is None, "async workers start only when the suite is evaluated"
     lazy.close()
+    # the fork server preloads (and silently skips a wrong name) what a worker unpickles: the env and its wrapper
+    from lerobot_activearena.envs.configs import FORKSERVER_PRELOAD
+
+    preloaded = [importlib.import_module(name) for name in FORKSERVER_PRELOAD]
+    from lerobot.envs.utils import freeze_after_episode_end
+
+    assert {freeze_after_episode_end.__module__, ActiveArenaEnv.__module__} <= {m.__name__ for m in preloaded}
 
 
 @pytest.mark.parametrize("blowup", ["nan_velocity", "huge_velocity"])

@@ -317,3 +317,30 @@ def test_policy_counts_stop_at_each_episodes_last_step():
     snapshots = [[{"chunks": t + 1}, {"chunks": t + 1}, {"chunks": 1}] for t in range(4)]
     done = torch.tensor([[0, 1, 1, 1], [0, 0, 0, 1], [0, 0, 0, 0]], dtype=torch.bool)  # env 2 truncated
     assert stats_at_episode_ends(snapshots, done) == [{"chunks": 2}, {"chunks": 4}, {"chunks": 1}]
+
+
+def test_a_worker_loads_the_policy_once_per_plan_and_each_shard_starts_from_the_same_rng(tmp_path):
+    """loaded_policy: the next shard of the same plan reuses the loaded policy and starts from the RNG
+    state that loading left (as a fresh worker would); another plan loads its own."""
+    import torch
+
+    from lerobot_activearena.eval.shard import forget_loaded_policy, loaded_policy
+
+    loads = []
+
+    def load():
+        loads.append(torch.rand(1))  # loading draws random numbers (a policy built from scratch)
+        return object(), "pre", "post"
+
+    plan = EvalPlan(label="a", policy={"type": "act"}, policy_path=None, tasks=[BELL], splits=["id"])
+    first = loaded_policy(tmp_path, plan, load)
+    after_load = torch.rand(3)
+    torch.rand(100)  # the first shard's rollouts
+    again = loaded_policy(tmp_path, plan, load)
+    assert again is first and len(loads) == 1
+    assert torch.equal(torch.rand(3), after_load)
+    other = EvalPlan(label="b", policy={"type": "diffusion"}, policy_path=None, tasks=[BELL], splits=["id"])
+    assert loaded_policy(tmp_path, other, load) is not first and len(loads) == 2
+    forget_loaded_policy()  # the run ended (or a shard failed): the next run loads afresh
+    loaded_policy(tmp_path, other, load)
+    assert len(loads) == 3

@@ -285,6 +285,7 @@ def test_backbone_matches_qwen3_vl_forward(vlm, root):
         )
         ref = policy.vlm.model(input_ids=None, **{k: seq[k] for k in keys}).last_hidden_state
     real = seq["attention_mask"].bool()
+    assert not real.all()  # padded: ours runs without the padding mask (causal only), the reference with it
     assert torch.allclose(ours[real], ref[real], atol=1e-5)
 
 
@@ -538,6 +539,46 @@ def test_bfloat16_compute_keeps_float32_master_weights_so_small_updates_apply(vl
     assert mixed > 0.9 and pure < 0.5 * mixed, (mixed, pure)
 
 
+def _loss_and_grads(vlm, root, **checkpointing):
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask", **checkpointing)
+    policy.train()
+    loss, _ = policy.forward(collate(ds, pre, [20, len(ds) - 40]))
+    loss.backward()
+    flags = {
+        n: m.gradient_checkpointing
+        for n, m in policy.vlm.named_modules()
+        if n.endswith(("blocks.0", "layers.0"))
+    }
+    return (
+        policy,
+        float(loss.detach()),
+        {n: p.grad for n, p in policy.named_parameters() if p.grad is not None},
+        flags,
+    )
+
+
+@pytest.mark.parametrize("layers", ["all", "vision", "language"])
+def test_gradient_checkpointing_of_some_layers_gives_the_same_gradients(vlm, root, layers):
+    """gradient_checkpointing_layers picks the blocks that recompute (vision tower, language model or
+    both); the loss and every gradient equal those of the step without checkpointing."""
+    _, loss, grads, flags = _loss_and_grads(vlm, root)
+    assert not any(flags.values())
+    _, ck_loss, ck_grads, ck_flags = _loss_and_grads(
+        vlm, root, gradient_checkpointing=True, gradient_checkpointing_layers=layers
+    )
+    vision = ck_flags["model.visual.blocks.0"]
+    language = ck_flags["model.language_model.layers.0"]
+    assert (vision, language) == {"all": (True, True), "vision": (True, False), "language": (False, True)}[
+        layers
+    ]
+    assert ck_loss == pytest.approx(loss, rel=1e-6)
+    assert ck_grads.keys() == grads.keys()
+    for name, g in grads.items():
+        assert torch.allclose(ck_grads[name], g, atol=1e-6, rtol=1e-4), name
+    with pytest.raises(ValueError, match="gradient_checkpointing_layers must be one of"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_layers="mlp")
+
+
 def test_precision_defaults_follow_the_device():
     feats = {"observation.images.head": PolicyFeature(FeatureType.VISUAL, (3, 384, 512))}
     cpu = ActiveArenaOFTConfig(device="cpu", input_features=feats)
@@ -781,3 +822,55 @@ def test_the_linear_patch_embedding_equals_qwens_convolution(tmp_path, patch):
     other = SimpleNamespace(model=SimpleNamespace(visual=SimpleNamespace(patch_embed=torch.nn.Linear(2, 2))))
     with pytest.raises(TypeError, match="expected Qwen3-VL's patch embedding, got Linear"):
         patch_embed_as_linear(other)
+
+
+@pytest.mark.parametrize("sizes", [[(1, 4, 6)] * 3, [(1, 4, 6), (1, 2, 4), (1, 4, 6)]])
+def test_batched_vision_attention_equals_qwens_per_image_loop(tmp_path, sizes, monkeypatch):
+    """batch_vision_attention: images of one size attend in one call, mixed sizes take Qwen's loop;
+    the vision tower's features and weight gradients are Qwen3-VL's own, with the same state dict."""
+    from transformers import Qwen3VLForConditionalGeneration
+
+    from lerobot_activearena.policies.activearena_vla import vision_attention
+    from lerobot_activearena.policies.activearena_vla.vision_attention import (
+        BatchedVisionAttention,
+        batch_vision_attention,
+    )
+
+    calls = []
+
+    def counting(*args, **kwargs):
+        calls.append(args[0].shape[0])
+        return torch.nn.functional.scaled_dot_product_attention(*args, **kwargs)
+
+    monkeypatch.setattr(
+        vision_attention, "functional", SimpleNamespace(scaled_dot_product_attention=counting)
+    )
+
+    path = make_tiny_vlm(tmp_path / "vlm")
+    loop = Qwen3VLForConditionalGeneration.from_pretrained(path)
+    batched = Qwen3VLForConditionalGeneration.from_pretrained(path)
+    batch_vision_attention(batched)
+    assert all(type(b.attn) is BatchedVisionAttention for b in batched.model.visual.blocks)
+    assert batched.state_dict().keys() == loop.state_dict().keys()
+    grid = torch.tensor(sizes)
+    patch = batched.config.vision_config.patch_size
+    pixels = torch.randn(
+        int(grid.prod(-1).sum()), 3 * 2 * patch * patch, generator=torch.Generator().manual_seed(0)
+    )
+    outs = []
+    for model in (loop, batched):
+        features = model.model.get_image_features(pixels, grid).pooler_output
+        merged = torch.cat(list(features))
+        (merged**2).sum().backward()
+        outs.append((merged, model.model.visual.blocks[0].attn.qkv.weight.grad))
+    assert torch.allclose(outs[0][0], outs[1][0], atol=1e-5)
+    assert torch.allclose(outs[0][1], outs[1][1], atol=1e-5, rtol=1e-4)
+    blocks = len(batched.model.visual.blocks)
+    assert calls == (
+        [3] * blocks if len(set(sizes)) == 1 else []
+    )  # one call of 3 images per block, or the loop
+    other = SimpleNamespace(
+        model=SimpleNamespace(visual=SimpleNamespace(blocks=[SimpleNamespace(attn=torch.nn.Linear(2, 2))]))
+    )
+    with pytest.raises(TypeError, match="expected Qwen3-VL's vision attention, got Linear"):
+        batch_vision_attention(other)

@@ -24,6 +24,7 @@ THINK_TARGETS = ("none", "instruction", "subtask")
 MEMORY_ABLATIONS = ("none", "blank")
 DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
+CHECKPOINT_LAYERS = ("all", "vision", "language")
 WEIGHT_DTYPES = ("float32", "bfloat16")
 VIEW_DIMS = slice(TORSO_YAW, HEAD_PITCH + 1)  # the active-viewpoint dimensions: the action's last two
 
@@ -55,6 +56,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # filled by lerobot-train from the dataset, unused at evaluation.
     dataset_root: str | None = None
     gradient_checkpointing: bool = False
+    # The blocks that recompute their activations in the backward pass when gradient_checkpointing is
+    # on: all | vision (the vision tower's: it holds most activations, 4 patches per merged token of 13
+    # images a sample) | language (the language model's decoder layers)
+    gradient_checkpointing_layers: str = "all"
     # Compute precision: auto (bfloat16 autocast on CUDA, float32 elsewhere) | float32 | bfloat16. The
     # parameters stay float32 (master weights: AdamW's small updates are kept, as DeepSpeed ZeRO-2 does
     # in the paper's run) unless weights_dtype=bfloat16, which halves their memory but rounds most
@@ -112,6 +117,7 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             ("weights_dtype", WEIGHT_DTYPES),
             ("attn_implementation", ATTENTION),
             ("memory_ablation", MEMORY_ABLATIONS),
+            ("gradient_checkpointing_layers", CHECKPOINT_LAYERS),
         ):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")

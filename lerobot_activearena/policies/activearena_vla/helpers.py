@@ -26,6 +26,19 @@ def weights_dtype(config: ActiveArenaVLAConfig) -> torch.dtype:
     return torch.float32
 
 
+def checkpoint_layers(vlm, layers: str) -> None:
+    """Gradient checkpointing of Qwen3-VL's ``layers`` (all | vision | language): those blocks keep
+    only their inputs and recompute the rest in the backward pass."""
+    vlm.gradient_checkpointing_enable()
+    if layers == "all":
+        return
+    part = {"vision": vlm.model.visual, "language": vlm.model.language_model}[layers]
+    inside = {id(m) for m in part.modules()}
+    for module in vlm.modules():
+        if hasattr(module, "gradient_checkpointing") and id(module) not in inside:
+            module.gradient_checkpointing = False
+
+
 def in_precision(method):
     """Run a policy ``method`` under the policy's autocast (bfloat16 compute over float32 weights when
     ``config.autocast_bfloat16``)."""

@@ -20,7 +20,7 @@ from torch import Tensor, nn
 
 from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_vla import ActiveArenaVLAConfig
-from .helpers import blank_entry, in_precision, stack_frames, weights_dtype
+from .helpers import blank_entry, checkpoint_layers, in_precision, stack_frames, weights_dtype
 from .processor_activearena_vla import (
     FRAME_VALID,
     GRID,
@@ -58,10 +58,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             attn_implementation=config.attn_implementation,
         )
         from .patch_embedding import patch_embed_as_linear
+        from .vision_attention import batch_vision_attention
 
         patch_embed_as_linear(self.vlm)
+        batch_vision_attention(self.vlm)
         if config.gradient_checkpointing:
-            self.vlm.gradient_checkpointing_enable()
+            checkpoint_layers(self.vlm, config.gradient_checkpointing_layers)
         vc = self.vlm.config
         width = vc.text_config.hidden_size
         self.max_frames = config.history + 1
@@ -221,9 +223,13 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             mask[..., None], torch.cat([f[0] for f in feats]).to(seq["inputs_embeds"].dtype)
         )
         deep = [torch.cat([f[1][layer] for f in feats]) for layer in range(len(feats[0][1]))]
+        # Sequences are right-padded, so under causal attention no real token sees a pad: without a
+        # cache the padding mask changes only the pads' own (unread) outputs, and leaving it out lets
+        # SDPA run its causal flash kernel with grouped-query heads instead of a masked kernel over
+        # repeated keys and values. A cache is kept for tokens appended after the pads: they need it.
         out = self.vlm.model.language_model(
             inputs_embeds=embeds,
-            attention_mask=seq["attention_mask"],
+            attention_mask=seq["attention_mask"] if use_cache else None,
             position_ids=seq["position_ids"],
             use_cache=use_cache,
             visual_pos_masks=mask,

@@ -15,7 +15,7 @@ from transformers.models.qwen3_vl.modeling_qwen3_vl import Qwen3VLVisionPatchEmb
 
 
 class LinearPatchEmbed(Qwen3VLVisionPatchEmbed):
-    """Qwen3-VL's patch embedding (same parameters) computed with ``F.linear``."""
+    """Qwen3-VL's patch embedding (same parameters) computed as a linear layer."""
 
     def forward(self, hidden_states: torch.Tensor) -> torch.Tensor:
         weight = self.proj.weight

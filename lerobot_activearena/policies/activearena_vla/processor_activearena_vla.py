@@ -133,6 +133,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
     device: str = "cpu"
     _processor: Any = field(default=None, init=False, repr=False)
     _min_pixels: int = field(default=0, init=False, repr=False)
+    _tokenized: dict = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self):
         from transformers import AutoProcessor
@@ -152,10 +153,17 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         return self._processor
 
     def _tokenize(self, texts: list[str]) -> tuple[torch.Tensor, torch.Tensor]:
-        tok = self._processor.tokenizer(
-            texts, padding=True, padding_side="right", return_tensors="pt", add_special_tokens=False
-        )
-        return tok["input_ids"], tok["attention_mask"].bool()
+        # an evaluation batch repeats the same instructions every env step: tokenised once
+        key = tuple(texts)
+        if key not in self._tokenized:
+            if len(self._tokenized) >= 256:
+                self._tokenized.clear()
+            tok = self._processor.tokenizer(
+                texts, padding=True, padding_side="right", return_tensors="pt", add_special_tokens=False
+            )
+            self._tokenized[key] = tok["input_ids"], tok["attention_mask"].bool()
+        ids, mask = self._tokenized[key]
+        return ids.clone(), mask.clone()
 
     def __call__(self, transition):
         obs = dict(transition[TransitionKey.OBSERVATION])
