@@ -56,6 +56,34 @@ def peak_memory(cuda: bool) -> str:
     return f"{resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20:.2f} GiB peak RSS"
 
 
+def make_optimizer(policy, fused: bool) -> torch.optim.AdamW:
+    """The paper's AdamW (the presets' betas, eps and weight decay); ``fused``: torch's fused kernel."""
+    extra = {"fused": True} if fused else {}
+    return torch.optim.AdamW(
+        policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8, **extra
+    )
+
+
+def train_step(policy, pre, opt, raw: dict, cuda: bool) -> tuple[float, float, dict]:
+    """One preprocess + forward + backward + AdamW step; returns its preprocessing and total seconds
+    (synchronised on CUDA) and the preprocessed batch."""
+    if cuda:
+        torch.cuda.synchronize()
+    t0 = time.perf_counter()
+    batch = pre(raw)
+    if cuda:
+        torch.cuda.synchronize()
+    t1 = time.perf_counter()
+    loss, _ = policy.forward(batch)
+    opt.zero_grad(set_to_none=True)
+    loss.backward()
+    torch.nn.utils.clip_grad_norm_(policy.parameters(), 1.0)
+    opt.step()
+    if cuda:
+        torch.cuda.synchronize()
+    return t1 - t0, time.perf_counter() - t0, batch
+
+
 def attention_kernels(vlm) -> str:
     """The backbone's attention implementation and, on CUDA, the SDPA kernels eligible for its text
     attention shapes in bfloat16 without and with a padding mask (PyTorch runs the first eligible of
@@ -119,10 +147,7 @@ def sweep(policy, pre, cfg, args) -> None:
     from lerobot_activearena.policies.activearena_vla.helpers import checkpoint_layers
 
     cuda = args.device.startswith("cuda")
-    fused = {"fused": True} if args.fused_adamw else {}
-    opt = torch.optim.AdamW(
-        policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8, **fused
-    )
+    opt = make_optimizer(policy, args.fused_adamw)
     policy.train()
     print(
         f"sweep: batch {args.batch_size}, K={args.history}, {args.steps} timed steps after one warm-up each"
@@ -140,25 +165,14 @@ def sweep(policy, pre, cfg, args) -> None:
             times, images = [], 0
             try:
                 for step in range(args.steps + 1):
-                    raw = next(feed)
-                    if cuda:
-                        torch.cuda.synchronize()
-                    t0 = time.perf_counter()
-                    batch = pre(raw)
-                    loss, _ = policy.forward(batch)
-                    opt.zero_grad(set_to_none=True)
-                    loss.backward()
-                    torch.nn.utils.clip_grad_norm_(policy.parameters(), 1.0)
-                    opt.step()
-                    if cuda:
-                        torch.cuda.synchronize()
-                    if step:
-                        times.append(time.perf_counter() - t0)
+                    _, seconds, batch = train_step(policy, pre, opt, next(feed), cuda)
+                    if step:  # the first step includes lazy initialisation
+                        times.append(seconds)
                     images = int(batch["observation.vlm.frame_valid"].sum())
                 step_s = sum(times) / len(times)
                 result = f"{step_s:.3f} s/step, {args.batch_size / step_s:.2f} samples/s"
             except torch.OutOfMemoryError:
-                loss = batch = None
+                batch = None
                 opt.zero_grad(set_to_none=True)
                 result = "out of memory"
             print(
@@ -334,49 +348,21 @@ def main() -> None:
             )
         )
     loader = batches
-    fused = {"fused": True} if args.fused_adamw else {}
-    opt = torch.optim.AdamW(
-        policy.get_optim_params(), betas=(0.9, 0.95), eps=1e-8, weight_decay=1e-8, **fused
-    )
+    opt = make_optimizer(policy, args.fused_adamw)
     cuda = args.device.startswith("cuda")
     policy.train()  # from_pretrained leaves the backbone in eval mode, where gradient checkpointing is off
     times, prep, images = [], [], 0
-
-    def train_step(raw):
-        batch = pre(raw)
-        loss, _ = policy.forward(batch)
-        opt.zero_grad()
-        loss.backward()
-        torch.nn.utils.clip_grad_norm_(policy.parameters(), 1.0)
-        opt.step()
-
     for step in range(args.steps + 1 if args.steps else 0):  # --steps 0: inference only
-        raw = next(loader)
-        if cuda:
-            torch.cuda.synchronize()
-        t0 = time.perf_counter()
-        batch = pre(raw)
-        if cuda:
-            torch.cuda.synchronize()
-        t1 = time.perf_counter()
-        loss, _ = policy.forward(batch)
-        opt.zero_grad()
-        loss.backward()
-        torch.nn.utils.clip_grad_norm_(policy.parameters(), 1.0)
-        opt.step()
-        if cuda:
-            torch.cuda.synchronize()
+        prep_s, seconds, batch = train_step(policy, pre, opt, next(loader), cuda)
         if step:  # the first step includes lazy initialisation
-            times.append(time.perf_counter() - t0)
-            prep.append(t1 - t0)
+            times.append(seconds)
+            prep.append(prep_s)
         images = int(batch["observation.vlm.frame_valid"].sum())
     if args.profile and args.steps:  # one more step, under the profiler (not in the times above)
         activities = [torch.profiler.ProfilerActivity.CPU]
         activities += [torch.profiler.ProfilerActivity.CUDA] if cuda else []
         with torch.profiler.profile(activities=activities) as prof:
-            train_step(next(loader))
-            if cuda:
-                torch.cuda.synchronize()
+            train_step(policy, pre, opt, next(loader), cuda)
         sort = "cuda_time_total" if cuda else "cpu_time_total"
         print(prof.key_averages().table(sort_by=sort, row_limit=25, max_name_column_width=60))
     n_params = sum(p.numel() for p in policy.parameters())
