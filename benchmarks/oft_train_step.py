@@ -152,11 +152,18 @@ def sweep(policy, pre, cfg, args) -> None:
     print(
         f"sweep: batch {args.batch_size}, K={args.history}, {args.steps} timed steps after one warm-up each"
     )
-    for layers in ("all", "vision", "language", "none"):
+    for layers, mode in (
+        ("all", "full"),
+        ("vision", "full"),
+        ("language", "full"),
+        ("all", "selective"),
+        ("vision", "selective"),
+        ("none", "full"),
+    ):
         if layers == "none":
             policy.vlm.gradient_checkpointing_disable()
         else:
-            checkpoint_layers(policy.vlm, layers)
+            checkpoint_layers(policy.vlm, layers, mode)
         for valid in (False, True):  # the same batches for every choice
             feed = synthetic_batches(cfg, args.batch_size, args.episode_frames, valid)
             if cuda:
@@ -176,7 +183,7 @@ def sweep(policy, pre, cfg, args) -> None:
                 opt.zero_grad(set_to_none=True)
                 result = "out of memory"
             print(
-                f"checkpointing {layers:>8}, {'all-valid' if valid else 'usual':>9} batch ({images:>3} images): "
+                f"checkpointing {layers:>8} {mode:>9}, {'all-valid' if valid else 'usual':>9} batch ({images:>3} images): "
                 f"{result}; peak {peak_memory(cuda)}",
                 flush=True,
             )
@@ -242,12 +249,19 @@ def main() -> None:
         default="all",
         help="with --gradient-checkpointing: the blocks that recompute (gradient_checkpointing_layers)",
     )
+    p.add_argument(
+        "--checkpoint-mode",
+        choices=["full", "selective"],
+        default="full",
+        help="with --gradient-checkpointing: recompute everything but the blocks' inputs, or keep their "
+        "matmul and attention outputs (gradient_checkpointing_mode)",
+    )
     p.add_argument("--fused-adamw", action="store_true", help="torch's fused AdamW kernel (CUDA)")
     p.add_argument(
         "--sweep",
         action="store_true",
         help="--synthetic: one model, then --steps timed steps for each checkpointing choice (all, vision, "
-        "language, none) with the usual and the all-valid batch; peak memory of each (OOM is reported)",
+        "language in full; all, vision selectively; none) with the usual and the all-valid batch; peak memory of each (OOM is reported)",
     )
     p.add_argument(
         "--profile", action="store_true", help="print the top operators of one training step (torch.profiler)"
@@ -318,6 +332,7 @@ def main() -> None:
         think=think,
         gradient_checkpointing=args.gradient_checkpointing,
         gradient_checkpointing_layers=args.checkpoint_layers,
+        gradient_checkpointing_mode=args.checkpoint_mode,
         dtype=args.dtype,
         weights_dtype=args.weights_dtype,
         subtask_max_tokens=args.decode_tokens,
@@ -379,7 +394,11 @@ def main() -> None:
     print(
         f"precision: {'bfloat16 autocast' if cfg.autocast_bfloat16 else 'float32'} compute, "
         f"{next(policy.vlm.parameters()).dtype} weights; gradient checkpointing "
-        + (f"of {args.checkpoint_layers} layers" if args.gradient_checkpointing else "off")
+        + (
+            f"of {args.checkpoint_layers} layers, {args.checkpoint_mode}"
+            if args.gradient_checkpointing
+            else "off"
+        )
         + ("; fused AdamW" if args.fused_adamw else "")
     )
     print(f"attention: {attention_kernels(policy.vlm)}")

@@ -557,14 +557,21 @@ def _loss_and_grads(vlm, root, **checkpointing):
     )
 
 
-@pytest.mark.parametrize("layers", ["all", "vision", "language"])
-def test_gradient_checkpointing_of_some_layers_gives_the_same_gradients(vlm, root, layers):
+@pytest.mark.parametrize(
+    "layers,mode", [("all", "full"), ("vision", "full"), ("language", "full"), ("all", "selective")]
+)
+def test_gradient_checkpointing_of_some_layers_gives_the_same_gradients(vlm, root, layers, mode):
     """gradient_checkpointing_layers picks the blocks that recompute (vision tower, language model or
-    both); the loss and every gradient equal those of the step without checkpointing."""
+    both), in full or selectively; the loss and every gradient equal those of the step without
+    checkpointing."""
     _, loss, grads, flags = _loss_and_grads(vlm, root)
     assert not any(flags.values())
     _, ck_loss, ck_grads, ck_flags = _loss_and_grads(
-        vlm, root, gradient_checkpointing=True, gradient_checkpointing_layers=layers
+        vlm,
+        root,
+        gradient_checkpointing=True,
+        gradient_checkpointing_layers=layers,
+        gradient_checkpointing_mode=mode,
     )
     vision = ck_flags["model.visual.blocks.0"]
     language = ck_flags["model.language_model.layers.0"]
@@ -577,6 +584,38 @@ def test_gradient_checkpointing_of_some_layers_gives_the_same_gradients(vlm, roo
         assert torch.allclose(ck_grads[name], g, atol=1e-6, rtol=1e-4), name
     with pytest.raises(ValueError, match="gradient_checkpointing_layers must be one of"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_layers="mlp")
+    with pytest.raises(ValueError, match="gradient_checkpointing_mode must be one of"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_mode="some")
+
+
+def _backward_matmuls(vlm, root, **checkpointing) -> int:
+    """Matrix multiplies run by one training step's backward pass (gradients plus any recomputation)."""
+    from torch.utils._python_dispatch import TorchDispatchMode
+
+    class CountMatmuls(TorchDispatchMode):
+        n = 0
+
+        def __torch_dispatch__(self, func, types, args=(), kwargs=None):
+            CountMatmuls.n += func.overloadpacket.__name__ in ("mm", "addmm", "bmm")
+            return func(*args, **(kwargs or {}))
+
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask", **checkpointing)
+    policy.train()
+    loss, _ = policy.forward(collate(ds, pre, [20, len(ds) - 40]))
+    with CountMatmuls():
+        loss.backward()
+    return CountMatmuls.n
+
+
+def test_selective_checkpointing_recomputes_no_matmul(vlm, root):
+    """Selective checkpointing keeps the matrix multiplies' outputs: its backward pass runs as many
+    as the step without checkpointing, full checkpointing's runs the forward's again."""
+    plain = _backward_matmuls(vlm, root)
+    full = _backward_matmuls(vlm, root, gradient_checkpointing=True)
+    selective = _backward_matmuls(
+        vlm, root, gradient_checkpointing=True, gradient_checkpointing_mode="selective"
+    )
+    assert selective == plain < full
 
 
 def test_precision_defaults_follow_the_device():

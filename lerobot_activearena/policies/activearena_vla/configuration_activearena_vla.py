@@ -25,6 +25,7 @@ MEMORY_ABLATIONS = ("none", "blank")
 DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
 CHECKPOINT_LAYERS = ("all", "vision", "language")
+CHECKPOINT_MODES = ("full", "selective")
 WEIGHT_DTYPES = ("float32", "bfloat16")
 VIEW_DIMS = slice(TORSO_YAW, HEAD_PITCH + 1)  # the active-viewpoint dimensions: the action's last two
 
@@ -60,6 +61,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # on: all | vision (the vision tower's: it holds most activations, 4 patches per merged token of 13
     # images a sample) | language (the language model's decoder layers)
     gradient_checkpointing_layers: str = "all"
+    # What those blocks recompute: full (everything but their input: the least memory) | selective
+    # (they keep their matrix multiplies' and attention's outputs and recompute only norms, activations,
+    # rotary embeddings and casts: most of full's saving at a small part of its recompute time).
+    gradient_checkpointing_mode: str = "full"
     # Compute precision: auto (bfloat16 autocast on CUDA, float32 elsewhere) | float32 | bfloat16. The
     # parameters stay float32 (master weights: AdamW's small updates are kept, as DeepSpeed ZeRO-2 does
     # in the paper's run) unless weights_dtype=bfloat16, which halves their memory but rounds most
@@ -118,6 +123,7 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             ("attn_implementation", ATTENTION),
             ("memory_ablation", MEMORY_ABLATIONS),
             ("gradient_checkpointing_layers", CHECKPOINT_LAYERS),
+            ("gradient_checkpointing_mode", CHECKPOINT_MODES),
         ):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")

@@ -26,10 +26,40 @@ def weights_dtype(config: ActiveArenaVLAConfig) -> torch.dtype:
     return torch.float32
 
 
-def checkpoint_layers(vlm, layers: str) -> None:
-    """Gradient checkpointing of Qwen3-VL's ``layers`` (all | vision | language): those blocks keep
-    only their inputs and recompute the rest in the backward pass."""
-    vlm.gradient_checkpointing_enable()
+# What a selectively checkpointed block keeps: the outputs of its matrix multiplies and attention (the
+# compute); its norms, activations, rotary embeddings and casts are recomputed from them.
+SAVED_OPS = (
+    "mm",
+    "addmm",
+    "bmm",
+    "baddbmm",
+    "_scaled_dot_product_flash_attention",
+    "_scaled_dot_product_efficient_attention",
+    "_scaled_dot_product_cudnn_attention",
+    "_scaled_dot_product_flash_attention_for_cpu",
+)
+
+
+def _keep_compute(ctx, op, *args, **kwargs):
+    from torch.utils.checkpoint import CheckpointPolicy
+
+    name = op.overloadpacket.__name__ if hasattr(op, "overloadpacket") else ""
+    return CheckpointPolicy.MUST_SAVE if name in SAVED_OPS else CheckpointPolicy.PREFER_RECOMPUTE
+
+
+def checkpoint_layers(vlm, layers: str, mode: str = "full") -> None:
+    """Gradient checkpointing of Qwen3-VL's ``layers`` (all | vision | language). ``mode`` full: those
+    blocks keep only their inputs and recompute the rest in the backward pass; selective: they also keep
+    the outputs of their matrix multiplies and attention (``SAVED_OPS``) and recompute only the cheap
+    element-wise work (PyTorch's selective activation checkpointing)."""
+    kwargs = {"use_reentrant": False}
+    if mode == "selective":
+        from torch.utils.checkpoint import create_selective_checkpoint_contexts
+
+        kwargs["context_fn"] = functools.partial(create_selective_checkpoint_contexts, _keep_compute)
+    elif mode != "full":
+        raise ValueError(f"checkpointing mode must be 'full' or 'selective', got {mode!r}")
+    vlm.gradient_checkpointing_enable(gradient_checkpointing_kwargs=kwargs)
     if layers == "all":
         return
     part = {"vision": vlm.model.visual, "language": vlm.model.language_model}[layers]

@@ -63,7 +63,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         patch_embed_as_linear(self.vlm)
         batch_vision_attention(self.vlm)
         if config.gradient_checkpointing:
-            checkpoint_layers(self.vlm, config.gradient_checkpointing_layers)
+            checkpoint_layers(
+                self.vlm, config.gradient_checkpointing_layers, config.gradient_checkpointing_mode
+            )
         vc = self.vlm.config
         width = vc.text_config.hidden_size
         self.max_frames = config.history + 1
