@@ -130,6 +130,9 @@ def main() -> None:
     p.add_argument("--episode-frames", type=int, default=166)
     p.add_argument("--vision-depth", type=int, default=3)
     p.add_argument("--text-layers", type=int, default=2)
+    p.add_argument(
+        "--unpad-language-model", action="store_true", help="the language model once per sample (no pads)"
+    )
     p.add_argument("--top", type=int, default=12, help="rows of the by-operator table")
     args = p.parse_args()
 
@@ -142,13 +145,27 @@ def main() -> None:
 
     torch.manual_seed(0)
     vlm = write_cut_2b(Path(tempfile.mkdtemp(prefix="aa_act_mem_")), args.vision_depth, args.text_layers)
-    cfg = ActiveArenaOFTConfig(vlm_path=str(vlm), device="cpu", history=args.history, dtype="bfloat16")
+    cfg = ActiveArenaOFTConfig(
+        vlm_path=str(vlm),
+        device="cpu",
+        history=args.history,
+        dtype="bfloat16",
+        unpad_language_model=args.unpad_language_model,
+    )
     cfg.think = "instruction"  # synthetic batches have no subtask annotations: a span of similar length
     policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
     policy.train()
     model = policy.vlm.model
     blocks, layers = list(model.visual.blocks), list(model.language_model.layers)
     counter = SavedBytes(policy, {"vision block": blocks, "language layer": layers})
+    assemble, shapes = policy.assemble, []
+
+    def assemble_and_record(*a, **k):
+        seq = assemble(*a, **k)
+        shapes.append((seq["kind"].numel(), int((seq["kind"] >= 0).sum())))
+        return seq
+
+    policy.assemble = assemble_and_record
     batch = pre(next(batches))
     images = int(batch["observation.vlm.frame_valid"].sum())
     with torch.autograd.graph.saved_tensors_hooks(counter.pack, lambda t: t), counter.kept_by_selective():
@@ -199,10 +216,10 @@ def main() -> None:
             f"{text / GIB:5.1f}, rest {rest / GIB:4.1f}, recompute {recompute / GIB:4.1f})"
         )
     print(f"saved bytes by region, dtype and the operator that made them (top {args.top}):")
-    rows = sorted(counter.by_kind.items(), key=lambda kv: -kv[1])[: args.top]
     scale = {"vision block": depth / len(blocks), "language layer": n_layers / len(layers), "rest": 1}
-    for (region, dtype, op), nbytes in rows:
-        print(f"  {region:>14} {dtype:>8} {op:<32} {nbytes * scale[region] / GIB:6.2f} GiB at full depth")
+    rows = sorted(((k, v * scale[k[0]]) for k, v in counter.by_kind.items()), key=lambda kv: -kv[1])
+    for (region, dtype, op), nbytes in rows[: args.top]:
+        print(f"  {region:>14} {dtype:>8} made by {op:<28} {nbytes / GIB:6.2f} GiB at full depth")
 
 
 if __name__ == "__main__":

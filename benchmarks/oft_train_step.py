@@ -84,6 +84,22 @@ def train_step(policy, pre, opt, raw: dict, cuda: bool) -> tuple[float, float, d
     return t1 - t0, time.perf_counter() - t0, batch
 
 
+def with_padding_mask(policy) -> None:
+    """Give the language model the padding mask in training too (the A/B of ``run_backbone``, which
+    leaves it out without a KV cache so that SDPA may pick its causal flash kernel)."""
+    lm, run = policy.vlm.model.language_model, policy.run_backbone
+    forward = lm.forward
+
+    def run_backbone(seq, *args, **kwargs):
+        lm.forward = lambda **kw: forward(**{**kw, "attention_mask": seq["attention_mask"]})
+        try:
+            return run(seq, *args, **kwargs)
+        finally:
+            del lm.forward
+
+    policy.run_backbone = run_backbone
+
+
 def attention_kernels(vlm) -> str:
     """The backbone's attention implementation and, on CUDA, the SDPA kernels eligible for its text
     attention shapes in bfloat16 without and with a padding mask (PyTorch runs the first eligible of
@@ -256,6 +272,16 @@ def main() -> None:
         help="with --gradient-checkpointing: recompute everything but the blocks' inputs, or keep their "
         "matmul and attention outputs (gradient_checkpointing_mode)",
     )
+    p.add_argument(
+        "--unpad-language-model",
+        action="store_true",
+        help="the language model once per sample at its own length (unpad_language_model)",
+    )
+    p.add_argument(
+        "--padding-mask",
+        action="store_true",
+        help="pass the padding mask to the language model in training (A/B of leaving it out)",
+    )
     p.add_argument("--fused-adamw", action="store_true", help="torch's fused AdamW kernel (CUDA)")
     p.add_argument(
         "--sweep",
@@ -333,6 +359,7 @@ def main() -> None:
         gradient_checkpointing=args.gradient_checkpointing,
         gradient_checkpointing_layers=args.checkpoint_layers,
         gradient_checkpointing_mode=args.checkpoint_mode,
+        unpad_language_model=args.unpad_language_model,
         dtype=args.dtype,
         weights_dtype=args.weights_dtype,
         subtask_max_tokens=args.decode_tokens,
@@ -344,6 +371,8 @@ def main() -> None:
             )
         policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
         ds = None
+        if args.padding_mask:
+            with_padding_mask(policy)
         if args.sweep:
             return sweep(policy, pre, cfg, args)
     else:
@@ -400,6 +429,8 @@ def main() -> None:
             else "off"
         )
         + ("; fused AdamW" if args.fused_adamw else "")
+        + ("; padding mask in training" if args.padding_mask else "")
+        + ("; language model per sample (unpadded)" if args.unpad_language_model else "")
     )
     print(f"attention: {attention_kernels(policy.vlm)}")
     if times:

@@ -588,6 +588,32 @@ def test_gradient_checkpointing_of_some_layers_gives_the_same_gradients(vlm, roo
         ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_mode="some")
 
 
+def test_unpadded_language_model_gives_the_same_loss_and_gradients(vlm, root):
+    """unpad_language_model runs the language model once per sample over its own tokens: no pad
+    position is computed, and the loss and every gradient equal the padded batch's."""
+    _, loss, grads, _ = _loss_and_grads(vlm, root)
+    _, policy, pre, _, ds = _setup(
+        vlm, root, memory="chunk", history=2, think="subtask", unpad_language_model=True
+    )
+    policy.train()
+    calls = []
+    policy.vlm.model.language_model.register_forward_pre_hook(
+        lambda _m, _a, kw: calls.append(kw["inputs_embeds"].shape[:2]), with_kwargs=True
+    )
+    batch = collate(ds, pre, [20, len(ds) - 40])
+    seq = policy.assemble(*policy.training_args(batch))
+    lengths = (seq["kind"] >= 0).sum(1).tolist()
+    assert len(set(lengths)) == 2  # the two samples' memories differ: the padded batch has pads
+    calls.clear()
+    un_loss, _ = policy.forward(batch)
+    un_loss.backward()
+    assert [tuple(c) for c in calls] == [(1, n) for n in lengths]
+    assert float(un_loss.detach()) == pytest.approx(loss, rel=1e-5)
+    for name, p in policy.named_parameters():
+        if p.grad is not None:
+            assert torch.allclose(p.grad, grads[name], atol=1e-6, rtol=1e-4), name
+
+
 def _backward_matmuls(vlm, root, **checkpointing) -> int:
     """Matrix multiplies run by one training step's backward pass (gradients plus any recomputation)."""
     from torch.utils._python_dispatch import TorchDispatchMode

@@ -65,6 +65,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # (they keep their matrix multiplies' and attention's outputs and recompute only norms, activations,
     # rotary embeddings and casts: most of full's saving at a small part of its recompute time).
     gradient_checkpointing_mode: str = "full"
+    # Run the language model once per sample over its own tokens instead of once over the batch padded
+    # to its longest sample (training and uncached decoding): the same outputs without computing or
+    # keeping the pads, which are a fifth to a half of the positions when the samples' memories differ.
+    unpad_language_model: bool = False
     # Compute precision: auto (bfloat16 autocast on CUDA, float32 elsewhere) | float32 | bfloat16. The
     # parameters stay float32 (master weights: AdamW's small updates are kept, as DeepSpeed ZeRO-2 does
     # in the paper's run) unless weights_dtype=bfloat16, which halves their memory but rounds most

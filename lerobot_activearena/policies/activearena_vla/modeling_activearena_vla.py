@@ -17,6 +17,7 @@ import torch
 from lerobot.policies.pretrained import PreTrainedPolicy
 from lerobot.utils.constants import OBS_STATE
 from torch import Tensor, nn
+from transformers.modeling_outputs import BaseModelOutputWithPast
 
 from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_vla import ActiveArenaVLAConfig
@@ -229,6 +230,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         # cache the padding mask changes only the pads' own (unread) outputs, and leaving it out lets
         # SDPA run its causal flash kernel with grouped-query heads instead of a masked kernel over
         # repeated keys and values. A cache is kept for tokens appended after the pads: they need it.
+        if self.config.unpad_language_model and not use_cache and len(embeds) > 1:
+            return self.language_model_per_sample(embeds, seq, mask, deep), feats
         out = self.vlm.model.language_model(
             inputs_embeds=embeds,
             attention_mask=seq["attention_mask"] if use_cache else None,
@@ -238,6 +241,27 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             deepstack_visual_embeds=deep,
         )
         return out, feats
+
+    def language_model_per_sample(self, embeds: Tensor, seq: dict, mask: Tensor, deep: list):
+        """The language model once per sample over its own tokens (``unpad_language_model``): no pad
+        position is computed or kept for the backward pass. Same outputs as the padded batch (causal
+        attention over right-padded rows); the pads' rows are zeros."""
+        lengths, position_ids = (seq["kind"] >= 0).sum(1), seq["position_ids"]
+        rows, start = [], 0
+        for b, n in enumerate(lengths.tolist()):
+            images = int(mask[b, :n].sum())
+            out = self.vlm.model.language_model(
+                inputs_embeds=embeds[b : b + 1, :n],
+                position_ids=position_ids[:, b : b + 1, :n],
+                use_cache=False,
+                visual_pos_masks=mask[b : b + 1, :n],
+                deepstack_visual_embeds=[d[start : start + images] for d in deep],
+            )
+            start += images
+            rows.append(out.last_hidden_state[0])
+        hidden = torch.nn.utils.rnn.pad_sequence(rows, batch_first=True)
+        hidden = nn.functional.pad(hidden, (0, 0, 0, embeds.shape[1] - hidden.shape[1]))
+        return BaseModelOutputWithPast(last_hidden_state=hidden)
 
     def encode(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor | None]:
         """Returns the (B, chunk, predicted_action_dim) prediction and, when a think span is given, its
