@@ -133,6 +133,9 @@ def main() -> None:
     p.add_argument(
         "--unpad-language-model", action="store_true", help="the language model once per sample (no pads)"
     )
+    p.add_argument(
+        "--padding-batches", type=int, default=50, help="batches over which the mean padding share is taken"
+    )
     p.add_argument("--top", type=int, default=12, help="rows of the by-operator table")
     args = p.parse_args()
 
@@ -172,6 +175,10 @@ def main() -> None:
         loss, _ = policy.forward(batch)
     counter.close()
     del loss
+    with torch.no_grad():  # the padding share over more batches (sequences assembled, no forward pass)
+        for _ in range(args.padding_batches):
+            policy.assemble(*policy.training_args(pre(next(batches))))
+    mean_padding = 1 - sum(r for _, r in shapes[1:]) / max(1, sum(n for n, _ in shapes[1:]))
 
     depth, n_layers = QWEN3_VL_2B["vision"]["depth"], QWEN3_VL_2B["text"]["num_hidden_layers"]
     per_block = counter.by_region["vision block"] / len(blocks)
@@ -189,6 +196,16 @@ def main() -> None:
     print(
         f"batch {args.batch_size}, K = {args.history}, {'all-valid' if args.all_valid else 'usual'} batch: "
         f"{images} images; bfloat16 autocast over float32 weights (the presets' precision)"
+    )
+    padded, real = shapes[0]
+    print(
+        f"language model: {real} real tokens in {padded} positions of the padded batch ({1 - real / padded:.0%} "
+        f"padding; {mean_padding:.0%} over the next {args.padding_batches} batches); "
+        + (
+            "run once per sample: pads not computed"
+            if args.unpad_language_model
+            else "all positions computed"
+        )
     )
     print(
         f"weights + gradients + AdamW moments ({n_params / 1e9:.2f} B parameters, float32): {static / GIB:.1f} GiB"
