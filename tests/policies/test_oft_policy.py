@@ -808,6 +808,17 @@ def test_small_presets_differ_only_in_their_memory():
     assert chunk["policy"]["scheduler_decay_steps"] == chunk["steps"]
 
 
+def test_small_jitter_preset_adds_only_act_cpu_jitter_colour_jitter():
+    """oft_subtask_action_12_ws_jitter: the chunk-12 preset with the image transforms of ACT's
+    colour-jitter preset, nothing else changed."""
+    base = json.loads((CONFIGS / "small" / "oft_subtask_action_12_ws.json").read_text())
+    jitter = json.loads((CONFIGS / "small" / "oft_subtask_action_12_ws_jitter.json").read_text())
+    act = json.loads((CONFIGS / "baselines" / "act_cpu_jitter.json").read_text())
+    assert jitter["dataset"] == dict(base["dataset"], image_transforms=act["dataset"]["image_transforms"])
+    assert {"brightness", "hue"} <= set(jitter["dataset"]["image_transforms"]["tfs"])
+    assert {k for k in jitter if jitter[k] != base[k]} == {"dataset", "job_name"}
+
+
 def test_small_presets_at_192_x_256_differ_only_in_the_image(tmp_path):
     """The _p32 pair reads 192 x 256 frames (where the buttons' digits are legible) with a 32 px patch
     backbone: the same 12 tokens per image as the 96 x 128 pair, nothing else changed."""
