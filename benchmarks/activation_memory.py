@@ -131,6 +131,12 @@ def main() -> None:
     p.add_argument("--vision-depth", type=int, default=3)
     p.add_argument("--text-layers", type=int, default=2)
     p.add_argument(
+        "--residual-dtype",
+        choices=["float32", "compute"],
+        default="float32",
+        help="the backbone's residual streams under bfloat16 compute (residual_dtype)",
+    )
+    p.add_argument(
         "--unpad-language-model", action="store_true", help="the language model once per sample (no pads)"
     )
     p.add_argument(
@@ -138,6 +144,8 @@ def main() -> None:
     )
     p.add_argument("--top", type=int, default=12, help="rows of the by-operator table")
     args = p.parse_args()
+    if args.padding_batches < 1:
+        p.error("--padding-batches must be >= 1")
 
     from oft_train_step import synthetic_setup
 
@@ -154,6 +162,7 @@ def main() -> None:
         history=args.history,
         dtype="bfloat16",
         unpad_language_model=args.unpad_language_model,
+        residual_dtype=args.residual_dtype,
     )
     cfg.think = "instruction"  # synthetic batches have no subtask annotations: a span of similar length
     policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
@@ -178,7 +187,7 @@ def main() -> None:
     with torch.no_grad():  # the padding share over more batches (sequences assembled, no forward pass)
         for _ in range(args.padding_batches):
             policy.assemble(*policy.training_args(pre(next(batches))))
-    mean_padding = 1 - sum(r for _, r in shapes[1:]) / max(1, sum(n for n, _ in shapes[1:]))
+    mean_padding = 1 - sum(r for _, r in shapes[1:]) / sum(n for n, _ in shapes[1:])
 
     depth, n_layers = QWEN3_VL_2B["vision"]["depth"], QWEN3_VL_2B["text"]["num_hidden_layers"]
     per_block = counter.by_region["vision block"] / len(blocks)
@@ -195,7 +204,8 @@ def main() -> None:
 
     print(
         f"batch {args.batch_size}, K = {args.history}, {'all-valid' if args.all_valid else 'usual'} batch: "
-        f"{images} images; bfloat16 autocast over float32 weights (the presets' precision)"
+        f"{images} images; bfloat16 autocast over float32 weights (the presets' precision), residual streams "
+        f"{args.residual_dtype}"
     )
     padded, real = shapes[0]
     print(

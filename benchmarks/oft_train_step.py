@@ -273,6 +273,12 @@ def main() -> None:
         "matmul and attention outputs (gradient_checkpointing_mode)",
     )
     p.add_argument(
+        "--residual-dtype",
+        choices=["float32", "compute"],
+        default="float32",
+        help="the backbone's residual streams under bfloat16 compute (residual_dtype)",
+    )
+    p.add_argument(
         "--unpad-language-model",
         action="store_true",
         help="the language model once per sample at its own length (unpad_language_model)",
@@ -360,6 +366,7 @@ def main() -> None:
         gradient_checkpointing_layers=args.checkpoint_layers,
         gradient_checkpointing_mode=args.checkpoint_mode,
         unpad_language_model=args.unpad_language_model,
+        residual_dtype=args.residual_dtype,
         dtype=args.dtype,
         weights_dtype=args.weights_dtype,
         subtask_max_tokens=args.decode_tokens,
@@ -431,6 +438,7 @@ def main() -> None:
         + ("; fused AdamW" if args.fused_adamw else "")
         + ("; padding mask in training" if args.padding_mask else "")
         + ("; language model per sample (unpadded)" if args.unpad_language_model else "")
+        + f"; residual streams {args.residual_dtype}"
     )
     print(f"attention: {attention_kernels(policy.vlm)}")
     if times:

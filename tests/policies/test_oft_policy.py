@@ -614,6 +614,29 @@ def test_unpadded_language_model_gives_the_same_loss_and_gradients(vlm, root):
             assert torch.allclose(p.grad, grads[name], atol=1e-6, rtol=1e-4), name
 
 
+def test_residual_dtype_compute_keeps_the_streams_in_bfloat16(vlm, root):
+    """residual_dtype=compute: under bfloat16 autocast the vision blocks and decoder layers receive
+    bfloat16 hidden states (float32 by default); the loss stays within bfloat16 rounding of the
+    float32 stream's and every gradient is finite."""
+    losses, seen = {}, {}
+    for residual in ("float32", "compute"):
+        _, policy, pre, _, ds = _setup(
+            vlm, root, memory="chunk", history=2, think="subtask", dtype="bfloat16", residual_dtype=residual
+        )
+        policy.train()
+        dtypes = []
+        for module in (policy.vlm.model.visual.blocks[-1], policy.vlm.model.language_model.layers[-1]):
+            module.register_forward_pre_hook(lambda _m, args, seen=dtypes: seen.append(args[0].dtype))
+        loss, _ = policy.forward(collate(ds, pre, [20, len(ds) - 40]))
+        loss.backward()
+        assert all(torch.isfinite(p.grad).all() for p in policy.parameters() if p.grad is not None)
+        losses[residual], seen[residual] = float(loss.detach()), set(dtypes)
+    assert seen == {"float32": {torch.float32}, "compute": {torch.bfloat16}}
+    assert losses["compute"] == pytest.approx(losses["float32"], rel=0.05)
+    with pytest.raises(ValueError, match="residual_dtype must be one of"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), residual_dtype="bfloat16")
+
+
 def _backward_matmuls(vlm, root, **checkpointing) -> int:
     """Matrix multiplies run by one training step's backward pass (gradients plus any recomputation)."""
     from torch.utils._python_dispatch import TorchDispatchMode

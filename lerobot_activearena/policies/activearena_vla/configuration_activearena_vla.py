@@ -26,6 +26,7 @@ DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
 CHECKPOINT_LAYERS = ("all", "vision", "language")
 CHECKPOINT_MODES = ("full", "selective")
+RESIDUAL_DTYPES = ("float32", "compute")
 WEIGHT_DTYPES = ("float32", "bfloat16")
 VIEW_DIMS = slice(TORSO_YAW, HEAD_PITCH + 1)  # the active-viewpoint dimensions: the action's last two
 
@@ -75,6 +76,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # updates at lr 1e-5 away (warned).
     dtype: str = "auto"
     weights_dtype: str = "float32"
+    # The backbone's residual streams under bfloat16 compute: float32 (the embeddings' dtype: every
+    # addition, norm input and kept block input in float32) | compute (bfloat16, as the paper's
+    # bfloat16 training has them; half their memory and traffic).
+    residual_dtype: str = "float32"
     # The backbone's attention kernel: sdpa (PyTorch's fused scaled-dot-product attention: flash or
     # memory-efficient kernels on CUDA) | flash_attention_2 (needs the flash-attn package) | eager.
     attn_implementation: str = "sdpa"
@@ -128,6 +133,7 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             ("memory_ablation", MEMORY_ABLATIONS),
             ("gradient_checkpointing_layers", CHECKPOINT_LAYERS),
             ("gradient_checkpointing_mode", CHECKPOINT_MODES),
+            ("residual_dtype", RESIDUAL_DTYPES),
         ):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")

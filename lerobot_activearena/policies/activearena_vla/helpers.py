@@ -69,6 +69,29 @@ def checkpoint_layers(vlm, layers: str, mode: str = "full") -> None:
             module.gradient_checkpointing = False
 
 
+def residual_in_compute_dtype(vlm) -> None:
+    """Under autocast, start the vision tower's and the language model's residual streams in the
+    compute dtype (bfloat16) instead of float32 (the embeddings' dtype): their additions, norms'
+    inputs and blocks' kept inputs are then half the bytes, as when the model's weights are bfloat16."""
+
+    def to_compute_dtype(t: Tensor) -> Tensor:
+        device = t.device.type
+        if t.is_floating_point() and torch.is_autocast_enabled(device):
+            return t.to(torch.get_autocast_dtype(device))
+        return t
+
+    def vision(_module, args, kwargs):
+        return (to_compute_dtype(args[0]), *args[1:]), kwargs
+
+    def language(_module, args, kwargs):
+        if kwargs.get("inputs_embeds") is not None:
+            kwargs["inputs_embeds"] = to_compute_dtype(kwargs["inputs_embeds"])
+        return args, kwargs
+
+    vlm.model.visual.blocks[0].register_forward_pre_hook(vision, with_kwargs=True)
+    vlm.model.language_model.register_forward_pre_hook(language, with_kwargs=True)
+
+
 def in_precision(method):
     """Run a policy ``method`` under the policy's autocast (bfloat16 compute over float32 weights when
     ``config.autocast_bfloat16``)."""

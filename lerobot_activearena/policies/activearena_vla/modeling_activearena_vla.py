@@ -21,7 +21,14 @@ from transformers.modeling_outputs import BaseModelOutputWithPast
 
 from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_vla import ActiveArenaVLAConfig
-from .helpers import blank_entry, checkpoint_layers, in_precision, stack_frames, weights_dtype
+from .helpers import (
+    blank_entry,
+    checkpoint_layers,
+    in_precision,
+    residual_in_compute_dtype,
+    stack_frames,
+    weights_dtype,
+)
 from .processor_activearena_vla import (
     FRAME_VALID,
     GRID,
@@ -63,6 +70,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
 
         patch_embed_as_linear(self.vlm)
         batch_vision_attention(self.vlm)
+        if config.residual_dtype == "compute":
+            residual_in_compute_dtype(self.vlm)
         if config.gradient_checkpointing:
             checkpoint_layers(
                 self.vlm, config.gradient_checkpointing_layers, config.gradient_checkpointing_mode
