@@ -123,6 +123,8 @@ def full_2b_parameters() -> int:
 
 
 def main() -> None:
+    from oft_train_step import add_memory_options
+
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--batch-size", type=int, default=7)
     p.add_argument("--history", type=int, default=12)
@@ -130,15 +132,7 @@ def main() -> None:
     p.add_argument("--episode-frames", type=int, default=166)
     p.add_argument("--vision-depth", type=int, default=3)
     p.add_argument("--text-layers", type=int, default=2)
-    p.add_argument(
-        "--residual-dtype",
-        choices=["float32", "compute"],
-        default="float32",
-        help="the backbone's residual streams under bfloat16 compute (residual_dtype)",
-    )
-    p.add_argument(
-        "--unpad-language-model", action="store_true", help="the language model once per sample (no pads)"
-    )
+    add_memory_options(p)
     p.add_argument(
         "--padding-batches", type=int, default=50, help="batches over which the mean padding share is taken"
     )

@@ -84,6 +84,21 @@ def train_step(policy, pre, opt, raw: dict, cuda: bool) -> tuple[float, float, d
     return t1 - t0, time.perf_counter() - t0, batch
 
 
+def add_memory_options(p: argparse.ArgumentParser) -> None:
+    """The policy options that change a training step's memory, shared with activation_memory.py."""
+    p.add_argument(
+        "--residual-dtype",
+        choices=["float32", "compute"],
+        default="float32",
+        help="the backbone's residual streams under bfloat16 compute (residual_dtype)",
+    )
+    p.add_argument(
+        "--unpad-language-model",
+        action="store_true",
+        help="the language model once per sample at its own length (unpad_language_model)",
+    )
+
+
 def with_padding_mask(policy) -> None:
     """Give the language model the padding mask in training too (the A/B of ``run_backbone``, which
     leaves it out without a KV cache so that SDPA may pick its causal flash kernel)."""
@@ -272,17 +287,7 @@ def main() -> None:
         help="with --gradient-checkpointing: recompute everything but the blocks' inputs, or keep their "
         "matmul and attention outputs (gradient_checkpointing_mode)",
     )
-    p.add_argument(
-        "--residual-dtype",
-        choices=["float32", "compute"],
-        default="float32",
-        help="the backbone's residual streams under bfloat16 compute (residual_dtype)",
-    )
-    p.add_argument(
-        "--unpad-language-model",
-        action="store_true",
-        help="the language model once per sample at its own length (unpad_language_model)",
-    )
+    add_memory_options(p)
     p.add_argument(
         "--padding-mask",
         action="store_true",
