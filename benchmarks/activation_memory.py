@@ -149,7 +149,8 @@ def main() -> None:
     from lerobot_activearena.policies.activearena_vla.tiny_vlm import QWEN3_VL_2B
 
     torch.manual_seed(0)
-    vlm = write_cut_2b(Path(tempfile.mkdtemp(prefix="aa_act_mem_")), args.vision_depth, args.text_layers)
+    tmp = tempfile.TemporaryDirectory(prefix="aa_act_mem_")  # the cut model: ~2 GB, removed at exit
+    vlm = write_cut_2b(Path(tmp.name), args.vision_depth, args.text_layers)
     cfg = ActiveArenaOFTConfig(
         vlm_path=str(vlm),
         device="cpu",
