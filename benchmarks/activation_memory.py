@@ -123,7 +123,7 @@ def full_2b_parameters() -> int:
 
 
 def main() -> None:
-    from oft_train_step import add_memory_options
+    from oft_train_step import add_memory_options, synthetic_setup
 
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--batch-size", type=int, default=7)
@@ -140,8 +140,6 @@ def main() -> None:
     args = p.parse_args()
     if args.padding_batches < 1:
         p.error("--padding-batches must be >= 1")
-
-    from oft_train_step import synthetic_setup
 
     from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import (
         ActiveArenaOFTConfig,
