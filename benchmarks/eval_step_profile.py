@@ -5,6 +5,9 @@ worker), with timers around each part of LeRobot's rollout loop.
         --policy.device=cuda --tasks=click_bell_rotate_view --episodes 16 --batch-size 16 --async-envs \
         --videos 0 --out /tmp/profile_run --overwrite
 
+``--eager-frames`` processes every env step's frames in the preprocessor (the policy otherwise runs
+the image processor only at chunk boundaries and memory writes): the A/B of that deferral.
+
 Everything after ``--`` goes to activearena-eval (``--workers`` is forced to 1, so the shard runs here).
 Prints, per part, the seconds over all rollouts, the milliseconds per vector step and the share of
 the rollouts' wall time, then env steps/s (vector steps x envs, as LeRobot steps every env until all
@@ -59,6 +62,7 @@ PARTS = {
     "pre": "policy preprocessor (image processor, tokenizer, normalise, to device)",
     "select_action": "policy.select_action (with its new chunks)",
     "predict_action_chunk": "  of which new chunks (predict_action_chunk)",
+    "ensure_pixels": "  of which env frames through the image processor (ensure_pixels)",
     "post": "policy postprocessor",
     "env_post": "env postprocessor",
     "callback": "per-step policy stats callback",
@@ -79,6 +83,8 @@ def instrument() -> None:
         env.call = timed(PARTS["env.call"], env.call)
         policy.select_action = timed(PARTS["select_action"], policy.select_action)
         policy.predict_action_chunk = timed(PARTS["predict_action_chunk"], policy.predict_action_chunk)
+        if hasattr(policy, "ensure_pixels"):
+            policy.ensure_pixels = timed(PARTS["ensure_pixels"], policy.ensure_pixels)
         if kwargs.get("predicted_latents_callback") is not None:
             kwargs["predicted_latents_callback"] = timed(
                 PARTS["callback"], kwargs["predicted_latents_callback"]
@@ -112,7 +118,7 @@ def report(command_s: float) -> None:
     for key, name in PARTS.items():
         if name in SECONDS:
             s = SECONDS[name]
-            accounted += 0 if key == "predict_action_chunk" else s
+            accounted += 0 if key in ("predict_action_chunk", "ensure_pixels") else s
             print(f"{name:<75} {s:8.2f} {1000 * s / steps:8.1f} {100 * s / wall:5.1f}%")
     rest = wall - accounted
     print(
@@ -133,7 +139,22 @@ def report(command_s: float) -> None:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("eval_args", nargs=argparse.REMAINDER, help="-- then activearena-eval's arguments")
+    p.add_argument(
+        "--eager-frames",
+        action="store_true",
+        help="the preprocessor runs the image processor on every env step's frames (no deferral)",
+    )
     args = p.parse_args()
+    if args.eager_frames:
+        from lerobot_activearena.policies.activearena_vla import processor_activearena_vla as proc
+
+        post_init = proc.ActiveArenaVLMInputsStep.__post_init__
+
+        def eager(step):
+            post_init(step)
+            step.defer_env_frames = False
+
+        proc.ActiveArenaVLMInputsStep.__post_init__ = eager
     eval_args = [a for a in args.eval_args if a != "--"]
     eval_args = [a for a in eval_args if not a.startswith("--workers")] + ["--workers", "1"]
     instrument()

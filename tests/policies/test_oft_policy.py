@@ -219,6 +219,46 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
     assert policy.memory(0) == [] and policy.queued_actions == 0 and policy.step == 0
 
 
+@pytest.mark.parametrize("memory", ["chunk", "motion"])
+def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, memory, monkeypatch):
+    """The preprocessor hands an env step's frames over as uint8; the policy runs the image processor only
+    at chunk boundaries and memory writes, and acts exactly as when every step is processed."""
+    from lerobot_activearena.policies.activearena_vla import modeling_activearena_vla as modeling
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+        FRAMES,
+        ActiveArenaVLMInputsStep,
+    )
+
+    _, policy, pre, _, _ = _setup(vlm, root, memory=memory, history=4, think="none", n_action_steps=8)
+    step = next(s for s in pre.steps if isinstance(s, ActiveArenaVLMInputsStep))
+    processed, real = [], modeling.image_inputs
+    monkeypatch.setattr(
+        modeling, "image_inputs", lambda *a, **k: processed.append(policy.step) or real(*a, **k)
+    )
+    runs = {}
+    for defer in (True, False):
+        step.defer_env_frames = defer
+        policy.reset()
+        actions = []
+        for _t, obs, _ in _scripted_observations(50):
+            batch = pre(obs)
+            assert (FRAMES in batch) == defer and (PIXELS in batch) != defer
+            actions.append(policy.select_action(batch))
+        runs[defer] = torch.stack(actions), [(e["t"], e["pixels"]) for e in policy.memory(0)]
+    (deferred, bank), (eager, eager_bank) = runs[True], runs[False]
+    assert torch.equal(deferred, eager)
+    assert [t for t, _ in bank] == [t for t, _ in eager_bank] and len(bank) > 1
+    assert all(torch.equal(a, b) for (_, a), (_, b) in zip(bank, eager_bank, strict=True))
+    chunk_starts = set(range(0, 50, 8))
+    writes = {0, 16, 32, 48} if memory == "chunk" else set(range(50)) - chunk_starts
+    assert chunk_starts <= set(processed)  # every chunk boundary processed its frame once
+    assert len(processed) == len(set(processed)) < 50
+    if memory == "chunk":
+        assert set(processed) == chunk_starts  # the writes (every 16th step) fall on chunk boundaries
+    else:
+        assert set(processed) - chunk_starts <= writes and {t for t, _ in bank} <= set(processed)
+
+
 def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, monkeypatch):
     _, policy, pre, _, _ = _setup(vlm, root, memory="subtask", history=4, think="subtask")
     script = {0: (5, 6), 16: (5, 6), 32: (7,), 48: (8, 9), 64: (8, 9)}  # predicted subtask per chunk boundary
@@ -871,7 +911,7 @@ def test_a_32_px_patch_backbone_reads_twice_the_resolution_as_the_same_tokens(tm
     p32 = make_tiny_vlm(tmp_path / "p32", texts=task_texts(), patch=32)
     grids = {}
     for vlm, patch, (h, w) in ((p16, 16, (96, 128)), (p32, 32, (192, 256))):
-        step = ActiveArenaVLMInputsStep(vlm_path=str(vlm), image_max_pixels=h * w)
+        step = ActiveArenaVLMInputsStep(vlm_path=str(vlm), image_max_pixels=h * w, defer_env_frames=False)
         out = step(
             {
                 TransitionKey.OBSERVATION: {"observation.images.head": torch.rand(1, 3, h, w)},

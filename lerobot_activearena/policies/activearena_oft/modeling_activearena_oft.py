@@ -10,7 +10,7 @@ from torch import Tensor, nn
 
 from ..activearena_vla.helpers import real_steps
 from ..activearena_vla.modeling_activearena_vla import QUERY, ActiveArenaVLAPolicy
-from ..activearena_vla.processor_activearena_vla import PIXELS
+from ..activearena_vla.processor_activearena_vla import FRAME_VALID
 from .configuration_activearena_oft import ActiveArenaOFTConfig
 from .heads import MLPResNet
 
@@ -56,7 +56,7 @@ class ActiveArenaOFTPolicy(ActiveArenaVLAPolicy):
                 "changes, so it needs a policy trained with think=subtask"
             )
         super().start_episode(batch)
-        batch_size = batch[PIXELS].shape[0]
+        batch_size = batch[FRAME_VALID].shape[0]
         self._subtask: list[tuple[int, ...] | None] = [None] * batch_size
         self._subtask_new = [False] * batch_size
 

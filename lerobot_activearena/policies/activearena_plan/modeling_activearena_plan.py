@@ -18,7 +18,7 @@ from ..activearena_planner.answers import parse_planner_answer, stride_frames
 from ..activearena_planner.modeling_activearena_planner import ActiveArenaPlannerPolicy
 from ..activearena_planner.processor_activearena_planner import PLANNER_PROMPT
 from ..activearena_vla.helpers import in_precision, stack_frames
-from ..activearena_vla.processor_activearena_vla import GRID, PIXELS, PREFIX_IDS
+from ..activearena_vla.processor_activearena_vla import FRAME_VALID, GRID, PIXELS, PREFIX_IDS
 from .configuration_activearena_plan import ActiveArenaPlanConfig
 from .memory_bank import MemoryBank
 from .processor_activearena_plan import EXECUTOR_PROMPT
@@ -86,12 +86,13 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
     # planner's retrievals are this policy's memory).
     def observe(self, batch: dict[str, Tensor]) -> None:
         super().observe(batch)
-        batch_size, t = batch[PIXELS].shape[0], self.step
+        batch_size, t = batch[FRAME_VALID].shape[0], self.step
         if self._banks is None:
             self._banks = [MemoryBank() for _ in range(batch_size)]
             self._frames = [{} for _ in range(batch_size)]
             self._calls = [0] * batch_size
         if t % STRIDE == 0:
+            self.ensure_pixels(batch)
             for b in range(batch_size):
                 self._frames[b][t] = {
                     "pixels": batch[PIXELS][b, -1],
@@ -104,7 +105,7 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
     def predict_action_chunk(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         """An env batch (T = 1): the planner's subtask and retrievals, then the executor's chunk. A dataset
         batch carries its own history and goes straight to the executor."""
-        if batch[PIXELS].shape[1] > 1:
+        if batch[FRAME_VALID].shape[1] > 1:
             return super().predict_action_chunk(batch)
         return self.plan_and_act(batch)
 
@@ -112,7 +113,7 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
     def plan_and_act(self, batch: dict[str, Tensor]) -> Tensor:
         """Ask the planner (every chunk, on the stride frames seen so far), update each env's bank, and
         predict the chunk from the retrieved frames, the current one and the planner's subtask."""
-        t, batch_size = self.step, batch[PIXELS].shape[0]
+        t, batch_size = self.step, batch[FRAME_VALID].shape[0]
         tasks = batch.get("task")
         if tasks is None:
             raise ValueError("activearena_plan needs the task instruction ('task') in the batch")

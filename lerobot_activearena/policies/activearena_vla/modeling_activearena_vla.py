@@ -31,6 +31,7 @@ from .helpers import (
 )
 from .processor_activearena_vla import (
     FRAME_VALID,
+    FRAMES,
     GRID,
     PIXELS,
     PREFIX_IDS,
@@ -39,6 +40,7 @@ from .processor_activearena_vla import (
     RAW_STATE,
     THINK_IDS,
     THINK_MASK,
+    image_inputs,
 )
 from .state_encoder import StateEncoder
 from .vlm_loading import load_from_vlm_path
@@ -302,6 +304,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         if state is not None and state.dim() == 2:
             state = state[:, None]
         think = batch.get(THINK_IDS) if self.config.think != "none" else None
+        self.ensure_pixels(batch)
         return (
             batch[PIXELS],
             batch[GRID],
@@ -368,6 +371,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         history = self.config.history if self.config.uses_history else 0
         cur_state = batch.get(OBS_STATE)
         cur_state = cur_state[:, -1] if cur_state is not None and cur_state.dim() == 3 else cur_state
+        self.ensure_pixels(batch)
         rows = []
         for b in range(batch[PIXELS].shape[0]):
             current = {
@@ -387,7 +391,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         """A chunk for the batch's current frames. A dataset batch carries its own history (T > 1);
         an env batch (T = 1) gets it from the memory bank."""
         cache = None
-        if batch[PIXELS].shape[1] > 1:
+        if batch[FRAME_VALID].shape[1] > 1:
+            self.ensure_pixels(batch)
             state = batch.get(OBS_STATE)
             state = state[:, None] if state is not None and state.dim() == 2 else state
             pixels, grid, valid = batch[PIXELS], batch[GRID], batch[FRAME_VALID]
@@ -425,7 +430,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
 
     def start_episode(self, batch: dict[str, Tensor]) -> None:
         """Empty memories for the batch's envs (called at the first env step after ``reset``)."""
-        batch_size = batch[PIXELS].shape[0]
+        batch_size = batch[FRAME_VALID].shape[0]
         self._bank = [[] for _ in range(batch_size)]
         self._raw_states = [[] for _ in range(batch_size)]
 
@@ -499,6 +504,27 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             tokens.append(tuple(row[: row.index(stop) + 1] if stop in row else row))
         return tokens, step_logits, first
 
+    def ensure_pixels(self, batch: dict[str, Tensor]) -> None:
+        """An env batch's pixel values and grids (``PIXELS``, ``GRID``), from its uint8 ``FRAMES`` through the
+        backbone's image processor, at the first step that reads them (the preprocessor defers them)."""
+        if PIXELS in batch or FRAMES not in batch:
+            return
+        if not hasattr(self, "_image_processor"):
+            from transformers import AutoProcessor
+
+            processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.config.vlm_path, "processor")
+            self._image_processor = processor.image_processor
+        images = self._image_processor
+        frames = batch[FRAMES]
+        pv, grid = image_inputs(
+            images,
+            frames,
+            self.config.image_max_pixels,
+            (images.patch_size * images.merge_size) ** 2,
+            frames.device,
+        )
+        batch[PIXELS], batch[GRID] = pv[:, None], grid[:, None]
+
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
         self.eval()
@@ -515,7 +541,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         memories, keep the raw state (the motion write policy reads the states so far)."""
         if self._bank is None:
             self.start_episode(batch)
-        batch_size = batch[PIXELS].shape[0]
+        batch_size = batch[FRAME_VALID].shape[0]
         if RAW_STATE in batch:
             dim = self.config.input_features[OBS_STATE].shape[0]
             if tuple(batch[RAW_STATE].shape) != (batch_size, dim):
@@ -531,8 +557,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def remember(self, batch: dict[str, Tensor]) -> None:
         """Write the step's frame to each env's memory where ``writes_frame`` says so (K newest kept)."""
         if self.config.uses_history:
-            for b in range(batch[PIXELS].shape[0]):
+            for b in range(batch[FRAME_VALID].shape[0]):
                 if self.writes_frame(b):  # vision features: this step's, else computed at first use
+                    self.ensure_pixels(batch)
                     self._bank[b].append(
                         {
                             "t": self._t,

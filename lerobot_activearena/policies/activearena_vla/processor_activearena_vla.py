@@ -31,6 +31,7 @@ VLM = "observation.vlm."
 PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
 PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
+FRAMES = VLM + "frames"  # an env step's current frames as uint8, until the policy needs their pixels
 PREFIX = "<|im_start|>user\n"
 ASSISTANT = "<|im_end|>\n<|im_start|>assistant\n"  # closes a user turn, opens the answer
 PROMPT = (
@@ -46,6 +47,27 @@ def _pad_flag(comp: dict, batch_size: int, n_frames: int) -> torch.Tensor:
     if pad is None or tuple(pad.shape) != (batch_size, n_frames):
         return torch.zeros(batch_size, n_frames, dtype=torch.bool)
     return pad.bool().cpu()
+
+
+def to_uint8(images: torch.Tensor) -> torch.Tensor:
+    """LeRobot's float images in [0, 1] as the uint8 the image processor reads."""
+    return (images.float().clamp(0, 1) * 255).round().to(torch.uint8)
+
+
+def image_inputs(
+    image_processor, frames: torch.Tensor, max_pixels: int, min_pixels: int, device: torch.device
+) -> tuple[torch.Tensor, torch.Tensor]:
+    """Qwen's image processing of (N, C, H, W) uint8 frames: the (N, patches, dim) pixel values and the
+    (N, 3) grids (on the CPU)."""
+    out = image_processor(
+        images=list(frames.to(device)),
+        return_tensors="pt",
+        device=device,
+        max_pixels=max_pixels,
+        min_pixels=min_pixels,
+    )
+    pv = out["pixel_values"]
+    return pv.reshape(len(frames), -1, pv.shape[-1]), out["image_grid_thw"].cpu()
 
 
 # registry names keep their first (OFT) spelling: saved checkpoints refer to them
@@ -131,6 +153,9 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
     # Where the image processor runs: the policy's device, so on a GPU the resizing and patching of
     # the 13 frames per sample happen there and do not hold up the training loop's CPU.
     device: str = "cpu"
+    # evaluation: an env step's frames reach the policy as uint8 (FRAMES) and become pixels only where
+    # the policy reads them; False processes every step's frames here (the same actions, slower)
+    defer_env_frames: bool = True
     _processor: Any = field(default=None, init=False, repr=False)
     _min_pixels: int = field(default=0, init=False, repr=False)
     _tokenized: dict = field(default_factory=dict, init=False, repr=False)
@@ -180,29 +205,24 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         # through the image processor, the others stay zeros (all frames share one size and grid).
         keep = valid.flatten()
         device = self._device()
-        frames = img.detach().to(device).flatten(0, 1)[keep.to(device)]
-        frames = (frames.float().clamp(0, 1) * 255).round().to(torch.uint8)
-        out = self._processor.image_processor(
-            images=list(frames),
-            return_tensors="pt",
-            device=device,
-            max_pixels=self.image_max_pixels,
-            min_pixels=self._min_pixels,
-        )
-        pv, grid = (
-            out["pixel_values"].reshape(len(frames), -1, out["pixel_values"].shape[-1]),
-            out["image_grid_thw"],
-        )
-        grid = grid.cpu()
-        if bool(keep.all()):  # the usual case: no copy into a zeroed buffer (13 frames a sample)
-            pixels, grids = pv, grid
+        if self.defer_env_frames and n_frames == 1 and transition.get(TransitionKey.ACTION) is None:
+            # an env step: the policy turns the frames into pixels only at the steps that read them
+            # (chunk boundaries and memory writes), 1 step in 16 with the chunk memory
+            obs[FRAMES] = to_uint8(img[:, 0].detach().to(device))
         else:
-            pixels = pv.new_zeros((batch_size * n_frames, *pv.shape[1:]))
-            pixels[keep.to(pv.device)] = pv
-            grids = grid[:1].repeat(batch_size * n_frames, 1)
-            grids[keep] = grid
-        obs[PIXELS] = pixels.reshape(batch_size, n_frames, *pv.shape[1:])
-        obs[GRID] = grids.reshape(batch_size, n_frames, 3)
+            frames = to_uint8(img.detach().to(device).flatten(0, 1)[keep.to(device)])
+            pv, grid = image_inputs(
+                self._processor.image_processor, frames, self.image_max_pixels, self._min_pixels, device
+            )
+            if bool(keep.all()):  # the usual case: no copy into a zeroed buffer (13 frames a sample)
+                pixels, grids = pv, grid
+            else:
+                pixels = pv.new_zeros((batch_size * n_frames, *pv.shape[1:]))
+                pixels[keep.to(pv.device)] = pv
+                grids = grid[:1].repeat(batch_size * n_frames, 1)
+                grids[keep] = grid
+            obs[PIXELS] = pixels.reshape(batch_size, n_frames, *pv.shape[1:])
+            obs[GRID] = grids.reshape(batch_size, n_frames, 3)
         obs[FRAME_VALID] = valid
         if OBS_STATE in obs:
             obs[RAW_STATE] = obs[OBS_STATE].clone()
@@ -251,6 +271,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             "subtask_prompt": self.subtask_prompt,
             "image_max_pixels": self.image_max_pixels,
             "device": self.device,
+            "defer_env_frames": self.defer_env_frames,
         }
 
     def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
