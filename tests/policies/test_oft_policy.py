@@ -227,6 +227,7 @@ def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, me
     from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
         FRAMES,
         ActiveArenaVLMInputsStep,
+        EnvFrames,
     )
 
     _, policy, pre, _, _ = _setup(vlm, root, memory=memory, history=4, think="none", n_action_steps=8)
@@ -243,6 +244,7 @@ def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, me
         for _t, obs, _ in _scripted_observations(50):
             batch = pre(obs)
             assert (FRAMES in batch) == defer and (PIXELS in batch) != defer
+            assert not defer or isinstance(batch[FRAMES], EnvFrames)  # not a tensor: not copied to the device
             actions.append(policy.select_action(batch))
         runs[defer] = torch.stack(actions), [(e["t"], e["pixels"]) for e in policy.memory(0)]
     (deferred, bank), (eager, eager_bank) = runs[True], runs[False]

@@ -41,6 +41,7 @@ from .processor_activearena_vla import (
     THINK_IDS,
     THINK_MASK,
     image_inputs,
+    to_uint8,
 )
 from .state_encoder import StateEncoder
 from .vlm_loading import load_from_vlm_path
@@ -505,7 +506,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         return tokens, step_logits, first
 
     def ensure_pixels(self, batch: dict[str, Tensor]) -> None:
-        """An env batch's pixel values and grids (``PIXELS``, ``GRID``), from its uint8 ``FRAMES`` through the
+        """An env batch's pixel values and grids (``PIXELS``, ``GRID``), from its ``FRAMES`` through the
         backbone's image processor, at the first step that reads them (the preprocessor defers them)."""
         if PIXELS in batch or FRAMES not in batch:
             return
@@ -515,13 +516,13 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.config.vlm_path, "processor")
             self._image_processor = processor.image_processor
         images = self._image_processor
-        frames = batch[FRAMES]
+        frames = to_uint8(batch[FRAMES].images.to(self.device))
         pv, grid = image_inputs(
             images,
             frames,
             self.config.image_max_pixels,
             (images.patch_size * images.merge_size) ** 2,
-            frames.device,
+            self.device,
         )
         batch[PIXELS], batch[GRID] = pv[:, None], grid[:, None]
 

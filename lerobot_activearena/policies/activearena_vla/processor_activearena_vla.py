@@ -31,7 +31,7 @@ VLM = "observation.vlm."
 PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
 PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
-FRAMES = VLM + "frames"  # an env step's current frames as uint8, until the policy needs their pixels
+FRAMES = VLM + "frames"  # an env step's current frames (EnvFrames), until the policy needs their pixels
 PREFIX = "<|im_start|>user\n"
 ASSISTANT = "<|im_end|>\n<|im_start|>assistant\n"  # closes a user turn, opens the answer
 PROMPT = (
@@ -47,6 +47,14 @@ def _pad_flag(comp: dict, batch_size: int, n_frames: int) -> torch.Tensor:
     if pad is None or tuple(pad.shape) != (batch_size, n_frames):
         return torch.zeros(batch_size, n_frames, dtype=torch.bool)
     return pad.bool().cpu()
+
+
+@dataclass(frozen=True)
+class EnvFrames:
+    """An env step's current (B, C, H, W) float frames, left where LeRobot made them (the CPU): not a
+    tensor, so the device step does not copy them to the GPU at the steps that never read them."""
+
+    images: torch.Tensor
 
 
 def to_uint8(images: torch.Tensor) -> torch.Tensor:
@@ -207,8 +215,9 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         device = self._device()
         if self.defer_env_frames and n_frames == 1 and transition.get(TransitionKey.ACTION) is None:
             # an env step: the policy turns the frames into pixels only at the steps that read them
-            # (chunk boundaries and memory writes), 1 step in 16 with the chunk memory
-            obs[FRAMES] = to_uint8(img[:, 0].detach().to(device))
+            # (chunk boundaries and memory writes), 1 step in 16 with the chunk memory; the others
+            # neither copy them to the device nor convert them
+            obs[FRAMES] = EnvFrames(img[:, 0].detach())
         else:
             frames = to_uint8(img.detach().to(device).flatten(0, 1)[keep.to(device)])
             pv, grid = image_inputs(
