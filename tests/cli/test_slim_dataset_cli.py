@@ -56,3 +56,22 @@ def test_slim_refuses_unknown_columns_and_non_datasets(tmp_path):
         columns_to_drop({"action": {}})
     with pytest.raises(SystemExit):
         slim_main(["--root", str(tmp_path), "--out", str(tmp_path / "x")])
+
+
+def test_vla_copy_serves_the_same_annotations(bell_count_dataset, tmp_path):
+    from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
+
+    plain, vla = tmp_path / "slim", tmp_path / "slim_vla"
+    slim_main(["--root", str(bell_count_dataset), "--repo-id", DATASET_REPO, "--out", str(plain)])
+    slim_main(["--root", str(bell_count_dataset), "--repo-id", DATASET_REPO, "--out", str(vla), "--vla"])
+    with pytest.raises(ValueError, match="--vla"):  # the plain copy names the fix
+        DatasetAnnotations(plain)
+    full, copy = DatasetAnnotations(bell_count_dataset, DATASET_REPO), DatasetAnnotations(vla)
+    assert len(copy.ds.meta.features) < len(full.ds.meta.features)
+    frames = full.ds.num_frames
+    for i in range(0, frames, max(1, frames // 40)):
+        assert copy.subtask(i) == full.subtask(i)
+        for policy in ("chunk", "subtask", "motion"):
+            assert copy.memory_indices(i, policy, 12) == full.memory_indices(i, policy, 12)
+    # the keyframe flags carry information: some frame has a subtask keyframe after its first
+    assert any(len(full.subtask_keyframes(i)[1]) > 1 for i in range(frames))

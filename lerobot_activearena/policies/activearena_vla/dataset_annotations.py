@@ -30,8 +30,8 @@ class DatasetAnnotations:
         missing = [c for c in COLUMNS if c not in self.ds.features]
         if missing:
             raise ValueError(
-                f"{root} lacks the ActiveArena annotation columns {missing}: build it with "
-                "activearena-build-dataset"
+                f"{root} lacks the ActiveArena annotation columns {missing}: train on the dataset "
+                "activearena-build-dataset wrote, or on a copy made with activearena-slim-dataset --vla"
             )
         table = self.ds.hf_dataset.with_format("numpy").select_columns(list(COLUMNS))[:]
         self.cols = {c: np.asarray(table[c]).reshape(-1) for c in COLUMNS}
