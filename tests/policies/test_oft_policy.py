@@ -230,7 +230,11 @@ def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, me
         EnvFrames,
     )
 
-    _, policy, pre, _, _ = _setup(vlm, root, memory=memory, history=4, think="none", n_action_steps=8)
+    # motion memory writes off the chunk grid; chunk memory re-plans at its writes (n_action_steps 16)
+    n_action_steps = 16 if memory == "chunk" else 8
+    _, policy, pre, _, _ = _setup(
+        vlm, root, memory=memory, history=4, think="none", n_action_steps=n_action_steps
+    )
     step = next(s for s in pre.steps if isinstance(s, ActiveArenaVLMInputsStep))
     processed, real = [], modeling.image_inputs
     monkeypatch.setattr(
@@ -251,7 +255,7 @@ def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, me
     assert torch.equal(deferred, eager)
     assert [t for t, _ in bank] == [t for t, _ in eager_bank] and len(bank) > 1
     assert all(torch.equal(a, b) for (_, a), (_, b) in zip(bank, eager_bank, strict=True))
-    chunk_starts = set(range(0, 50, 8))
+    chunk_starts = set(range(0, 50, n_action_steps))
     writes = {0, 16, 32, 48} if memory == "chunk" else set(range(50)) - chunk_starts
     assert chunk_starts <= set(processed)  # every chunk boundary processed its frame once
     assert len(processed) == len(set(processed)) < 50
@@ -418,6 +422,9 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(think="plan", device="cpu")
     with pytest.raises(ValueError, match="n_action_steps"):
         ActiveArenaOFTConfig(n_action_steps=20, device="cpu")
+    with pytest.raises(ValueError, match="must be 16"):  # chunk memory acts on its write grid
+        ActiveArenaOFTConfig(memory="chunk", history=12, n_action_steps=8, device="cpu")
+    assert ActiveArenaOFTConfig(memory="none", n_action_steps=8, device="cpu").n_action_steps == 8
     with pytest.raises(ValueError, match="attn_implementation must be one of .*sdpa"):
         ActiveArenaOFTConfig(attn_implementation="flash3", device="cpu")
     with pytest.raises(ValueError, match="memory_ablation must be one of"):

@@ -150,6 +150,13 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 f"n_action_steps ({self.n_action_steps}) must be in 1..chunk_size ({self.chunk_size})"
             )
+        if self.memory == "chunk" and self.history > 0 and self.n_action_steps != STRIDE:
+            # trained with the newest memory frame exactly 16 steps back; re-planning off that grid
+            # shows the policy memories 1-15 steps old, which it never saw (13 -> 0 % on the bell)
+            raise ValueError(
+                f"chunk memory writes every {STRIDE}th frame and was trained to act on that grid: "
+                f"--policy.n_action_steps must be {STRIDE}, got {self.n_action_steps}"
+            )
         # A local folder is stored absolute, so a checkpoint reloads from any working directory.
         for name in ("vlm_path", "dataset_root"):
             value = getattr(self, name)
