@@ -41,6 +41,7 @@ from .processor_activearena_vla import (
     THINK_IDS,
     THINK_MASK,
     image_inputs,
+    one_token_pixels,
     to_uint8,
 )
 from .state_encoder import StateEncoder
@@ -521,7 +522,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             images,
             frames,
             self.config.image_max_pixels,
-            (images.patch_size * images.merge_size) ** 2,
+            one_token_pixels(images),
             self.device,
         )
         batch[PIXELS], batch[GRID] = pv[:, None], grid[:, None]

@@ -62,6 +62,11 @@ def to_uint8(images: torch.Tensor) -> torch.Tensor:
     return (images.float().clamp(0, 1) * 255).round().to(torch.uint8)
 
 
+def one_token_pixels(image_processor) -> int:
+    """The pixels of one merged visual token: the smallest image the backbone reads."""
+    return (image_processor.patch_size * image_processor.merge_size) ** 2
+
+
 def image_inputs(
     image_processor, frames: torch.Tensor, max_pixels: int, min_pixels: int, device: torch.device
 ) -> tuple[torch.Tensor, torch.Tensor]:
@@ -173,7 +178,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
 
         self._processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.vlm_path, "processor")
         images = self._processor.image_processor
-        self._min_pixels = (images.patch_size * images.merge_size) ** 2  # one merged token
+        self._min_pixels = one_token_pixels(images)
         if self.image_max_pixels < self._min_pixels:
             raise ValueError(
                 f"image_max_pixels={self.image_max_pixels} is below one token of {self.vlm_path!r} "
