@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import functools
+import statistics
 import time
 from collections import Counter, defaultdict
 
@@ -124,12 +125,20 @@ def report(command_s: float) -> None:
     print(
         f"{'the loop itself (the rest)':<75} {rest:8.2f} {1000 * rest / steps:8.1f} {100 * rest / wall:5.1f}%"
     )
-    chunks = CALLS[PARTS["predict_action_chunk"]]
+    chunks = EACH[PARTS["predict_action_chunk"]]
     if chunks:
-        print(f"new chunks: {chunks} ({1000 * SECONDS[PARTS['predict_action_chunk']] / chunks:.0f} ms each)")
-    resets = ", ".join(f"{t:.1f}" for t in EACH[PARTS["env.reset"]])
-    print(f"env resets (the first of a vector env starts its worker processes): {resets} s")
+        print(
+            f"new chunks: {len(chunks)} ({1000 * sum(chunks) / len(chunks):.0f} ms each; the first "
+            f"{1000 * chunks[0]:.0f} ms, the median {1000 * statistics.median(chunks):.0f} ms)"
+        )
+    resets = EACH[PARTS["env.reset"]]
+    print(
+        "env resets (the first of a vector env starts its worker processes): "
+        + ", ".join(f"{t:.1f}" for t in resets)
+        + " s"
+    )
     print(f"env steps/s inside the rollouts: {env_steps / wall:.1f} ({env_steps:.0f} env steps)")
+    print(f"env steps/s inside the rollouts, resets left out: {env_steps / (wall - sum(resets)):.1f}")
     print(
         f"the whole command: {command_s:.1f} s (policy loads, env start-up, rollouts, merge; not this script's imports) = "
         f"{env_steps / command_s:.1f} env steps/s"

@@ -4,7 +4,7 @@ lerobot-eval's output layout per split and a leaderboard report.
 
     activearena-eval --policy.type=activearena_expert --env.render_pixels=false --workers 2 --out outputs/protocol/expert
     activearena-eval --policy.path=outputs/train/run/checkpoints/last/pretrained_model --policy.device=cuda \\
-        --batch-size 8 --async-envs --out outputs/protocol/oft
+        --batch-size 50 --async-envs --out outputs/protocol/oft
     activearena-eval --config_path=configs/env/activearena_fixed_id.json --config_path=configs/env/activearena_fixed_ood.json \\
         --policy.type=activearena_expert --out outputs/protocol/expert_fixed
 
