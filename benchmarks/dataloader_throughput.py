@@ -24,8 +24,10 @@ from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot_activearena.datasets_build.features import FPS, IMAGE_KEY
 from lerobot_activearena.datasets_build.pipeline import build_dataset
 from lerobot_activearena.datasets_build.plan import BuildPlan
+from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 
-HISTORY = [-16 * k / FPS for k in range(12, -1, -1)]
+# the presets' chunk memory (K = 12, stride 16)
+HISTORY = [k / FPS for k in ActiveArenaOFTConfig(device="cpu").observation_delta_indices]
 
 
 def measure(ds: LeRobotDataset, workers: int, batch: int, batches: int) -> float:

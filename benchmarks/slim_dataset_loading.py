@@ -23,9 +23,11 @@ from lerobot.datasets.lerobot_dataset import LeRobotDataset
 
 from lerobot_activearena.cli.slim_dataset import slim_dataset, vla_columns
 from lerobot_activearena.datasets_build.features import FPS, IMAGE_KEY
+from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 
-CHUNK = [k / FPS for k in range(16)]
-HISTORY = [-16 * k / FPS for k in range(12, -1, -1)]
+_OFT = ActiveArenaOFTConfig(device="cpu")  # the presets' chunk memory: K = 12, stride 16, chunk 16
+CHUNK = [k / FPS for k in _OFT.action_delta_indices]
+HISTORY = [k / FPS for k in _OFT.observation_delta_indices]
 ACT_SAMPLE = {"action": CHUNK}
 VLA_SAMPLE = {IMAGE_KEY: HISTORY, "observation.state": HISTORY, "action": CHUNK}
 
