@@ -182,6 +182,8 @@ def sweep(policy, pre, cfg, args) -> None:
     policy.train()
     print(
         f"sweep: batch {args.batch_size}, K={args.history}, {args.steps} timed steps after one warm-up each"
+        + (f"; compiled layers: {args.compile_layers}" if args.compile_layers != "none" else "")
+        + ("; fused AdamW" if args.fused_adamw else "")
     )
     for layers, mode in (
         ("all", "full"),
@@ -191,6 +193,9 @@ def sweep(policy, pre, cfg, args) -> None:
         ("vision", "selective"),
         ("none", "full"),
     ):
+        if mode == "selective" and cfg.compile_layers != "none":
+            print(f"checkpointing {layers:>8} {mode:>9}: skipped (does not combine with --compile-layers)")
+            continue
         if layers == "none":
             policy.vlm.gradient_checkpointing_disable()
         else:
@@ -295,6 +300,12 @@ def main() -> None:
     )
     p.add_argument("--fused-adamw", action="store_true", help="torch's fused AdamW kernel (CUDA)")
     p.add_argument(
+        "--compile-layers",
+        choices=["none", "all", "vision", "language"],
+        default="none",
+        help="torch.compile the backbone's vision blocks and/or decoder layers (compile_layers)",
+    )
+    p.add_argument(
         "--sweep",
         action="store_true",
         help="--synthetic: one model, then --steps timed steps for each checkpointing choice (all, vision, "
@@ -372,6 +383,7 @@ def main() -> None:
         gradient_checkpointing_mode=args.checkpoint_mode,
         unpad_language_model=args.unpad_language_model,
         residual_dtype=args.residual_dtype,
+        compile_layers=args.compile_layers,
         dtype=args.dtype,
         weights_dtype=args.weights_dtype,
         subtask_max_tokens=args.decode_tokens,
@@ -444,6 +456,7 @@ def main() -> None:
         + ("; padding mask in training" if args.padding_mask else "")
         + ("; language model per sample (unpadded)" if args.unpad_language_model else "")
         + f"; residual streams {args.residual_dtype}"
+        + (f"; compiled layers: {args.compile_layers}" if args.compile_layers != "none" else "")
     )
     print(f"attention: {attention_kernels(policy.vlm)}")
     if times:

@@ -686,6 +686,31 @@ def test_residual_dtype_compute_keeps_the_streams_in_bfloat16(vlm, root):
         ActiveArenaOFTConfig(vlm_path=str(vlm), residual_dtype="bfloat16")
 
 
+def test_compiled_layers_give_the_same_loss_and_gradients(vlm, root):
+    """compile_layers=all compiles every vision block and decoder layer in place (same modules, same
+    state dict); under gradient checkpointing the loss and every gradient match the eager step's.
+    Selective checkpointing cannot see inside compiled blocks: that combination is a named error."""
+    torch._dynamo.reset()
+    _, loss, grads, _ = _loss_and_grads(vlm, root, gradient_checkpointing=True)
+    policy, c_loss, c_grads, _ = _loss_and_grads(vlm, root, gradient_checkpointing=True, compile_layers="all")
+    blocks = [*policy.vlm.model.visual.blocks, *policy.vlm.model.language_model.layers]
+    assert all(b._compiled_call_impl is not None for b in blocks)
+    assert "model.visual.blocks.0.attn.qkv.weight" in dict(policy.vlm.named_parameters())
+    assert c_loss == pytest.approx(loss, rel=1e-5)
+    assert c_grads.keys() == grads.keys()
+    for name, g in grads.items():
+        assert torch.allclose(c_grads[name], g, atol=1e-5, rtol=1e-3), name
+    with pytest.raises(ValueError, match="compile_layers must be one of"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), compile_layers="mlp")
+    with pytest.raises(ValueError, match="use gradient_checkpointing_mode=full"):
+        ActiveArenaOFTConfig(
+            vlm_path=str(vlm),
+            compile_layers="all",
+            gradient_checkpointing=True,
+            gradient_checkpointing_mode="selective",
+        )
+
+
 def _backward_matmuls(vlm, root, **checkpointing) -> int:
     """Matrix multiplies run by one training step's backward pass (gradients plus any recomputation)."""
     from torch.utils._python_dispatch import TorchDispatchMode

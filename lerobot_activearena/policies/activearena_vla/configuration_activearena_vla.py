@@ -27,6 +27,7 @@ ATTENTION = ("sdpa", "flash_attention_2", "eager")
 CHECKPOINT_LAYERS = ("all", "vision", "language")
 CHECKPOINT_MODES = ("full", "selective")
 RESIDUAL_DTYPES = ("float32", "compute")
+COMPILE_LAYERS = ("none", "all", "vision", "language")
 WEIGHT_DTYPES = ("float32", "bfloat16")
 VIEW_DIMS = slice(TORSO_YAW, HEAD_PITCH + 1)  # the active-viewpoint dimensions: the action's last two
 
@@ -80,6 +81,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # addition, norm input and kept block input in float32) | compute (bfloat16, as the paper's
     # bfloat16 training has them; half their memory and traffic).
     residual_dtype: str = "float32"
+    # torch.compile each of these blocks (none | all | vision | language): regional compilation, one
+    # graph a block kind with dynamic shapes, fusing the element-wise work (norms, casts, rotary,
+    # activations) between the matrix multiplies. The first steps compile (tens of seconds).
+    compile_layers: str = "none"
     # The backbone's attention kernel: sdpa (PyTorch's fused scaled-dot-product attention: flash or
     # memory-efficient kernels on CUDA) | flash_attention_2 (needs the flash-attn package) | eager.
     attn_implementation: str = "sdpa"
@@ -134,9 +139,20 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             ("gradient_checkpointing_layers", CHECKPOINT_LAYERS),
             ("gradient_checkpointing_mode", CHECKPOINT_MODES),
             ("residual_dtype", RESIDUAL_DTYPES),
+            ("compile_layers", COMPILE_LAYERS),
         ):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")
+        if (
+            self.compile_layers != "none"
+            and self.gradient_checkpointing
+            and (self.gradient_checkpointing_mode == "selective")
+        ):
+            raise ValueError(
+                "--policy.compile_layers does not combine with gradient_checkpointing_mode=selective "
+                "(PyTorch's selective checkpointing cannot see inside compiled blocks): use "
+                "gradient_checkpointing_mode=full, or compile_layers=none"
+            )
         if self.history < 0:
             raise ValueError(f"--policy.history must be >= 0, got {self.history}")
         if self.memory == "none":

@@ -69,6 +69,21 @@ def checkpoint_layers(vlm, layers: str, mode: str = "full") -> None:
             module.gradient_checkpointing = False
 
 
+def compile_layers(vlm, layers: str) -> None:
+    """``torch.compile`` Qwen3-VL's vision blocks and/or decoder layers in place (``Module.compile``:
+    the same modules and state dict), each with dynamic shapes so that the batches' varying image
+    and token counts reuse one graph. Gradient checkpointing stays outside the compiled blocks."""
+    parts = {"vision": [vlm.model.visual.blocks], "language": [vlm.model.language_model.layers]}
+    parts["all"] = parts["vision"] + parts["language"]
+    if layers == "none":
+        return
+    if layers not in parts:
+        raise ValueError(f"compile_layers must be none, all, vision or language, got {layers!r}")
+    for blocks in parts[layers]:
+        for block in blocks:
+            block.compile(dynamic=True)
+
+
 def residual_in_compute_dtype(vlm) -> None:
     """Under autocast, start the vision tower's and the language model's residual streams in the
     compute dtype (bfloat16) instead of float32 (the embeddings' dtype): their additions, norms'

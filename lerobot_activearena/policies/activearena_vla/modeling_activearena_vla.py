@@ -24,6 +24,7 @@ from .configuration_activearena_vla import ActiveArenaVLAConfig
 from .helpers import (
     blank_entry,
     checkpoint_layers,
+    compile_layers,
     in_precision,
     residual_in_compute_dtype,
     stack_frames,
@@ -80,6 +81,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             checkpoint_layers(
                 self.vlm, config.gradient_checkpointing_layers, config.gradient_checkpointing_mode
             )
+        compile_layers(self.vlm, config.compile_layers)
         vc = self.vlm.config
         width = vc.text_config.hidden_size
         self.max_frames = config.history + 1
