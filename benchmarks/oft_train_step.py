@@ -506,7 +506,7 @@ def main() -> None:
     b = pre(dict(obs))
     lat = [timed(lambda: policy.select_action(b))[0]]
     entry = {
-        "pixels": b[processor_activearena_vla.PIXELS][0, -1],
+        "pixels": b[processor_activearena_vla.PIXELS][0],
         "grid": b[processor_activearena_vla.GRID][0, -1],
         "state": b["observation.state"][0],
     }

@@ -56,7 +56,8 @@ def _setup(vlm, root, **overrides):
 def test_forward_backward_shapes_and_gradients(vlm, root):
     cfg, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, think="subtask")
     batch = collate(ds, pre, [70, len(ds) - 40])
-    assert batch[PIXELS].shape[:2] == (2, 5)  # 4 stride-16 history frames + the current one
+    assert batch["observation.vlm.frame_valid"].shape == (2, 5)  # 4 stride-16 history frames + the current
+    assert len(batch[PIXELS]) == int(batch["observation.vlm.frame_valid"].sum())  # present frames only
     assert batch["observation.state"].shape == (2, 5, 18)
     assert batch[THINK_IDS].shape[0] == 2
     loss, info = policy.forward(batch)
@@ -206,7 +207,7 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
         policy.select_action(batch)
         assert policy.step == t + 1
         if policy.memory(0) and policy.memory(0)[-1]["t"] == t:  # written now: it is this step's frame
-            assert torch.equal(policy.memory(0)[-1]["pixels"], batch[PIXELS][0, -1])
+            assert torch.equal(policy.memory(0)[-1]["pixels"], batch[PIXELS][0])
     if memory == "chunk":
         expected = [0, 16, 32, 48, 64]
     elif memory == "motion":
@@ -831,7 +832,8 @@ def test_padded_history_frames_are_never_processed(vlm, root):
         step.processor.image_processor = real
     valid = batch["observation.vlm.frame_valid"]
     assert valid.sum(1).tolist() == [2, 5] and seen == [7]
-    assert (batch[PIXELS][~valid] == 0).all() and (batch[PIXELS][valid].abs().sum((-1, -2)) > 0).all()
+    # the pixels hold the 7 present frames only, in (sample, frame) order
+    assert len(batch[PIXELS]) == 7 and (batch[PIXELS].abs().sum((-1, -2)) > 0).all()
     loss, _ = policy.forward(batch)
     assert torch.isfinite(loss)
 
@@ -875,8 +877,10 @@ def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root
     blank = policy.history_batch(batch)
     assert [e["t"] for e in policy.memory(0)] == [0, 16]
     assert torch.equal(real[2], blank[2]) and torch.equal(real[3], blank[3])  # valid slots, states
-    assert torch.count_nonzero(real[0][0, :2]) > 0 and torch.count_nonzero(blank[0][0, :2]) == 0
-    assert torch.equal(real[0][0, 2], blank[0][0, 2])  # the current frame is untouched
+    # one env, all three slots present: the packed pixels are its two memory frames, then the current
+    assert len(real[0]) == len(blank[0]) == 3
+    assert torch.count_nonzero(real[0][:2]) > 0 and torch.count_nonzero(blank[0][:2]) == 0
+    assert torch.equal(real[0][2], blank[0][2])  # the current frame is untouched
     assert all(torch.count_nonzero(e["pixels"]) > 0 for e in policy.memory(0))
     args = (
         batch["observation.vlm.prefix_ids"],

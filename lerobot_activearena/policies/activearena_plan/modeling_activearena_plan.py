@@ -95,7 +95,7 @@ class ActiveArenaPlanPolicy(ActiveArenaOFTPolicy):
             self.ensure_pixels(batch)
             for b in range(batch_size):
                 self._frames[b][t] = {
-                    "pixels": batch[PIXELS][b, -1],
+                    "pixels": batch[PIXELS][b],  # an env batch: one frame a sample
                     "grid": batch[GRID][b, -1],
                     "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
                     "planner": {},  # the planner's vision features of this frame

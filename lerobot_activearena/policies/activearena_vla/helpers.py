@@ -141,12 +141,13 @@ def blank_entry(entry: dict) -> dict:
 
 def stack_frames(entries: list[list[dict]], slots: int, with_state: bool = True):
     """Per sample, its stored frames (dicts with ``pixels``, ``grid``, ``state``; oldest first, the
-    last one the current frame) in the last of ``slots`` left-padded slots. Returns ``pixels``, ``grid``,
+    last one the current frame) in the last of ``slots`` left-padded slots. Returns ``pixels`` (the
+    stored frames' only, packed in (sample, slot) order), ``grid``,
     ``valid``, ``state`` (None without states) and the vision cache (sample, slot) -> entry, through which
     the backbone reuses an entry's ``vision`` features or stores them there."""
     first = entries[0][-1]
     batch_size = len(entries)
-    pixels = first["pixels"].new_zeros((batch_size, slots, *first["pixels"].shape))
+    pixels = torch.stack([e["pixels"] for row in entries for e in row])
     grid = first["grid"].new_ones((batch_size, slots, 3))
     valid = torch.zeros(batch_size, slots, dtype=torch.bool)
     state = None
@@ -155,7 +156,7 @@ def stack_frames(entries: list[list[dict]], slots: int, with_state: bool = True)
     cache = {}
     for b, row in enumerate(entries):
         for slot, e in zip(range(slots - len(row), slots), row, strict=True):
-            pixels[b, slot], grid[b, slot], valid[b, slot] = e["pixels"], e["grid"], True
+            grid[b, slot], valid[b, slot] = e["grid"], True
             if state is not None:
                 state[b, slot] = e["state"]
             cache[(b, slot)] = e

@@ -195,7 +195,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             embeds = embeds.masked_scatter(
                 (kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype)
             )
-        pv = torch.cat([pixels[b, j] for b, j in images]).to(dev, self.vlm.dtype)
+        if len(pixels) != len(images):
+            raise ValueError(
+                f"pixel values for {len(pixels)} frames, but frame_valid marks {len(images)} present: "
+                "pixel_values holds the present frames only, packed in (sample, frame) order"
+            )
+        pv = pixels.flatten(0, 1).to(dev, self.vlm.dtype)  # (patches of all frames, dim)
         thw = torch.stack([grid[b, j] for b, j in images]).to(dev)
         position_ids, _ = self.vlm.model.get_rope_index(
             input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw, attention_mask=attn
@@ -377,9 +382,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         cur_state = cur_state[:, -1] if cur_state is not None and cur_state.dim() == 3 else cur_state
         self.ensure_pixels(batch)
         rows = []
-        for b in range(batch[PIXELS].shape[0]):
-            current = {
-                "pixels": batch[PIXELS][b, -1],
+        for b in range(batch[FRAME_VALID].shape[0]):
+            current = {  # an env batch: one frame a sample, so sample b's pixels are row b
+                "pixels": batch[PIXELS][b],
                 "grid": batch[GRID][b, -1],
                 "state": None if cur_state is None else cur_state[b],
             }
@@ -527,7 +532,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             one_token_pixels(images),
             self.device,
         )
-        batch[PIXELS], batch[GRID] = pv[:, None], grid[:, None]
+        batch[PIXELS], batch[GRID] = pv, grid[:, None]
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
@@ -567,7 +572,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                     self._bank[b].append(
                         {
                             "t": self._t,
-                            "pixels": batch[PIXELS][b, -1],
+                            "pixels": batch[PIXELS][b],  # one frame a sample
                             "grid": batch[GRID][b, -1],
                             "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
                             "vision": self._current_vision.get(b),

@@ -28,6 +28,8 @@ from .configuration_activearena_vla import IMAGE_KEY, ActiveArenaVLAConfig
 from .vlm_loading import load_from_vlm_path
 
 VLM = "observation.vlm."
+# PIXELS holds the present frames only, packed in (sample, frame) order: (frames present, patches, dim);
+# FRAME_VALID (batch, frames) says which they are, GRID (batch, frames, 3) gives every slot's grid.
 PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
 PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
@@ -215,7 +217,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         batch_size, n_frames = img.shape[:2]
         valid = ~_pad_flag(comp, batch_size, n_frames)
         # Padded history frames (before the episode start) are never read: only present frames go
-        # through the image processor, the others stay zeros (all frames share one size and grid).
+        # through the image processor, and only theirs are kept (all frames share one size and grid).
         keep = valid.flatten()
         device = self._device()
         if self.defer_env_frames and n_frames == 1 and transition.get(TransitionKey.ACTION) is None:
@@ -228,14 +230,11 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             pv, grid = image_inputs(
                 self._processor.image_processor, frames, self.image_max_pixels, self._min_pixels, device
             )
-            if bool(keep.all()):  # the usual case: no copy into a zeroed buffer (13 frames a sample)
-                pixels, grids = pv, grid
-            else:
-                pixels = pv.new_zeros((batch_size * n_frames, *pv.shape[1:]))
-                pixels[keep.to(pv.device)] = pv
+            grids = grid
+            if not bool(keep.all()):
                 grids = grid[:1].repeat(batch_size * n_frames, 1)
                 grids[keep] = grid
-            obs[PIXELS] = pixels.reshape(batch_size, n_frames, *pv.shape[1:])
+            obs[PIXELS] = pv
             obs[GRID] = grids.reshape(batch_size, n_frames, 3)
         obs[FRAME_VALID] = valid
         if OBS_STATE in obs:
