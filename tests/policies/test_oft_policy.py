@@ -607,6 +607,14 @@ def _loss_and_grads(vlm, root, **checkpointing):
     )
 
 
+def _assert_same_step(loss, grads, other_loss, other_grads, rel, atol, rtol):
+    """The same loss (within ``rel``) and the same gradient for every parameter."""
+    assert other_loss == pytest.approx(loss, rel=rel)
+    assert other_grads.keys() == grads.keys()
+    for name, g in grads.items():
+        assert torch.allclose(other_grads[name], g, atol=atol, rtol=rtol), name
+
+
 @pytest.mark.parametrize(
     "layers,mode", [("all", "full"), ("vision", "full"), ("language", "full"), ("all", "selective")]
 )
@@ -628,10 +636,7 @@ def test_gradient_checkpointing_of_some_layers_gives_the_same_gradients(vlm, roo
     assert (vision, language) == {"all": (True, True), "vision": (True, False), "language": (False, True)}[
         layers
     ]
-    assert ck_loss == pytest.approx(loss, rel=1e-6)
-    assert ck_grads.keys() == grads.keys()
-    for name, g in grads.items():
-        assert torch.allclose(ck_grads[name], g, atol=1e-6, rtol=1e-4), name
+    _assert_same_step(loss, grads, ck_loss, ck_grads, rel=1e-6, atol=1e-6, rtol=1e-4)
     with pytest.raises(ValueError, match="gradient_checkpointing_layers must be one of"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_layers="mlp")
     with pytest.raises(ValueError, match="gradient_checkpointing_mode must be one of"):
@@ -697,10 +702,7 @@ def test_compiled_layers_give_the_same_loss_and_gradients(vlm, root):
     blocks = [*policy.vlm.model.visual.blocks, *policy.vlm.model.language_model.layers]
     assert all(b._compiled_call_impl is not None for b in blocks)
     assert "model.visual.blocks.0.attn.qkv.weight" in dict(policy.vlm.named_parameters())
-    assert c_loss == pytest.approx(loss, rel=1e-5)
-    assert c_grads.keys() == grads.keys()
-    for name, g in grads.items():
-        assert torch.allclose(c_grads[name], g, atol=1e-5, rtol=1e-3), name
+    _assert_same_step(loss, grads, c_loss, c_grads, rel=1e-5, atol=1e-5, rtol=1e-3)
     with pytest.raises(ValueError, match="compile_layers must be one of"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), compile_layers="mlp")
     with pytest.raises(ValueError, match="use gradient_checkpointing_mode=full"):
