@@ -24,6 +24,7 @@ import argparse
 import resource
 import tempfile
 import time
+from collections import Counter
 from pathlib import Path
 
 import torch
@@ -31,6 +32,7 @@ from lerobot.datasets.dataset_metadata import LeRobotDatasetMetadata
 from lerobot.datasets.factory import resolve_delta_timestamps
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
 from lerobot.policies.factory import make_policy, make_pre_post_processors
+from torch.utils._python_dispatch import TorchDispatchMode
 
 from lerobot_activearena.datasets_build.pipeline import build_dataset
 from lerobot_activearena.datasets_build.plan import BuildPlan
@@ -82,6 +84,18 @@ def train_step(policy, pre, opt, raw: dict, cuda: bool) -> tuple[float, float, d
     if cuda:
         torch.cuda.synchronize()
     return t1 - t0, time.perf_counter() - t0, batch
+
+
+class OperatorCount(TorchDispatchMode):
+    """Counts the ATen operators dispatched while it is active, by name."""
+
+    def __init__(self):
+        super().__init__()
+        self.calls: Counter = Counter()
+
+    def __torch_dispatch__(self, func, types, args=(), kwargs=None):
+        self.calls[str(func)] += 1
+        return func(*args, **(kwargs or {}))
 
 
 def add_memory_options(p: argparse.ArgumentParser) -> None:
@@ -315,6 +329,11 @@ def main() -> None:
         "--profile", action="store_true", help="print the top operators of one training step (torch.profiler)"
     )
     p.add_argument(
+        "--count-ops",
+        action="store_true",
+        help="count the operators one training step dispatches (kernel launches on a GPU) and its host syncs",
+    )
+    p.add_argument(
         "--decode-tokens", type=int, default=32, help="greedy <think> tokens per chunk (subtask_max_tokens)"
     )
     p.add_argument(
@@ -433,6 +452,15 @@ def main() -> None:
             train_step(policy, pre, opt, next(loader), cuda)
         sort = "cuda_time_total" if cuda else "cpu_time_total"
         print(prof.key_averages().table(sort_by=sort, row_limit=25, max_name_column_width=60))
+    if args.count_ops and args.steps:  # one more step, every dispatched operator counted
+        count = OperatorCount()
+        with count:
+            train_step(policy, pre, opt, next(loader), cuda)
+        print(
+            f"one training step dispatches {sum(count.calls.values())} operators "
+            f"(most a kernel launch on a GPU), {count.calls['aten._local_scalar_dense.default']} of "
+            "them host syncs (.item(), bool() or .tolist() of a tensor)"
+        )
     n_params = sum(p.numel() for p in policy.parameters())
     peak = peak_memory(cuda)
     head_params = sum(p.numel() for n, p in policy.named_parameters() if not n.startswith("vlm."))
