@@ -63,6 +63,14 @@ def parser() -> argparse.ArgumentParser:
         help="recovery demonstrations: the probability that the expert's search sweeps an empty end "
         "sector on to the torso's joint limit before turning back (default 0: the benchmark's expert)",
     )
+    p.add_argument(
+        "--action-noise",
+        type=float,
+        default=None,
+        help="perturbed demonstrations (DART): the standard deviation in rad of a smooth noise added to "
+        "the arm and view joints the simulator executes, faded out in presses; the dataset records the "
+        "expert's own commands, which lead back to its path (default 0: the benchmark's expert)",
+    )
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
     p.add_argument("--executor", default="local", choices=["local", "slurm"])
     p.add_argument(
@@ -160,6 +168,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         max_objects=MAX_OBJECTS,
         image_size=image_size(pick("image_size")),
         search_overshoot=float(pick("search_overshoot")),
+        action_noise=float(pick("action_noise")),
     )
 
 

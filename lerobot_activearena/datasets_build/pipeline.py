@@ -47,7 +47,7 @@ class BuildShardStep(PipelineStep):
             self.encoder_threads,
             progress=work / "progress" / f"{spec.name}.json",
             image_size=tuple(self.plan.image_size),
-            search_overshoot=self.plan.search_overshoot,
+            variation=self.plan.variation,
         )
         self.stat_update("episodes_kept", value=len(summary["kept"]))
         self.stat_update("episodes_skipped", value=len(summary["skipped"]))

@@ -12,6 +12,7 @@ import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from ..episodes.rollout import DemoVariation
 from ..sim.head_camera import validate_head_size
 from ..sim.scene import HEAD_SIZE
 from ..tasks import task_names
@@ -43,6 +44,7 @@ class BuildPlan:
     max_objects: int = 16
     image_size: tuple[int, int] = HEAD_SIZE  # head video (height, width), 3:4
     search_overshoot: float = 0.0  # recovery demonstrations (``ExpertContext``); 0: the benchmark's expert
+    action_noise: float = 0.0  # perturbed demonstrations (``ActionNoise``), rad; 0: the benchmark's expert
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -59,8 +61,7 @@ class BuildPlan:
         if self.episodes_per_shard < 1:
             raise ValueError(f"--episodes-per-shard must be >= 1, got {self.episodes_per_shard}")
         self.image_size = validate_head_size(*self.image_size)
-        if not 0.0 <= self.search_overshoot <= 1.0:
-            raise ValueError(f"--search-overshoot is a probability in [0, 1], got {self.search_overshoot}")
+        _ = self.variation  # validates both values
         self.tasks = [t for sel in self.tasks for t in task_names(sel)]
         self.shards = self._make_shards()
 
@@ -83,12 +84,17 @@ class BuildPlan:
                 shards.append(ShardSpec(len(shards), task, chunk, reserve, len(chunk)))
         return shards
 
+    @property
+    def variation(self) -> DemoVariation:
+        return DemoVariation(self.search_overshoot, self.action_noise)
+
     def to_json(self) -> dict:
         from .features import dataset_features  # the feature set is part of a build's identity
 
         d = asdict(self)
-        if not self.search_overshoot:  # builds made before the option keep their identity
-            del d["search_overshoot"]
+        for key in ("search_overshoot", "action_noise"):  # builds made before an option keep their identity
+            if not d[key]:
+                del d[key]
         d["features"] = json.loads(json.dumps(dataset_features(self.max_objects, self.image_size)))
         d["shards"] = [asdict(s) for s in self.shards]
         return d

@@ -19,6 +19,7 @@ RECIPE_KEYS = {
     "episodes_per_shard": 10,
     "image_size": "384x512",  # head video height x width (3:4)
     "search_overshoot": 0.0,  # recovery demonstrations: probability per empty end sector of a search
+    "action_noise": 0.0,  # perturbed demonstrations: joint noise (rad) on the executed commands
 }
 
 

@@ -4,12 +4,12 @@ columns, and yield LeRobot frames."""
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
 from ..annotations.keyframes import chunk_keyframes, motion_keyframes, subtask_keyframes
-from ..episodes.rollout import EpisodeResult, run_expert_episode
+from ..episodes.rollout import DemoVariation, EpisodeResult, run_expert_episode
 from ..sim.scene import HEAD_SIZE
 from .features import frame_row
 
@@ -42,10 +42,10 @@ def record_episode(
     seed: int,
     split: str,
     image_size: tuple[int, int] = HEAD_SIZE,
-    search_overshoot: float = 0.0,
+    variation: DemoVariation = DemoVariation(),
 ) -> RecordedEpisode:
     """Run the expert and keep the head image of every frame (the frame the annotation describes),
-    rendered at ``image_size`` (height, width); ``search_overshoot``: ``run_expert_episode``'s."""
+    rendered at ``image_size`` (height, width), its demonstrations varied by ``variation``."""
     images: list[np.ndarray] = []
     result = run_expert_episode(
         task,
@@ -53,7 +53,7 @@ def record_episode(
         split,
         on_frame=lambda t, sim, frame, action: images.append(sim.render_head()),
         image_size=image_size,
-        search_overshoot=search_overshoot,
+        **asdict(variation),
     )
     keyframes = episode_keyframes(result) if result.success else {}
     return RecordedEpisode(result, images, keyframes)

@@ -10,6 +10,7 @@ import os
 import shutil
 from pathlib import Path
 
+from ..episodes.rollout import DemoVariation
 from ..sim.embodiment import ROBOT_TYPE
 from ..sim.scene import HEAD_SIZE
 from ..tasks.registry import get_task
@@ -38,7 +39,7 @@ def build_shard(
     encoder_threads: int | None = 1,
     progress: Path | None = None,
     image_size: tuple[int, int] = HEAD_SIZE,
-    search_overshoot: float = 0.0,
+    variation: DemoVariation = DemoVariation(),
 ) -> dict:
     """Record the shard's episodes; returns (and stores) its summary. Safe to call again: a complete
     shard is returned as is, leftovers of an interrupted attempt are removed first."""
@@ -81,7 +82,7 @@ def build_shard(
             break
         tried += 1
         try:
-            rec = record_episode(spec.task, seed, split, image_size, search_overshoot)
+            rec = record_episode(spec.task, seed, split, image_size, variation)
             failure = rec.result.failure
         except Exception as exc:  # e.g. no valid scene for this seed: recorded, never hidden
             rec, failure = None, f"{type(exc).__name__}: {exc}"

@@ -19,6 +19,7 @@ import numpy as np
 from ..annotations.writer import AnnotationWriter
 from ..expert.context import ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
+from ..sim.action import GRIPPER_INDICES
 from ..sim.health import PENETRATION_LIMIT
 from ..sim.perception import PerceptionMemory
 from ..sim.scene import HEAD_SIZE
@@ -88,6 +89,59 @@ def make_sidecar(
         "success": success,
         "failure": failure,
     }
+
+
+@dataclass(frozen=True)
+class DemoVariation:
+    """How a dataset's demonstrations differ from the benchmark's expert (the defaults: they do not).
+    ``search_overshoot``: ``ExpertContext``'s recovery demonstrations; ``action_noise``: ``ActionNoise``'s
+    sigma in rad."""
+
+    search_overshoot: float = 0.0
+    action_noise: float = 0.0
+
+    def __post_init__(self):
+        if not 0.0 <= self.search_overshoot <= 1.0:
+            raise ValueError(f"--search-overshoot is a probability in [0, 1], got {self.search_overshoot}")
+        if not 0.0 <= self.action_noise <= MAX_ACTION_NOISE:
+            raise ValueError(
+                f"--action-noise is a joint standard deviation in [0, {MAX_ACTION_NOISE}] rad, got "
+                f"{self.action_noise} (0.02 perturbs the arms by about 1.5 cm at the fingertips)"
+            )
+
+
+MAX_ACTION_NOISE = 0.1  # rad: beyond it the expert's strokes fail more often than they succeed
+
+
+class ActionNoise:
+    """Perturbed demonstrations for datasets (DART, Laskey et al. 2017): a smooth joint offset, an
+    Ornstein-Uhlenbeck process with standard deviation ``sigma`` rad and correlation time
+    ``tau_steps`` control steps, added to the arm and view joints of the action the simulator
+    executes (grippers untouched). The dataset records the expert's own action, so at each perturbed
+    state it shows the command that leads back onto the expert's path. Inside a contact stroke
+    (``ExpertContext.precise``: a press) the offset halves every step, so the stroke lands where the
+    expert aims it. Drawn from its own stream, seeded by the scene seed: deterministic, and the
+    scene's sampling is not touched."""
+
+    def __init__(self, sigma: float, seed: int, task: str, tau_steps: float = 5.0):
+        if not 0.0 < sigma <= MAX_ACTION_NOISE:
+            raise ValueError(
+                f"action_noise is a joint standard deviation in (0, {MAX_ACTION_NOISE}] rad, got {sigma}"
+            )
+        self.rng = np.random.default_rng([int(seed), zlib.crc32(f"action_noise/{task}".encode())])
+        self.decay = math.exp(-1.0 / tau_steps)
+        self.scale = sigma * math.sqrt(1.0 - self.decay**2)  # keeps the stationary deviation at sigma
+        self.mask = np.ones(18)
+        self.mask[list(GRIPPER_INDICES)] = 0.0
+        self.offset = np.zeros(18)  # the episode starts at home, unperturbed
+
+    def __call__(self, action: np.ndarray, precise: bool = False) -> np.ndarray:
+        step = self.rng.normal(0.0, 1.0, 18)  # drawn every step: the stream does not depend on strokes
+        if precise:
+            self.offset = 0.5 * self.offset
+        else:
+            self.offset = self.decay * self.offset + self.scale * step * self.mask
+        return np.asarray(action, float) + self.offset
 
 
 class ExpertDriver:
@@ -162,19 +216,22 @@ def run_expert_episode(
     on_frame: Callable[[int, ActiveArenaSim, dict, np.ndarray], None] | None = None,
     image_size: tuple[int, int] = HEAD_SIZE,
     search_overshoot: float = 0.0,
+    action_noise: float = 0.0,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
     (e.g. to render video). ``image_size``: the head image's (height, width); the annotations'
     pixel-space fields (boxes, camera intrinsics) follow it. ``search_overshoot``: the probability of a
     recovery demonstration per empty end sector of a search (``ExpertContext``; 0 = the benchmark's
-    expert)."""
+    expert). ``action_noise``: ``ActionNoise``'s sigma in rad (0 = none): ``actions`` stay the expert's,
+    ``states`` are where the perturbed commands took the robot."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
     episode = Episode(task, scene, max_penetration=PENETRATION_LIMIT, image_size=image_size)
     sim = episode.sim
     driver = ExpertDriver(task, scene, sim, episode.perception, search_overshoot=search_overshoot)
+    perturb = ActionNoise(action_noise, seed, task.name) if action_noise else None
     frames, actions, states = [], [], []
     failure = None
     for t in range(task.max_episode_steps + 1):
@@ -191,7 +248,11 @@ def run_expert_episode(
         actions.append(action)
         if on_frame is not None:
             on_frame(t, sim, frame, action)
-        episode.step(action)
+        executed = action
+        if perturb is not None:  # the noise stays within the joint limits; the expert's command is as it is
+            low, high = np.minimum(sim.action_low, action), np.maximum(sim.action_high, action)
+            executed = np.clip(perturb(action, driver.ctx.precise), low, high)
+        episode.step(executed)
         if episode.physics_problem:
             failure = episode.failure_reason
             break

@@ -57,6 +57,9 @@ class ExpertContext:
         # arm side -> (joint waypoints left, gripper) of a motion it makes while the script commands
         # something else (an arm going home while the other one works)
         self.trailing: dict[str, tuple[list[np.ndarray], float | None]] = {}
+        # inside a contact stroke that must land where it is aimed (a press): perturbed demonstrations
+        # (``episodes.rollout.ActionNoise``) fade their offset out here
+        self.precise = False
 
     @contextmanager
     def subtask(self, k: int):
@@ -66,6 +69,15 @@ class ExpertContext:
             raise ValueError(f"subtask {k} is not declared (the task has {self.n_subtasks})")
         self.intent.subtask = k
         yield
+
+    @contextmanager
+    def precision(self):
+        """Frames emitted inside the block belong to a contact stroke (``precise``)."""
+        self.precise = True
+        try:
+            yield
+        finally:
+            self.precise = False
 
     # ---- objects -----------------------------------------------------------------------------
     def idx(self, name: str) -> int:

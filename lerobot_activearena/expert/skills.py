@@ -263,8 +263,9 @@ def press(
         raise ExpertError(f"{side} arm cannot press at {np.round(point, 3).tolist()}")
     yield from set_gripper(ctx, side, 0.0, 6)
     yield from arm_goto(ctx, side, stroke[0], rot, gripper=0.0)
-    yield from arm_line(ctx, side, stroke[1], rot, 0.0, speed=0.06)
-    yield from hold(ctx, 4)
+    with ctx.precision():
+        yield from arm_line(ctx, side, stroke[1], rot, 0.0, speed=0.06)
+        yield from hold(ctx, 4)
     yield from arm_line(ctx, side, stroke[0], rot, 0.0, speed=0.1)
 
 

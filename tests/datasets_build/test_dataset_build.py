@@ -34,6 +34,7 @@ from lerobot_activearena.datasets_build.pipeline import build_dataset, push
 from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.datasets_build.record import record_episode
 from lerobot_activearena.envs.manifests import EVAL_SEED_START, load_manifest
+from lerobot_activearena.episodes.rollout import DemoVariation
 from lerobot_activearena.tasks import get_task, task_names
 
 RECIPES = Path(__file__).parents[2] / "datasets_build"
@@ -236,8 +237,8 @@ def test_lerobots_streaming_dataset_reads_the_build(built):
 def test_failed_expert_episodes_are_skipped_recorded_and_replaced(tmp_path, monkeypatch):
     real = shard_mod.record_episode
 
-    def flaky(task, seed, split, image_size, search_overshoot):
-        rec = real(task, seed, split, image_size, search_overshoot)
+    def flaky(task, seed, split, image_size, variation):
+        rec = real(task, seed, split, image_size, variation)
         if seed == 0:
             rec.result.success, rec.result.failure = False, "forced failure for the test"
         return rec
@@ -309,7 +310,7 @@ def test_resume_does_not_rebuild_completed_shards(tmp_path, monkeypatch):
     summary = build_dataset(
         plan, tmp_path / "partial", work_dir=work, workers=1, keep_shards=True, progress=False
     )
-    assert calls == [(BELL, 1, "id", (384, 512), 0.0)]  # only the missing shard ran
+    assert calls == [(BELL, 1, "id", (384, 512), DemoVariation())]  # only the missing shard ran
     assert (work / "shards" / plan.shards[0].name / "shard.json").stat().st_mtime_ns == stamp
     assert summary["episodes"] == 2
 
@@ -349,21 +350,27 @@ def test_bad_arguments_get_clear_errors():
     ]
 
 
-def test_recovery_demonstrations_are_an_opt_in_part_of_the_plan(tmp_path):
+@pytest.mark.parametrize(
+    ("key", "value", "flag", "bad"),
+    [("search_overshoot", 0.5, "1", 1.5), ("action_noise", 0.02, "0.03", 0.5)],
+)
+def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, value, flag, bad):
     plan = make_plan(
         _parse_build_args(["--repo-id", "a/b", "--root", "/x", "--tasks", BELL, "--episodes", "1"])
     )
-    assert plan.search_overshoot == 0.0 and "search_overshoot" not in plan.to_json()  # old builds resume
+    assert getattr(plan, key) == 0.0 and key not in plan.to_json()  # old builds resume
     recipe = tmp_path / "r.json"
-    recipe.write_text(json.dumps({"repo_id": "a/b", "tasks": BELL, "episodes": 1, "search_overshoot": 0.5}))
+    recipe.write_text(json.dumps({"repo_id": "a/b", "tasks": BELL, "episodes": 1, key: value}))
     from_recipe = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x"]))
-    assert from_recipe.search_overshoot == 0.5 and from_recipe.to_json()["search_overshoot"] == 0.5
-    flag = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x", "--search-overshoot", "1"]))
-    assert flag.search_overshoot == 1.0
+    assert getattr(from_recipe, key) == value and from_recipe.to_json()[key] == value
+    assert getattr(from_recipe.variation, key) == value  # what the shards' expert runs with
+    option = "--" + key.replace("_", "-")
+    flagged = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x", option, flag]))
+    assert getattr(flagged, key) == float(flag)
     plan.save(tmp_path / "plan.json")
-    assert not flag.same_as(tmp_path / "plan.json")  # a resume with another value is refused
-    with pytest.raises(ValueError, match="probability"):
-        BuildPlan(repo_id="a/b", split="id", tasks=[BELL], episodes=1, search_overshoot=1.5)
+    assert not flagged.same_as(tmp_path / "plan.json")  # a resume with another value is refused
+    with pytest.raises(ValueError, match=option):
+        BuildPlan(repo_id="a/b", split="id", tasks=[BELL], episodes=1, **{key: bad})
 
 
 def test_bad_recipes_get_clear_errors(tmp_path, capsys):

@@ -286,3 +286,40 @@ def test_search_overshoot_demonstrates_turning_back_from_the_joint_limit(expert_
         ExpertContext(None, [], None, None, None, search_overshoot=2.0)
     with pytest.raises(ValueError, match="rng"):
         ExpertContext(None, [], None, None, None, search_overshoot=0.5)
+
+
+def test_action_noise_perturbs_what_runs_and_records_the_experts_own_commands(expert_episode):
+    """Perturbed demonstrations (DART): the executed commands carry a smooth joint noise, the recorded
+    actions are the expert's, so the states leave the commanded path; the press still lands (the
+    noise fades inside the stroke) and the same seed gives the same episode."""
+    from lerobot_activearena.episodes.rollout import ActionNoise, DemoVariation, run_expert_episode
+    from lerobot_activearena.sim.action import GRIPPER_INDICES
+
+    task = "click_bell_rotate_view"
+    plain = expert_episode(task, 0, "id")
+    noisy = run_expert_episode(task, 0, "id", action_noise=0.02)
+    again = run_expert_episode(task, 0, "id", action_noise=0.02)
+    assert noisy.success and plain.success
+    np.testing.assert_array_equal(noisy.states, again.states)
+    np.testing.assert_array_equal(noisy.actions, again.actions)
+
+    def lag(r):  # how far each state is from the command before it (the drives lag a little)
+        return float(np.abs(np.asarray(r.states)[1:, :16] - np.asarray(r.actions)[:-1, :16]).mean())
+
+    assert lag(noisy) > 1.5 * lag(plain)
+
+    noise = ActionNoise(0.02, seed=0, task=task)
+    zero = np.zeros(18)
+    offsets = np.array([noise(zero) for _ in range(3000)])
+    assert np.all(offsets[:, list(GRIPPER_INDICES)] == 0.0)  # grippers are never perturbed
+    assert offsets[500:, 0].std() == pytest.approx(0.02, rel=0.25)  # the stationary deviation is sigma
+    assert np.corrcoef(offsets[:-1, 0], offsets[1:, 0])[0, 1] > 0.7  # smooth, not white
+    before = np.abs(noise.offset).max()
+    noise(zero, precise=True)
+    assert np.abs(noise.offset).max() == pytest.approx(before / 2)  # fading inside a press
+    first = ActionNoise(0.02, 0, task)(zero)  # its own stream per (seed, task)
+    np.testing.assert_array_equal(first, offsets[0])
+    assert not np.array_equal(first, ActionNoise(0.02, 0, "count_target_press_button")(zero))
+    assert not np.array_equal(first, ActionNoise(0.02, 1, task)(zero))
+    with pytest.raises(ValueError, match="action-noise"):
+        DemoVariation(action_noise=0.5)
