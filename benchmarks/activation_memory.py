@@ -2,6 +2,7 @@
 
     python benchmarks/activation_memory.py                 # the usual batch (batch 7, K = 12)
     python benchmarks/activation_memory.py --all-valid     # every history frame present (91 images)
+    python benchmarks/activation_memory.py --compile-layers all   # what compiled blocks keep instead
 
 Runs one forward pass of the OFT policy on a random Qwen3-VL with the 2B model's widths, cut to
 ``--vision-depth`` vision blocks and ``--text-layers`` language layers, under bfloat16 autocast, and
@@ -11,13 +12,15 @@ to the full depth (24 blocks, 28 layers) and added to the float32 weights, gradi
 of all 2.2 B parameters, this predicts a GPU's peak for each gradient-checkpointing choice: a
 checkpointed block keeps only its input and recomputes the rest, one block at a time, in the backward
 pass. The saved bytes are listed by dtype and by the operator that saved them, which shows what a
-change in precision or in the norms would save. ``oft_train_step.py --sweep`` measures the same on a
-GPU.
+change in precision or in the norms would save. With ``--compile-layers`` the blocks run compiled
+(inductor on the CPU): its partitioner recomputes cheap element-wise results in the backward pass
+instead of keeping them, so they keep less. ``oft_train_step.py --sweep`` measures the same on a GPU.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import tempfile
 from collections import defaultdict
 from pathlib import Path
@@ -156,6 +159,7 @@ def main() -> None:
         dtype="bfloat16",
         unpad_language_model=args.unpad_language_model,
         residual_dtype=args.residual_dtype,
+        compile_layers=args.compile_layers,
     )
     cfg.think = "instruction"  # synthetic batches have no subtask annotations: a span of similar length
     policy, pre, batches = synthetic_setup(cfg, args.batch_size, args.episode_frames, args.all_valid)
@@ -173,7 +177,10 @@ def main() -> None:
     policy.assemble = assemble_and_record
     batch = pre(next(batches))
     images = int(batch["observation.vlm.frame_valid"].sum())
-    with torch.autograd.graph.saved_tensors_hooks(counter.pack, lambda t: t), counter.kept_by_selective():
+    compiled = args.compile_layers != "none"
+    # selective checkpointing does not combine with compiled blocks (and its counter would trace into them)
+    selective = contextlib.nullcontext() if compiled else counter.kept_by_selective()
+    with torch.autograd.graph.saved_tensors_hooks(counter.pack, lambda t: t), selective:
         loss, _ = policy.forward(batch)
     counter.close()
     del loss
@@ -198,7 +205,7 @@ def main() -> None:
     print(
         f"batch {args.batch_size}, K = {args.history}, {'all-valid' if args.all_valid else 'usual'} batch: "
         f"{images} images; bfloat16 autocast over float32 weights (the presets' precision), residual streams "
-        f"{args.residual_dtype}"
+        f"{args.residual_dtype}" + (f"; compiled layers: {args.compile_layers}" if compiled else "")
     )
     padded, real = shapes[0]
     print(
@@ -215,9 +222,13 @@ def main() -> None:
     )
     print(
         f"saved for backward: {per_block / GIB:.3f} GiB per vision block (input {in_block / GIB:.3f}), "
-        f"{per_layer / GIB:.3f} GiB per language layer (input {in_layer / GIB:.3f}), {rest / GIB:.2f} GiB the rest; "
-        f"selective checkpointing keeps {sel_block / GIB:.3f} GiB per vision block, {sel_layer / GIB:.3f} per "
-        "language layer (input + matmul and attention outputs)"
+        f"{per_layer / GIB:.3f} GiB per language layer (input {in_layer / GIB:.3f}), {rest / GIB:.2f} GiB the rest"
+        + (
+            ""
+            if compiled
+            else f"; selective checkpointing keeps {sel_block / GIB:.3f} GiB per vision block, "
+            f"{sel_layer / GIB:.3f} per language layer (input + matmul and attention outputs)"
+        )
     )
     print("predicted peak (static + saved; a checkpointed block keeps its input, one recomputes at a time):")
     for name, keep_block, keep_layer in (
@@ -228,6 +239,8 @@ def main() -> None:
         ("all, selective", sel_block, sel_layer),
         ("vision, selective", sel_block, per_layer),
     ):
+        if compiled and "selective" in name:
+            continue
         vision, text = depth * keep_block, n_layers * keep_layer
         recompute = max(per_block - keep_block, per_layer - keep_layer)
         total = static + vision + text + rest + recompute

@@ -111,6 +111,12 @@ def add_memory_options(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="the language model once per sample at its own length (unpad_language_model)",
     )
+    p.add_argument(
+        "--compile-layers",
+        choices=["none", "all", "vision", "language"],
+        default="none",
+        help="torch.compile the backbone's vision blocks and/or decoder layers (compile_layers)",
+    )
 
 
 def with_padding_mask(policy) -> None:
@@ -313,12 +319,6 @@ def main() -> None:
         help="pass the padding mask to the language model in training (A/B of leaving it out)",
     )
     p.add_argument("--fused-adamw", action="store_true", help="torch's fused AdamW kernel (CUDA)")
-    p.add_argument(
-        "--compile-layers",
-        choices=["none", "all", "vision", "language"],
-        default="none",
-        help="torch.compile the backbone's vision blocks and/or decoder layers (compile_layers)",
-    )
     p.add_argument(
         "--sweep",
         action="store_true",
