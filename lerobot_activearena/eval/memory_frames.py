@@ -6,36 +6,28 @@ from __future__ import annotations
 
 import json
 import tempfile
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
 
-def play_and_record(
-    policy_path: Path,
-    task: str,
-    split: str,
-    episode: int,
-    vlm_path: str | None = None,
-    episode_length: int | None = None,
-) -> dict:
-    """One manifest episode (``episode`` = its manifest index) at the checkpoint's image size. Returns
-    the head frames per step, the memory bank's env steps after every step, the chunk size executed,
-    and the episode's record (success, failure state and reason)."""
-    import torch
+@contextmanager
+def policy_in_env(policy_path: Path, task: str, split: str, vlm_path: str | None = None, **env_options):
+    """An ActiveArena-VLA checkpoint, its processors and one env of ``task`` at the checkpoint's image
+    size, as ``lerobot-eval`` builds them; yields ``(policy, processors, vec_env, env_cfg, log_dir)``,
+    ``processors`` in ``lerobot_eval.rollout``'s order. ``env_options``: more ``ActiveArenaEnvConfig``
+    fields (e.g. ``expert_channel``)."""
     from lerobot.configs.policies import PreTrainedConfig
     from lerobot.envs.factory import make_env_pre_post_processors
     from lerobot.envs.utils import close_envs
     from lerobot.policies import make_policy, make_pre_post_processors
-    from lerobot.scripts import lerobot_eval
-    from tqdm import trange
 
     from ..envs.configs import ActiveArenaEnvConfig
     from .learning_curve import image_size
     from .protocol import register_policy_types
 
     register_policy_types()
-    lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})  # one episode: no bar
     cfg = PreTrainedConfig.from_pretrained(policy_path)
     if not hasattr(cfg, "memory"):
         raise ValueError(f"{policy_path} is a {cfg.type} checkpoint; the memory bank is ActiveArena-VLA's")
@@ -52,7 +44,7 @@ def play_and_record(
             observation_height=height,
             observation_width=width,
             episode_log_dir=logs,
-            episode_length=episode_length,
+            **env_options,
         )
         policy = make_policy(cfg=cfg, env_cfg=env_cfg).eval()
         pre, post = make_pre_post_processors(
@@ -61,25 +53,49 @@ def play_and_record(
         env_pre, env_post = make_env_pre_post_processors(env_cfg=env_cfg, policy_cfg=cfg)
         envs = env_cfg.create_envs(n_envs=1, use_async_envs=False)
         vec = next(iter(next(iter(envs.values())).values()))
-        frames: list[np.ndarray] = []
-        banks: list[list[int]] = []
         try:
-            with torch.no_grad():
-                lerobot_eval.rollout(
-                    vec,
-                    policy,
-                    env_pre,
-                    env_post,
-                    pre,
-                    post,
-                    seeds=[env_cfg.seed_base + episode],
-                    render_callback=lambda env: frames.append(env.envs[0].render()),
-                    predicted_latents_callback=lambda p: banks.append([e["t"] for e in p.memory(0)]),
-                )
+            yield policy, (env_pre, env_post, pre, post), vec, env_cfg, Path(logs)
         finally:
             close_envs(envs)
-        record = json.loads(next(Path(logs).rglob("*.jsonl")).read_text().splitlines()[0])
-    return {"frames": frames, "banks": banks, "chunk": cfg.n_action_steps, "record": record}
+
+
+def play_and_record(
+    policy_path: Path,
+    task: str,
+    split: str,
+    episode: int,
+    vlm_path: str | None = None,
+    episode_length: int | None = None,
+) -> dict:
+    """One manifest episode (``episode`` = its manifest index) at the checkpoint's image size. Returns
+    the head frames per step, the memory bank's env steps after every step, the chunk size executed,
+    and the episode's record (success, failure state and reason)."""
+    import torch
+    from lerobot.scripts import lerobot_eval
+    from tqdm import trange
+
+    lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})  # one episode: no bar
+    frames: list[np.ndarray] = []
+    banks: list[list[int]] = []
+    with policy_in_env(policy_path, task, split, vlm_path, episode_length=episode_length) as (
+        policy,
+        processors,
+        vec,
+        env_cfg,
+        logs,
+    ):
+        with torch.no_grad():
+            lerobot_eval.rollout(
+                vec,
+                policy,
+                *processors,
+                seeds=[env_cfg.seed_base + episode],
+                render_callback=lambda env: frames.append(env.envs[0].render()),
+                predicted_latents_callback=lambda p: banks.append([e["t"] for e in p.memory(0)]),
+            )
+        record = json.loads(next(logs.rglob("*.jsonl")).read_text().splitlines()[0])
+        chunk = policy.config.n_action_steps
+    return {"frames": frames, "banks": banks, "chunk": chunk, "record": record}
 
 
 def decision_step(n_steps: int, chunk: int) -> int:

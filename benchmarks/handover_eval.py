@@ -1,0 +1,84 @@
+"""Which part of a task a policy fails at: the scripted expert plays each episode up to a handover
+point, then the policy finishes it (``lerobot_activearena.eval.handover``; the policy sees every
+observation from the first step, so its memory bank holds what the expert's views put there).
+
+    python benchmarks/handover_eval.py CHECKPOINT --task count_target_press_button \\
+        --episode-indices 50-59 --handover start,subtask:2,subtask:2+12
+
+Handover points: ``start`` (the policy alone, as ``activearena-eval`` plays it), ``never`` (the
+expert alone: a check of the harness), ``subtask:K`` (the
+first frame the expert's own episode annotates with subtask K, e.g. the count task's press once
+the blocks are counted), ``subtask:K+N`` (N frames later). Validation episodes (manifest ID 50 on)
+by default. Prints, per handover point, the successes and failure states (DM / CO / CR).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+from lerobot_activearena.cli.args import int_ranges
+from lerobot_activearena.eval.handover import handover_step, play_with_handover
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("checkpoint", type=Path, help="an ActiveArena-VLA pretrained_model folder")
+    p.add_argument("--task", required=True)
+    p.add_argument("--split", default="id")
+    p.add_argument("--episode-indices", default="50-59", help="manifest indices (default: validation)")
+    p.add_argument("--handover", default="start,subtask:2", help="comma-separated handover points")
+    p.add_argument("--out", type=Path, help="also write the per-episode records as JSON lines")
+    args = p.parse_args()
+
+    from lerobot.scripts import lerobot_eval
+    from tqdm import tqdm, trange
+
+    from lerobot_activearena.envs.manifests import manifest_seed
+    from lerobot_activearena.episodes.rollout import run_expert_episode
+    from lerobot_activearena.eval.memory_frames import policy_in_env
+
+    lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})
+    points = args.handover.split(",")
+    episodes = int_ranges(args.episode_indices)
+    rows = []
+    with policy_in_env(args.checkpoint, args.task, args.split, expert_channel=True) as (
+        policy,
+        processors,
+        vec,
+        env_cfg,
+        logs,
+    ):
+        for ep in tqdm(episodes, desc="episodes"):
+            seed = env_cfg.seed_base + ep
+            expert = run_expert_episode(args.task, manifest_seed(args.task, args.split, ep), args.split)
+            subtasks = [int(f["subtask"]) for f in expert.frames]
+            for point in points:
+                step = handover_step(point, subtasks)
+                play_with_handover(policy, processors, vec, seed, step)
+                log = sorted(logs.rglob("*.jsonl"))[0]
+                rec = json.loads(log.read_text().splitlines()[-1])
+                rows.append(
+                    {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
+                    | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
+                )
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    print(f"{args.checkpoint} on {args.task} {args.split}, episodes {args.episode_indices}:")
+    for point in points:
+        mine = [r for r in rows if r["handover"] == point]
+        states = Counter(r["failure_state"] for r in mine if not r["success"])
+        steps = np.mean([r["step"] for r in mine])
+        print(
+            f"  handover {point:>14} (mean step {steps:5.1f}): {sum(r['success'] for r in mine)} of "
+            f"{len(mine)} solved; failures {dict(states)}"
+        )
+
+
+if __name__ == "__main__":
+    main()
