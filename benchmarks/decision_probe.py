@@ -1,0 +1,165 @@
+"""Does a trained ActiveArena-VLA know the count when it must choose the button? A linear probe on the
+count task's decision frames of a built dataset.
+
+    python benchmarks/decision_probe.py --root outputs/datasets/cpu_count_192 \\
+        RUN_A/checkpoints/012000/pretrained_model RUN_B/checkpoints/003000/pretrained_model
+
+For every episode it takes the frame ``--offset`` steps after the expert's press subtask begins (the
+blocks are counted, the view is on the buttons, the arm has not moved yet: the decision), runs the
+policy on it as in training (its memory frames from the dataset), and keeps the last-layer states at
+the action queries (their mean). A logistic regression from those states to the number of target
+blocks, cross-validated over episodes (at its best of a few L2 weights: an upper bound), says whether
+the count is linearly readable where the policy decides; the majority class is the floor. The same
+for the matching button's place among the three (by azimuth: the decision itself), from the states,
+from the predicted chunk, and from the expert's recorded chunk at the same frames (the control:
+what a policy that has decided shows).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+import torch
+
+TASK = "count_target_press_button"
+
+
+def count_and_button(seed: int, split: str) -> tuple[int, int]:
+    """The scene's number of target blocks, and where the matching button lies among the three
+    (0, 1, 2 by azimuth): the decision the press makes."""
+    from lerobot_activearena.tasks.registry import get_task
+    from lerobot_activearena.tasks.sampling import sample_scene
+
+    scene = sample_scene(get_task(TASK), seed, split)
+    count = int(scene.params["count"])
+    buttons = sorted((p["angle"], p["name"]) for p in scene.params["placements"] if p["category"] == "button")
+    return count, [name for _, name in buttons].index(f"button_{count}")
+
+
+def decision_frames(root: Path, offset: int) -> tuple[list[int], list[tuple[int, int]]]:
+    """Dataset indices of each episode's decision frame, and the episode's count and button."""
+    import json
+
+    import pandas as pd
+
+    frame = pd.concat(pd.read_parquet(f) for f in sorted(root.glob("data/*/*.parquet")))
+    episodes = [json.loads(line) for line in (root / "meta/activearena/episodes.jsonl").open()]
+    indices, counts = [], []
+    for ep in episodes:
+        g = frame[frame["episode_index"] == ep["episode_index"]].sort_values("frame_index")
+        press = np.flatnonzero(g["subtask_index"].to_numpy() == 2)
+        if len(press) == 0:
+            continue
+        indices.append(int(g["index"].to_numpy()[min(press[0] + offset, len(g) - 1)]))
+        counts.append(count_and_button(ep["seed"], ep["split"]))
+    return indices, counts
+
+
+def features(policy_dir: Path, repo_id: str, root: Path, indices: list[int]) -> tuple[np.ndarray, np.ndarray]:
+    """(episodes, width) mean action-query states, (episodes, chunk * dims) predicted chunks and the
+    recorded ones."""
+    from lerobot.configs.policies import PreTrainedConfig
+    from lerobot.datasets.factory import resolve_delta_timestamps
+    from lerobot.datasets.lerobot_dataset import LeRobotDataset, LeRobotDatasetMetadata
+    from lerobot.policies import make_policy, make_pre_post_processors
+
+    from lerobot_activearena.eval.protocol import register_policy_types
+
+    register_policy_types()
+    cfg = PreTrainedConfig.from_pretrained(policy_dir)
+    cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
+    meta = LeRobotDatasetMetadata(repo_id, root=root)
+    policy = make_policy(cfg, ds_meta=meta).eval()
+    pre, _ = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
+    ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    loader = torch.utils.data.DataLoader(torch.utils.data.Subset(ds, indices), batch_size=16)
+    states, chunks, recorded = [], [], []
+    decode = policy.decode_actions
+
+    def keep(hidden, kind):
+        from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY
+
+        states.append(hidden[kind == QUERY].view(kind.shape[0], -1, hidden.shape[-1]).float().mean(1))
+        return decode(hidden, kind)
+
+    policy.decode_actions = keep
+    with torch.no_grad():
+        for batch in loader:
+            obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}
+            obs["task"] = batch["task"]
+            obs.update(
+                {k: v for k, v in batch.items() if k.startswith("observation.") and k.endswith("_is_pad")}
+            )
+            chunks.append(policy.predict_action_chunk(pre(obs)).flatten(1))
+            recorded.append(batch["action"].flatten(1))
+    return torch.cat(states).numpy(), torch.cat(chunks).numpy(), torch.cat(recorded).numpy()
+
+
+def probe_accuracy(x: np.ndarray, y: np.ndarray, l2: float, folds: int = 5, seed: int = 0) -> float:
+    """Cross-validated accuracy of a multinomial logistic regression (standardised inputs, L2)."""
+    classes = sorted(set(y.tolist()))
+    target = torch.tensor([classes.index(v) for v in y])
+    order = np.random.default_rng(seed).permutation(len(y))
+    correct = 0
+    for k in range(folds):
+        test = order[k::folds]
+        train = np.setdiff1d(order, test)
+        mu, sd = x[train].mean(0), x[train].std(0) + 1e-6
+        xt = torch.tensor((x[train] - mu) / sd, dtype=torch.float32)
+        xv = torch.tensor((x[test] - mu) / sd, dtype=torch.float32)
+        lin = torch.nn.Linear(x.shape[1], len(classes))
+        opt = torch.optim.LBFGS(lin.parameters(), max_iter=200)
+
+        def closure(lin=lin, opt=opt, xt=xt, yt=target[train]):
+            opt.zero_grad()
+            loss = torch.nn.functional.cross_entropy(lin(xt), yt) + l2 * lin.weight.square().sum()
+            loss.backward()
+            return loss
+
+        opt.step(closure)
+        correct += int((lin(xv).argmax(1) == target[test]).sum())
+    return correct / len(y)
+
+
+def best_probe(x: np.ndarray, y: np.ndarray) -> str:
+    """The probe's accuracy at its best L2 weight (an upper bound: chosen on the same folds)."""
+    scores = {l2: probe_accuracy(x, y, l2) for l2 in L2_WEIGHTS}
+    l2 = max(scores, key=scores.get)
+    return f"{scores[l2]:.0%} (L2 {l2:g})"
+
+
+L2_WEIGHTS = (1e-3, 1e-2, 1e-1, 1.0)
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("checkpoints", nargs="+", type=Path, help="ActiveArena-VLA pretrained_model folders")
+    p.add_argument("--root", type=Path, required=True, help="a count-task build (with meta/activearena)")
+    p.add_argument("--repo-id", default=None, help="default: local/<root folder name>")
+    p.add_argument("--offset", type=int, default=10, help="frames after the press subtask begins")
+    args = p.parse_args()
+    repo_id = args.repo_id or f"local/{args.root.name}"
+    indices, labels = decision_frames(args.root, args.offset)
+    targets = {"count": np.array([c for c, _ in labels]), "button": np.array([b for _, b in labels])}
+    for name, y in targets.items():
+        floor = Counter(y.tolist()).most_common(1)[0][1] / len(y)
+        print(
+            f"{len(y)} episodes, {name} {dict(sorted(Counter(y.tolist()).items()))}: majority class {floor:.0%}"
+        )
+    print("probe accuracy (5-fold over episodes, at the best L2 weight):")
+    for i, ckpt in enumerate(args.checkpoints):
+        x, chunk, expert = features(ckpt, repo_id, args.root, indices)
+        if i == 0:
+            print(
+                "  the expert's recorded chunk: "
+                + ", ".join(f"{n} {best_probe(expert, y)}" for n, y in targets.items())
+            )
+        for what, data in (("action-query states", x), ("predicted chunk", chunk)):
+            print(f"  {ckpt} {what}: " + ", ".join(f"{n} {best_probe(data, y)}" for n, y in targets.items()))
+
+
+if __name__ == "__main__":
+    main()
