@@ -26,9 +26,9 @@ def handover_step(point: str, subtasks: list[int]) -> int:
     return subtasks.index(k) + extra
 
 
-def play_with_handover(policy, processors, vec, seed: int, handover: int) -> None:
+def play_with_handover(policy, processors, vec, seed: int, handover: int, render_callback=None) -> None:
     """One episode through LeRobot's rollout loop on ``vec`` (one env with ``expert_channel``), the
-    expert's action executed before step ``handover``."""
+    expert's action executed before step ``handover``; ``render_callback(vec)`` after every step."""
     from lerobot.scripts import lerobot_eval
 
     real_reset, real_step = vec.reset, vec.step
@@ -49,6 +49,6 @@ def play_with_handover(policy, processors, vec, seed: int, handover: int) -> Non
     vec.reset, vec.step = reset, step
     try:
         with torch.no_grad():
-            lerobot_eval.rollout(vec, policy, *processors, seeds=[seed])
+            lerobot_eval.rollout(vec, policy, *processors, seeds=[seed], render_callback=render_callback)
     finally:
         del vec.reset, vec.step
