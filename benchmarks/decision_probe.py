@@ -98,37 +98,50 @@ def features(policy_dir: Path, repo_id: str, root: Path, indices: list[int]) -> 
     return torch.cat(states).numpy(), torch.cat(chunks).numpy(), torch.cat(recorded).numpy()
 
 
-def probe_accuracy(x: np.ndarray, y: np.ndarray, l2: float, folds: int = 5, seed: int = 0) -> float:
-    """Cross-validated accuracy of a multinomial logistic regression (standardised inputs, L2)."""
+def fit_probe(x: np.ndarray, y: np.ndarray, l2: float):
+    """A multinomial logistic regression (standardised inputs, L2); returns its predict function."""
     classes = sorted(set(y.tolist()))
     target = torch.tensor([classes.index(v) for v in y])
+    mu, sd = x.mean(0), x.std(0) + 1e-6
+    xt = torch.tensor((x - mu) / sd, dtype=torch.float32)
+    lin = torch.nn.Linear(x.shape[1], len(classes))
+    opt = torch.optim.LBFGS(lin.parameters(), max_iter=200)
+
+    def closure():
+        opt.zero_grad()
+        loss = torch.nn.functional.cross_entropy(lin(xt), target) + l2 * lin.weight.square().sum()
+        loss.backward()
+        return loss
+
+    opt.step(closure)
+
+    def predict(v: np.ndarray) -> np.ndarray:
+        with torch.no_grad():
+            out = lin(torch.tensor((v - mu) / sd, dtype=torch.float32)).argmax(1).numpy()
+        return np.array(classes)[out]
+
+    return predict
+
+
+def cv_accuracy(x: np.ndarray, y: np.ndarray, l2: float, folds: int = 5, seed: int = 0) -> float:
     order = np.random.default_rng(seed).permutation(len(y))
     correct = 0
     for k in range(folds):
         test = order[k::folds]
         train = np.setdiff1d(order, test)
-        mu, sd = x[train].mean(0), x[train].std(0) + 1e-6
-        xt = torch.tensor((x[train] - mu) / sd, dtype=torch.float32)
-        xv = torch.tensor((x[test] - mu) / sd, dtype=torch.float32)
-        lin = torch.nn.Linear(x.shape[1], len(classes))
-        opt = torch.optim.LBFGS(lin.parameters(), max_iter=200)
-
-        def closure(lin=lin, opt=opt, xt=xt, yt=target[train]):
-            opt.zero_grad()
-            loss = torch.nn.functional.cross_entropy(lin(xt), yt) + l2 * lin.weight.square().sum()
-            loss.backward()
-            return loss
-
-        opt.step(closure)
-        correct += int((lin(xv).argmax(1) == target[test]).sum())
+        correct += int((fit_probe(x[train], y[train], l2)(x[test]) == y[test]).sum())
     return correct / len(y)
 
 
-def best_probe(x: np.ndarray, y: np.ndarray) -> str:
-    """The probe's accuracy at its best L2 weight (an upper bound: chosen on the same folds)."""
-    scores = {l2: probe_accuracy(x, y, l2) for l2 in L2_WEIGHTS}
+def best_probe(x: np.ndarray, y: np.ndarray, x_out=None, y_out=None) -> str:
+    """The probe's cross-validated accuracy at its best L2 weight (an upper bound: chosen on the same
+    folds); with held-out episodes, the accuracy there of the probe fitted on all of ``x`` at that weight."""
+    scores = {l2: cv_accuracy(x, y, l2) for l2 in L2_WEIGHTS}
     l2 = max(scores, key=scores.get)
-    return f"{scores[l2]:.0%} (L2 {l2:g})"
+    text = f"{scores[l2]:.0%}"
+    if x_out is not None:
+        text += f" / held-out {(fit_probe(x, y, l2)(x_out) == y_out).mean():.0%}"
+    return text
 
 
 L2_WEIGHTS = (1e-3, 1e-2, 1e-1, 1.0)
@@ -140,25 +153,44 @@ def main() -> None:
     p.add_argument("--root", type=Path, required=True, help="a count-task build (with meta/activearena)")
     p.add_argument("--repo-id", default=None, help="default: local/<root folder name>")
     p.add_argument("--offset", type=int, default=10, help="frames after the press subtask begins")
+    p.add_argument(
+        "--heldout-root", type=Path, help="a build of other seeds: the probes fitted above, tested there"
+    )
     args = p.parse_args()
     repo_id = args.repo_id or f"local/{args.root.name}"
     indices, labels = decision_frames(args.root, args.offset)
     targets = {"count": np.array([c for c, _ in labels]), "button": np.array([b for _, b in labels])}
+    held = {}
+    if args.heldout_root is not None:
+        h_indices, h_labels = decision_frames(args.heldout_root, args.offset)
+        held = {"count": np.array([c for c, _ in h_labels]), "button": np.array([b for _, b in h_labels])}
     for name, y in targets.items():
         floor = Counter(y.tolist()).most_common(1)[0][1] / len(y)
         print(
             f"{len(y)} episodes, {name} {dict(sorted(Counter(y.tolist()).items()))}: majority class {floor:.0%}"
         )
-    print("probe accuracy (5-fold over episodes, at the best L2 weight):")
+    print(
+        "probe accuracy, cross-validated over the build's episodes at the best L2 weight"
+        + (f" / fitted there, tested on {len(held['count'])} held-out episodes:" if held else ":")
+    )
+
+    def probes(data, out=None) -> str:
+        return ", ".join(
+            f"{n} {best_probe(data, y, *((out, held[n]) if out is not None else ()))}"
+            for n, y in targets.items()
+        )
+
     for i, ckpt in enumerate(args.checkpoints):
         x, chunk, expert = features(ckpt, repo_id, args.root, indices)
-        if i == 0:
-            print(
-                "  the expert's recorded chunk: "
-                + ", ".join(f"{n} {best_probe(expert, y)}" for n, y in targets.items())
+        hx = hchunk = hexpert = None
+        if held:
+            hx, hchunk, hexpert = features(
+                ckpt, f"local/{args.heldout_root.name}", args.heldout_root, h_indices
             )
-        for what, data in (("action-query states", x), ("predicted chunk", chunk)):
-            print(f"  {ckpt} {what}: " + ", ".join(f"{n} {best_probe(data, y)}" for n, y in targets.items()))
+        if i == 0:
+            print(f"  the expert's recorded chunk: {probes(expert, hexpert)}")
+        print(f"  {ckpt} action-query states: {probes(x, hx)}")
+        print(f"  {ckpt} predicted chunk: {probes(chunk, hchunk)}")
 
 
 if __name__ == "__main__":
