@@ -66,6 +66,7 @@ def features(policy_dir: Path, repo_id: str, root: Path, indices: list[int]) -> 
     from lerobot.datasets.lerobot_dataset import LeRobotDataset, LeRobotDatasetMetadata
     from lerobot.policies import make_policy, make_pre_post_processors
 
+    from lerobot_activearena.eval.learning_curve import policy_inputs
     from lerobot_activearena.eval.protocol import register_policy_types
 
     register_policy_types()
@@ -88,12 +89,7 @@ def features(policy_dir: Path, repo_id: str, root: Path, indices: list[int]) -> 
     policy.decode_actions = keep
     with torch.no_grad():
         for batch in loader:
-            obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}
-            obs["task"] = batch["task"]
-            obs.update(
-                {k: v for k, v in batch.items() if k.startswith("observation.") and k.endswith("_is_pad")}
-            )
-            chunks.append(policy.predict_action_chunk(pre(obs)).flatten(1))
+            chunks.append(policy.predict_action_chunk(pre(policy_inputs(batch, cfg))).flatten(1))
             recorded.append(batch["action"].flatten(1))
     return torch.cat(states).numpy(), torch.cat(chunks).numpy(), torch.cat(recorded).numpy()
 

@@ -45,6 +45,15 @@ def image_size(policy_dir: Path) -> tuple[int, int]:
     return int(h), int(w)
 
 
+def policy_inputs(batch: dict, cfg) -> dict:
+    """A dataset batch's observations as a policy's preprocessor takes them at evaluation: its input
+    features, the task text and the ``*_is_pad`` flags of the history frames."""
+    obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}
+    obs["task"] = batch["task"]
+    obs.update({k: v for k, v in batch.items() if k.startswith("observation.") and k.endswith("_is_pad")})
+    return obs
+
+
 def chunk_errors(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32):
     """Per dataset batch (in order): the batch and the absolute error between the predicted and the
     recorded action chunk, (B, steps, ACTION_DIM) in joint units, zero on padded steps past an
@@ -66,12 +75,7 @@ def chunk_errors(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 3
     loader = torch.utils.data.DataLoader(ds, batch_size=batch_size, shuffle=False, num_workers=0)
     with torch.no_grad():
         for batch in loader:
-            obs = {k: v for k, v in batch.items() if k.startswith("observation.") and k in cfg.input_features}
-            obs["task"] = batch["task"]
-            obs.update(
-                {k: v for k, v in batch.items() if k.startswith("observation.") and k.endswith("_is_pad")}
-            )
-            pred = post(policy.predict_action_chunk(pre(obs))).cpu().numpy()
+            pred = post(policy.predict_action_chunk(pre(policy_inputs(batch, cfg)))).cpu().numpy()
             target, pad = batch["action"].numpy(), batch["action_is_pad"].numpy()
             steps = min(pred.shape[1], target.shape[1])
             valid = ~pad[:, :steps, None]
