@@ -106,7 +106,7 @@ class DemoVariation:
         if not 0.0 <= self.action_noise <= MAX_ACTION_NOISE:
             raise ValueError(
                 f"--action-noise is a joint standard deviation in [0, {MAX_ACTION_NOISE}] rad, got "
-                f"{self.action_noise} (0.02 perturbs the arms by about 1.5 cm at the fingertips)"
+                f"{self.action_noise}"
             )
 
 
