@@ -140,6 +140,12 @@ def main() -> None:
         "--padding-batches", type=int, default=50, help="batches over which the mean padding share is taken"
     )
     p.add_argument("--top", type=int, default=12, help="rows of the by-operator table")
+    p.add_argument(
+        "--budget-gib",
+        type=float,
+        default=70.0,
+        help="the peak to fit: how many language layers to checkpoint beside the vision tower",
+    )
     args = p.parse_args()
     if args.padding_batches < 1:
         p.error("--padding-batches must be >= 1")
@@ -247,6 +253,24 @@ def main() -> None:
         print(
             f"  checkpointing {name:>17}: {total / GIB:6.1f} GiB (vision {vision / GIB:5.1f}, language "
             f"{text / GIB:5.1f}, rest {rest / GIB:4.1f}, recompute {recompute / GIB:4.1f})"
+        )
+
+    # vision tower + the first n decoder layers (gradient_checkpointing_language_layers=n)
+    def partial_peak(n: int) -> float:
+        recompute = per_block - in_block if n == 0 else max(per_block - in_block, per_layer - in_layer)
+        return static + depth * in_block + n * in_layer + (n_layers - n) * per_layer + rest + recompute
+
+    fits = [n for n in range(n_layers + 1) if partial_peak(n) <= args.budget_gib * GIB]
+    if fits:
+        n = fits[0]
+        print(
+            f"to fit {args.budget_gib:g} GiB: the vision tower and the first {n} of {n_layers} language layers "
+            f"(gradient_checkpointing_language_layers={n}): {partial_peak(n) / GIB:.1f} GiB; each further "
+            f"layer saves {(per_layer - in_layer) / GIB:.2f} GiB"
+        )
+    else:
+        print(
+            f"no checkpointing choice fits {args.budget_gib:g} GiB (all layers: {partial_peak(n_layers) / GIB:.1f})"
         )
     print(f"saved bytes by region, dtype and the operator that made them (top {args.top}):")
     scale = {"vision block": depth / len(blocks), "language layer": n_layers / len(layers), "rest": 1}

@@ -205,21 +205,26 @@ def sweep(policy, pre, cfg, args) -> None:
         + (f"; compiled layers: {args.compile_layers}" if args.compile_layers != "none" else "")
         + ("; fused AdamW" if args.fused_adamw else "")
     )
-    for layers, mode in (
-        ("all", "full"),
-        ("vision", "full"),
-        ("language", "full"),
-        ("all", "selective"),
-        ("vision", "selective"),
-        ("none", "full"),
-    ):
+    choices = [
+        ("all", "full", None),
+        ("vision", "full", None),
+        ("language", "full", None),
+        ("all", "selective", None),
+        ("vision", "selective", None),
+        ("none", "full", None),
+    ]
+    if args.checkpoint_language_layers is not None:
+        choices.insert(2, ("all", "full", args.checkpoint_language_layers))
+    for layers, mode, n_language in choices:
         if mode == "selective" and cfg.compile_layers != "none":
             print(f"checkpointing {layers:>8} {mode:>9}: skipped (does not combine with --compile-layers)")
             continue
         if layers == "none":
             policy.vlm.gradient_checkpointing_disable()
         else:
-            checkpoint_layers(policy.vlm, layers, mode)
+            checkpoint_layers(policy.vlm, layers, mode, n_language)
+        if n_language is not None:
+            layers = f"vision+{n_language}L"
         for valid in (False, True):  # the same batches for every choice
             feed = synthetic_batches(cfg, args.batch_size, args.episode_frames, valid)
             if cuda:
@@ -304,6 +309,15 @@ def main() -> None:
         choices=["all", "vision", "language"],
         default="all",
         help="with --gradient-checkpointing: the blocks that recompute (gradient_checkpointing_layers)",
+    )
+    p.add_argument(
+        "--checkpoint-language-layers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="with --gradient-checkpointing and layers all or language: only the first N decoder layers "
+        "recompute (gradient_checkpointing_language_layers); with --sweep: one more row, the vision tower "
+        "and the first N language layers",
     )
     p.add_argument(
         "--checkpoint-mode",
@@ -400,6 +414,7 @@ def main() -> None:
         gradient_checkpointing=args.gradient_checkpointing,
         gradient_checkpointing_layers=args.checkpoint_layers,
         gradient_checkpointing_mode=args.checkpoint_mode,
+        gradient_checkpointing_language_layers=args.checkpoint_language_layers,
         unpad_language_model=args.unpad_language_model,
         residual_dtype=args.residual_dtype,
         compile_layers=args.compile_layers,

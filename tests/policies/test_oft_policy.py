@@ -597,7 +597,7 @@ def _loss_and_grads(vlm, root, **checkpointing):
     flags = {
         n: m.gradient_checkpointing
         for n, m in policy.vlm.named_modules()
-        if n.endswith(("blocks.0", "layers.0"))
+        if n.endswith("blocks.0") or n.rsplit(".", 1)[0].endswith("language_model.layers")
     }
     return (
         policy,
@@ -641,6 +641,30 @@ def test_gradient_checkpointing_of_some_layers_gives_the_same_gradients(vlm, roo
         ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_layers="mlp")
     with pytest.raises(ValueError, match="gradient_checkpointing_mode must be one of"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_mode="some")
+
+
+def test_checkpointing_the_first_language_layers_gives_the_same_gradients(vlm, root):
+    """gradient_checkpointing_language_layers=N recomputes the vision tower and the first N decoder
+    layers only; the loss and every gradient equal those of the step without checkpointing. Counts
+    outside 0..depth, or with layers=vision, are refused."""
+    _, loss, grads, _ = _loss_and_grads(vlm, root)
+    _, ck_loss, ck_grads, flags = _loss_and_grads(
+        vlm, root, gradient_checkpointing=True, gradient_checkpointing_language_layers=1
+    )
+    language = [flags[n] for n in sorted(flags) if "language_model.layers" in n]
+    assert flags["model.visual.blocks.0"] and len(language) >= 2
+    assert language == [True] + [False] * (len(language) - 1)
+    _assert_same_step(loss, grads, ck_loss, ck_grads, rel=1e-6, atol=1e-6, rtol=1e-4)
+    with pytest.raises(ValueError, match="with vision no language layer recomputes"):
+        ActiveArenaOFTConfig(
+            vlm_path=str(vlm),
+            gradient_checkpointing_layers="vision",
+            gradient_checkpointing_language_layers=2,
+        )
+    with pytest.raises(ValueError, match="a number >= 0"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), gradient_checkpointing_language_layers=-1)
+    with pytest.raises(ValueError, match="decoder layers"):
+        _loss_and_grads(vlm, root, gradient_checkpointing=True, gradient_checkpointing_language_layers=99)
 
 
 def test_unpadded_language_model_gives_the_same_loss_and_gradients(vlm, root):

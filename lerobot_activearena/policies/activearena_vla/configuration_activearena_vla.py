@@ -63,6 +63,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # on: all | vision (the vision tower's: it holds most activations, 4 patches per merged token of 13
     # images a sample) | language (the language model's decoder layers)
     gradient_checkpointing_layers: str = "all"
+    # With layers all or language: how many of the language model's decoder layers recompute, the first
+    # N (the others keep their activations); None: every one. Between vision (fast, the most memory)
+    # and all (the least): each checkpointed decoder layer trades its kept activations for a recompute.
+    gradient_checkpointing_language_layers: int | None = None
     # What those blocks recompute: full (everything but their input: the least memory) | selective
     # (they keep their matrix multiplies' and attention's outputs and recompute only norms, activations,
     # rotary embeddings and casts: most of full's saving at a small part of its recompute time).
@@ -143,6 +147,14 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
         ):
             if getattr(self, name) not in allowed:
                 raise ValueError(f"--policy.{name} must be one of {allowed}, got {getattr(self, name)!r}")
+        n_language = self.gradient_checkpointing_language_layers
+        if n_language is not None and (n_language < 0 or self.gradient_checkpointing_layers == "vision"):
+            raise ValueError(
+                "--policy.gradient_checkpointing_language_layers counts the language model's decoder layers "
+                "that recompute: a number >= 0 with gradient_checkpointing_layers=all or language (with "
+                f"vision no language layer recomputes), got {n_language} with "
+                f"gradient_checkpointing_layers={self.gradient_checkpointing_layers}"
+            )
         if (
             self.compile_layers != "none"
             and self.gradient_checkpointing

@@ -47,10 +47,11 @@ def _keep_compute(ctx, op, *args, **kwargs):
     return CheckpointPolicy.MUST_SAVE if name in SAVED_OPS else CheckpointPolicy.PREFER_RECOMPUTE
 
 
-def checkpoint_layers(vlm, layers: str, mode: str = "full") -> None:
-    """Gradient checkpointing of Qwen3-VL's ``layers`` (all | vision | language). ``mode`` full: those
-    blocks keep only their inputs and recompute the rest in the backward pass; selective: they also keep
-    the outputs of their matrix multiplies and attention (``SAVED_OPS``) and recompute only the cheap
+def checkpoint_layers(vlm, layers: str, mode: str = "full", language_layers: int | None = None) -> None:
+    """Gradient checkpointing of Qwen3-VL's ``layers`` (all | vision | language), of the language
+    model only its first ``language_layers`` decoder layers when given. ``mode`` full: those blocks
+    keep only their inputs and recompute the rest in the backward pass; selective: they also keep the
+    outputs of their matrix multiplies and attention (``SAVED_OPS``) and recompute only the cheap
     element-wise work (PyTorch's selective activation checkpointing)."""
     kwargs = {"use_reentrant": False}
     if mode == "selective":
@@ -60,13 +61,21 @@ def checkpoint_layers(vlm, layers: str, mode: str = "full") -> None:
     elif mode != "full":
         raise ValueError(f"checkpointing mode must be 'full' or 'selective', got {mode!r}")
     vlm.gradient_checkpointing_enable(gradient_checkpointing_kwargs=kwargs)
-    if layers == "all":
-        return
-    part = {"vision": vlm.model.visual, "language": vlm.model.language_model}[layers]
-    inside = {id(m) for m in part.modules()}
-    for module in vlm.modules():
-        if hasattr(module, "gradient_checkpointing") and id(module) not in inside:
-            module.gradient_checkpointing = False
+    decoder = vlm.model.language_model.layers
+    if language_layers is not None and language_layers > len(decoder):
+        raise ValueError(
+            f"gradient_checkpointing_language_layers={language_layers}, but the language model has "
+            f"{len(decoder)} decoder layers"
+        )
+    if layers != "all":
+        part = {"vision": vlm.model.visual, "language": vlm.model.language_model}[layers]
+        inside = {id(m) for m in part.modules()}
+        for module in vlm.modules():
+            if hasattr(module, "gradient_checkpointing") and id(module) not in inside:
+                module.gradient_checkpointing = False
+    if language_layers is not None and layers != "vision":
+        for i, layer in enumerate(decoder):
+            layer.gradient_checkpointing = i < language_layers
 
 
 def compile_layers(vlm, layers: str) -> None:

@@ -79,7 +79,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             residual_in_compute_dtype(self.vlm)
         if config.gradient_checkpointing:
             checkpoint_layers(
-                self.vlm, config.gradient_checkpointing_layers, config.gradient_checkpointing_mode
+                self.vlm,
+                config.gradient_checkpointing_layers,
+                config.gradient_checkpointing_mode,
+                config.gradient_checkpointing_language_layers,
             )
         compile_layers(self.vlm, config.compile_layers)
         vc = self.vlm.config
