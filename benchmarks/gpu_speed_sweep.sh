@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The 2B training step on one GPU for every gradient-checkpointing choice, compiled blocks first, then
 # eager on the same machine as the baseline (docs/policy.md's tables). Random weights at the 2B size,
-# batch 7, K = 12, the usual and the all-valid batch. At most 8.5 min (the compiled sweep is stopped after 330 s, the eager one after 150 s).
+# batch 7, K = 12, the usual and the all-valid batch. At most 8.5 min: the compiled sweep is stopped
+# after 330 s, the eager one after 150 s.
 #   on the GPU machine (../shared/gpu kit): source .gpu/setup.sh && OUT=DIR bash benchmarks/gpu_speed_sweep.sh
 #   CPU dry run (tiny model, batch 2, 1 step): DRYRUN=1 OUT=/tmp/sweep bash benchmarks/gpu_speed_sweep.sh
 # LANGUAGE_LAYERS: the extra row, vision tower + the first N language layers (activation_memory.py
