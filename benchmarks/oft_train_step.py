@@ -205,16 +205,17 @@ def sweep(policy, pre, cfg, args) -> None:
         + (f"; compiled layers: {args.compile_layers}" if args.compile_layers != "none" else "")
         + ("; fused AdamW" if args.fused_adamw else "")
     )
+    # the rows that can meet the memory budget without full checkpointing first: a capped run keeps them
     choices = [
-        ("all", "full", None),
         ("vision", "full", None),
+        ("none", "full", None),
+        ("all", "full", None),
         ("language", "full", None),
         ("all", "selective", None),
         ("vision", "selective", None),
-        ("none", "full", None),
     ]
     if args.checkpoint_language_layers is not None:
-        choices.insert(2, ("all", "full", args.checkpoint_language_layers))
+        choices.insert(0, ("all", "full", args.checkpoint_language_layers))
     for layers, mode, n_language in choices:
         if mode == "selective" and cfg.compile_layers != "none":
             print(f"checkpointing {layers:>8} {mode:>9}: skipped (does not combine with --compile-layers)")
