@@ -15,17 +15,17 @@ PY="${PYTHON:-python3}"
 mkdir -p "$OUT"
 VLM="${VLM:-/tmp/aa_qwen3_vl_2b_random}"
 if [ "${DRYRUN:-0}" = "1" ]; then
-  ARGS=(--device cpu --batch-size 2 --history 2 --steps 1)
+  ARGS=(--device cpu --batch-size 2 --history 2 --steps 1 --warmup 1)
   VLM_ARGS=()
   N=1
   LIMIT_S=(1200 1200)
 else
   LIMIT_S=("${COMPILED_TIMEOUT_S:-330}" "${EAGER_TIMEOUT_S:-150}")
-  ARGS=(--device cuda --batch-size 7 --history 12 --steps 2)
+  ARGS=(--device cuda --batch-size 7 --history 12 --steps "${STEPS:-2}" --warmup "${WARMUP:-3}")
   VLM_ARGS=(--architecture qwen3-vl-2b)
 fi
 [ -d "$VLM" ] || "$PY" -m lerobot_activearena.cli.make_tiny_vlm "$VLM" "${VLM_ARGS[@]}" >"$OUT/vlm.log" 2>&1
-for i in 0 1; do
+for i in ${ONLY:-0 1}; do  # ONLY=0: the compiled sweep alone
   compile=$([ "$i" = 0 ] && echo all || echo none)
   log="$OUT/sweep_compile_${compile}.log"
   timeout -k 5 "${LIMIT_S[$i]}" "$PY" benchmarks/oft_train_step.py --synthetic --sweep --vlm-path "$VLM" \

@@ -201,7 +201,7 @@ def sweep(policy, pre, cfg, args) -> None:
     opt = make_optimizer(policy, args.fused_adamw)
     policy.train()
     print(
-        f"sweep: batch {args.batch_size}, K={args.history}, {args.steps} timed steps after one warm-up each"
+        f"sweep: batch {args.batch_size}, K={args.history}, {args.steps} timed steps after {args.warmup} warm-up each"
         + (f"; compiled layers: {args.compile_layers}" if args.compile_layers != "none" else "")
         + ("; fused AdamW" if args.fused_adamw else "")
     )
@@ -233,9 +233,9 @@ def sweep(policy, pre, cfg, args) -> None:
                 torch.cuda.reset_peak_memory_stats()
             times, images = [], 0
             try:
-                for step in range(args.steps + 1):
+                for step in range(args.steps + args.warmup):
                     _, seconds, batch = train_step(policy, pre, opt, next(feed), cuda)
-                    if step:  # the first step includes lazy initialisation
+                    if step >= args.warmup:  # warm-up: lazy initialisation, compilation for new shapes
                         times.append(seconds)
                     images = int(batch["observation.vlm.frame_valid"].sum())
                 step_s = sum(times) / len(times)
@@ -332,6 +332,13 @@ def main() -> None:
         "--padding-mask",
         action="store_true",
         help="pass the padding mask to the language model in training (A/B of leaving it out)",
+    )
+    p.add_argument(
+        "--warmup",
+        type=int,
+        default=1,
+        help="untimed steps first (per sweep row and batch): with --compile-layers, a new sequence length "
+        "recompiles once (dynamic shapes), so use 3",
     )
     p.add_argument("--fused-adamw", action="store_true", help="torch's fused AdamW kernel (CUDA)")
     p.add_argument(
@@ -455,9 +462,9 @@ def main() -> None:
     cuda = args.device.startswith("cuda")
     policy.train()  # from_pretrained leaves the backbone in eval mode, where gradient checkpointing is off
     times, prep, images = [], [], 0
-    for step in range(args.steps + 1 if args.steps else 0):  # --steps 0: inference only
+    for step in range(args.steps + args.warmup if args.steps else 0):  # --steps 0: inference only
         prep_s, seconds, batch = train_step(policy, pre, opt, next(loader), cuda)
-        if step:  # the first step includes lazy initialisation
+        if step >= args.warmup:  # warm-up: lazy initialisation, compilation for new shapes
             times.append(seconds)
             prep.append(prep_s)
         images = int(batch["observation.vlm.frame_valid"].sum())
