@@ -21,7 +21,7 @@ if [ "${DRYRUN:-0}" = "1" ]; then
   LIMIT_S=(1200 1200)
 else
   LIMIT_S=("${COMPILED_TIMEOUT_S:-330}" "${EAGER_TIMEOUT_S:-150}")
-  ARGS=(--device cuda --batch-size 7 --history 12 --steps "${STEPS:-2}" --warmup "${WARMUP:-3}")
+  ARGS=(--device cuda --batch-size 7 --history 12 --steps "${STEPS:-2}" --warmup "${WARMUP:-1}")
   VLM_ARGS=(--architecture qwen3-vl-2b)
 fi
 [ -d "$VLM" ] || "$PY" -m lerobot_activearena.cli.make_tiny_vlm "$VLM" "${VLM_ARGS[@]}" >"$OUT/vlm.log" 2>&1
