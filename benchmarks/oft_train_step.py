@@ -21,9 +21,11 @@ the greedy ``<think>`` decoding that memory=subtask adds per chunk (KV-cached vs
 from __future__ import annotations
 
 import argparse
+import os
 import resource
 import tempfile
 import time
+import traceback
 from collections import Counter
 from pathlib import Path
 
@@ -87,14 +89,25 @@ def train_step(policy, pre, opt, raw: dict, cuda: bool) -> tuple[float, float, d
 
 
 class OperatorCount(TorchDispatchMode):
-    """Counts the ATen operators dispatched while it is active, by name."""
+    """Counts the ATen operators dispatched while it is active, by name, and where the host syncs
+    (``aten._local_scalar_dense``) come from: the innermost caller outside torch."""
 
-    def __init__(self):
+    def __init__(self, cpu: bool):
         super().__init__()
+        self.cpu = cpu  # on a CPU run every read is listed; on a GPU only reads of device tensors
         self.calls: Counter = Counter()
+        self.sync_sites: Counter = Counter()
 
     def __torch_dispatch__(self, func, types, args=(), kwargs=None):
         self.calls[str(func)] += 1
+        if func is torch.ops.aten._local_scalar_dense.default and (self.cpu or args[0].device.type != "cpu"):
+            for frame in reversed(traceback.extract_stack()[:-1]):
+                if f"{os.sep}torch{os.sep}" not in frame.filename:
+                    where = frame.filename.split("site-packages" + os.sep)[-1].split(
+                        "lerobot_activearena" + os.sep
+                    )[-1]
+                    self.sync_sites[f"{where}:{frame.lineno} ({frame.line})"] += 1
+                    break
         return func(*args, **(kwargs or {}))
 
 
@@ -479,14 +492,21 @@ def main() -> None:
         sort = "cuda_time_total" if cuda else "cpu_time_total"
         print(prof.key_averages().table(sort_by=sort, row_limit=25, max_name_column_width=60))
     if args.count_ops and args.steps:  # one more step, every dispatched operator counted
-        count = OperatorCount()
+        count = OperatorCount(cpu=not cuda)
         with count:
             train_step(policy, pre, opt, next(loader), cuda)
         print(
             f"one training step dispatches {sum(count.calls.values())} operators "
             f"(most a kernel launch on a GPU), {count.calls['aten._local_scalar_dense.default']} of "
-            "them host syncs (.item(), bool() or .tolist() of a tensor)"
+            "them reads of a tensor's value (.item(), bool() or .tolist()); "
+            + (
+                f"{sum(count.sync_sites.values())} of device tensors (host syncs), the most from:"
+                if cuda
+                else "the most from (on a GPU, a host sync where the tensor is on the device):"
+            )
         )
+        for where, n in count.sync_sites.most_common(8):
+            print(f"  {n:>5}  {where}")
     n_params = sum(p.numel() for p in policy.parameters())
     peak = peak_memory(cuda)
     head_params = sum(p.numel() for n, p in policy.named_parameters() if not n.startswith("vlm."))

@@ -152,6 +152,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         per-position ``kind`` (-1 = padding)."""
         batch_size, n_frames = valid.shape
         dev = self.device
+        # The token bookkeeping reads these small integer tensors element by element: on the host, one
+        # copy each, instead of a device sync per element (hundreds a step on a GPU).
+        valid, grid, prefix, prompt, prompt_mask = (t.cpu() for t in (valid, grid, prefix, prompt, prompt_mask))
+        if think is not None:
+            think, think_mask = think.cpu(), think_mask.cpu()
         if state is not None and state.dim() == 2:  # no history: one state per sample
             state = state[:, None]
         seqs, kinds, images, states = [], [], [], []
@@ -184,9 +189,15 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         kind = torch.full((batch_size, seq_len), -1, dtype=torch.long)
         for b, (s, k) in enumerate(zip(seqs, kinds, strict=True)):
             input_ids[b, : len(s)], kind[b, : len(k)] = torch.tensor(s), torch.tensor(k)
-        input_ids, kind = input_ids.to(dev), kind.to(dev)
         attn = (kind >= 0).long()
         mm = (kind == IMAGE).long()
+        # M-RoPE positions from the host copies (Qwen3-VL's get_rope_index reads them per image), and
+        # the image grid stays there: the vision tower reads it with .tolist() too
+        thw = torch.stack([grid[b, j] for b, j in images])
+        position_ids, _ = self.vlm.model.get_rope_index(
+            input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw, attention_mask=attn
+        )
+        input_ids, kind, attn, mm = input_ids.to(dev), kind.to(dev), attn.to(dev), mm.to(dev)
         embeds = self.vlm.get_input_embeddings()(input_ids)
         if self.n_queries:
             embeds = embeds.masked_scatter(
@@ -204,16 +215,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 "pixel_values holds the present frames only, packed in (sample, frame) order"
             )
         pv = pixels.flatten(0, 1).to(dev, self.vlm.dtype)  # (patches of all frames, dim)
-        thw = torch.stack([grid[b, j] for b, j in images]).to(dev)
-        position_ids, _ = self.vlm.model.get_rope_index(
-            input_ids=input_ids, mm_token_type_ids=mm, image_grid_thw=thw, attention_mask=attn
-        )
         return {
             "input_ids": input_ids,
             "kind": kind,
             "inputs_embeds": embeds,
             "attention_mask": attn,
-            "position_ids": position_ids,
+            "position_ids": position_ids.to(dev),
             "pixel_values": pv,
             "image_grid_thw": thw,
             "mm_token_type_ids": mm,
