@@ -154,7 +154,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         dev = self.device
         # The token bookkeeping reads these small integer tensors element by element: on the host, one
         # copy each, instead of a device sync per element (hundreds a step on a GPU).
-        valid, grid, prefix, prompt, prompt_mask = (t.cpu() for t in (valid, grid, prefix, prompt, prompt_mask))
+        valid, grid, prefix, prompt, prompt_mask = (
+            t.cpu() for t in (valid, grid, prefix, prompt, prompt_mask)
+        )
         if think is not None:
             think, think_mask = think.cpu(), think_mask.cpu()
         if state is not None and state.dim() == 2:  # no history: one state per sample
