@@ -6,7 +6,8 @@
 #   on the GPU machine (../shared/gpu kit): source .gpu/setup.sh && OUT=DIR bash benchmarks/gpu_speed_sweep.sh
 #   CPU dry run (tiny model, batch 2, 1 step): DRYRUN=1 OUT=/tmp/sweep bash benchmarks/gpu_speed_sweep.sh
 # LANGUAGE_LAYERS: the extra row, vision tower + the first N language layers (activation_memory.py
-# prints the N that fits a budget).
+# prints the N that fits a budget). STEPS and WARMUP: timed and untimed steps per row (2, 1); ONLY=0:
+# the compiled sweep alone.
 set -uo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 OUT="${OUT:-outputs/gpu_speed_sweep}"
@@ -25,7 +26,7 @@ else
   VLM_ARGS=(--architecture qwen3-vl-2b)
 fi
 [ -d "$VLM" ] || "$PY" -m lerobot_activearena.cli.make_tiny_vlm "$VLM" "${VLM_ARGS[@]}" >"$OUT/vlm.log" 2>&1
-for i in ${ONLY:-0 1}; do  # ONLY=0: the compiled sweep alone
+for i in ${ONLY:-0 1}; do
   compile=$([ "$i" = 0 ] && echo all || echo none)
   log="$OUT/sweep_compile_${compile}.log"
   timeout -k 5 "${LIMIT_S[$i]}" "$PY" benchmarks/oft_train_step.py --synthetic --sweep --vlm-path "$VLM" \

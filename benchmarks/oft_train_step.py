@@ -229,8 +229,8 @@ def sweep(policy, pre, cfg, args) -> None:
     ]
     if args.checkpoint_language_layers is not None:
         choices.insert(0, ("all", "full", args.checkpoint_language_layers))
-    # the first row once more, untimed, before the rest: a sequence length's first step builds its
-    # compiled graph and cuDNN attention plan, which every later row reuses (the same batches)
+    # the first row once more, untimed, before the rest: a batch shape's first step builds what is
+    # built per shape (compiled graphs, kernel choices), which every later row reuses (the same batches)
     for row, (layers, mode, n_language) in enumerate([choices[0], *choices]):
         if mode == "selective" and cfg.compile_layers != "none":
             print(f"checkpointing {layers:>8} {mode:>9}: skipped (does not combine with --compile-layers)")
@@ -353,8 +353,7 @@ def main() -> None:
         "--warmup",
         type=int,
         default=1,
-        help="untimed steps first (per sweep row and batch): with --compile-layers, a new sequence length "
-        "recompiles once (dynamic shapes), so use 3",
+        help="untimed steps first (per sweep row and batch): lazy initialisation, compilation",
     )
     p.add_argument("--fused-adamw", action="store_true", help="torch's fused AdamW kernel (CUDA)")
     p.add_argument(

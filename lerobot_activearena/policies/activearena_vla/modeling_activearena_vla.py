@@ -232,7 +232,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def vision_features(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
         """Vision tower per image (each image attends only to itself): its merged tokens and DeepStack
         features, so a memory frame's can be kept and reused at later chunks."""
-        out = self.vlm.model.get_image_features(pixel_values, grid)
+        # the grid is on the host (``assemble``), so the tower's cu_seqlens are too; flash-attn's
+        # variable-length kernel needs them on the GPU
+        flash = self.config.attn_implementation == "flash_attention_2"
+        out = self.vlm.model.get_image_features(pixel_values, grid.to(self.device) if flash else grid)
         sizes = (grid.prod(-1) // self.vlm.config.vision_config.spatial_merge_size**2).tolist()
         deep = [torch.split(d, sizes) for d in out.deepstack_features]
         return [(e, [d[i] for d in deep]) for i, e in enumerate(out.pooler_output)]
