@@ -15,12 +15,13 @@ PAGES = [
     ROOT / "README.md",
     *sorted((ROOT / "docs").glob("*.md")),
     ROOT / "benchmarks" / "README.md",
+    ROOT / "analysis" / "README.md",
     ROOT / "configs" / "README.md",
     ROOT / "datasets_build" / "README.md",
 ]
 LINK = re.compile(r"\]\(([^)\s]+)\)|src=\"([^\"]+)\"")
 REPO_PATH = re.compile(
-    r"`((?:docs|configs|benchmarks|datasets_build|scripts|tests|lerobot_activearena)/[^`\s]*)`"
+    r"`((?:docs|configs|benchmarks|analysis|datasets_build|scripts|tests|lerobot_activearena)/[^`\s]*)`"
 )
 
 

@@ -2,7 +2,7 @@
 finishes it. The policy sees every observation from the first step (its actions are discarded until
 the handover), so its memory bank holds what it would hold had it acted as the expert did. Where the
 success rate jumps as the handover moves later is the part of the task the policy cannot do
-(``benchmarks/handover_eval.py``)."""
+(``analysis/policies/handover_eval.py``)."""
 
 from __future__ import annotations
 

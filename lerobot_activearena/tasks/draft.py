@@ -20,9 +20,10 @@ from ..sim.look import draw_look
 from ..sim.scene import SceneBuilder
 from ..sim.workspace import TABLE_TOP, WORKSPACES
 
-REACH_R = (0.34, 0.45)  # top-down grasps and presses reach here at every angle (benchmarks/initial_view.py)
+# Top-down grasps and presses reach here at every angle (analysis/tasks/initial_view.py).
+REACH_R = (0.34, 0.45)
 # The upper band (0.60-0.80 m) where both arms reach a side-grasp pose 6 cm over it at every heading
-# of the placement span (benchmarks/reach_band.py --level upper); its outer 5 cm are out of reach.
+# of the placement span (analysis/tasks/reach_band.py --level upper); its outer 5 cm are out of reach.
 UPPER_REACH_R = (0.62, 0.72)
 LEVEL_REACH_R = (REACH_R, UPPER_REACH_R)  # a region's default distances per level
 CLUTTER_R = (0.55, 1.0)  # beyond the arms' working band

@@ -1,4 +1,4 @@
-"""Handover rollouts (benchmarks/handover_eval.py): the expert plays up to a point, the policy after."""
+"""Handover rollouts (analysis/policies/handover_eval.py): the expert plays up to a point, the policy after."""
 
 import json
 from pathlib import Path

@@ -205,7 +205,7 @@ def test_a_task_names_a_known_workspace():
 @pytest.mark.parametrize("side", ["left", "right"])
 def test_upper_reach_band_is_inside_what_both_arms_reach(side):
     """The upper placement band's ends, 6 cm over the upper top, are reached with the horizontal side
-    grasp at the span's ends and centre; the band's outer edge is not (benchmarks/reach_band.py
+    grasp at the span's ends and centre; the band's outer edge is not (analysis/tasks/reach_band.py
     --level upper maps it all)."""
     for angle in (30.0, 90.0, 150.0):
         for r in UPPER_REACH_R:

@@ -3,7 +3,7 @@ targets) never score, a replayed training demonstration rarely does, the fixed-v
 a detection miss; the suite runs as datatrove shards and resumes from its records; the CLI names the
 valid adversaries when given a wrong one. (``still`` is left out of CI: a robot that never moves never sees the hidden objects, so
 it cannot score by construction; ``random`` jitters around mid-range, weaker than held random
-targets; the full 50-seed table runs every adversary: ``benchmarks/validity.py``.)"""
+targets; the full 50-seed table runs every adversary: ``analysis/tasks/validity.py``.)"""
 
 import json
 
@@ -32,7 +32,7 @@ from lerobot_activearena.validity.suite import (
 TASKS = task_names("all")
 # held random targets reach further than a new random target every step (which jitters around
 # mid-range); ``random`` and ``still`` run in the full table.
-SEEDS = (VALIDITY_SEED_BASE,)  # one episode each in CI; the 50-seed table is benchmarks/validity.py
+SEEDS = (VALIDITY_SEED_BASE,)  # one episode each in CI; the 50-seed table is analysis/tasks/validity.py
 REPLAY_SEEDS = (VALIDITY_SEED_BASE, VALIDITY_SEED_BASE + 1)
 
 

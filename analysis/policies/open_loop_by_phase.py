@@ -1,7 +1,7 @@
 """Open-loop action error of checkpoints on held-out expert episodes, split by the episode's subtask
 (the annotation ``subtask_index``): where in a task a policy's predicted chunks leave the expert's.
 
-    python benchmarks/open_loop_by_phase.py --repo-id local/cpu_count_heldout \\
+    python analysis/policies/open_loop_by_phase.py --repo-id local/cpu_count_heldout \\
         --root outputs/datasets/cpu_count_heldout RUN_A/checkpoints/005000/pretrained_model RUN_B/...
 
 Prints, per checkpoint and subtask, the mean absolute error of the whole predicted 16-step chunk

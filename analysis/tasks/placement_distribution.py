@@ -1,7 +1,7 @@
 """Where the sampler puts things: azimuth / radius of every task object (by role) and of the clutter,
 per task, over many seeds, with the head camera's home view drawn in.
 
-    python benchmarks/placement_distribution.py --seeds 100 --splits id,ood --out docs/placement.png
+    python analysis/tasks/placement_distribution.py --seeds 100 --splits id,ood --out docs/placement.png
 
 Prints per task and role the sampled radius and azimuth ranges and the share on the robot's left
 (azimuth > 90 deg); saves a polar scatter plot, one panel per task.

@@ -2,7 +2,7 @@
 point, then the policy finishes it (``lerobot_activearena.eval.handover``; the policy sees every
 observation from the first step, so its memory bank holds what the expert's views put there).
 
-    python benchmarks/handover_eval.py CHECKPOINT --task count_target_press_button \\
+    python analysis/policies/handover_eval.py CHECKPOINT --task count_target_press_button \\
         --episode-indices 50-59 --handover start,subtask:2,subtask:2+12
 
 Handover points: ``start`` (the policy alone, as ``activearena-eval`` plays it), ``never`` (the

@@ -1,8 +1,8 @@
 """The sha256 of expert episodes (actions, states and every annotation), to show a refactor changes
 no behaviour: run it before and after, the lines must be equal.
 
-    python benchmarks/expert_episode_hashes.py --out before.json
-    python benchmarks/expert_episode_hashes.py --compare before.json
+    python analysis/tasks/expert_episode_hashes.py --out before.json
+    python analysis/tasks/expert_episode_hashes.py --compare before.json
 
 The default set covers every task shape and workspace: one or more tasks per category, the two-level
 and the fan-double workspaces, both splits, two seeds each.

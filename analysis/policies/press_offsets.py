@@ -4,7 +4,7 @@ arm's tool centre was from the press point (horizontally) while it did. Shows wh
 ``centered_within`` check rejects that the release's check (closed gripper touching within 2.5 cm)
 would count.
 
-    python benchmarks/press_offsets.py --policy.path=outputs/train/.../pretrained_model \\
+    python analysis/policies/press_offsets.py --policy.path=outputs/train/.../pretrained_model \\
         --env.observation_height=96 --env.observation_width=128 --episode-indices 50-69
 
 Runs ``activearena-eval`` in this process (``--workers 1``, validation ID episodes by default) with

@@ -5,7 +5,7 @@ whose tabletop points project inside the 512x384 head image at home (torso yaw 0
 the hidden angles on each side, and, per arm, the band of distances a top-down press reaches at
 each angle with the torso turned as the expert turns it. The view should be symmetric about 90 deg.
 
-    python benchmarks/initial_view.py
+    python analysis/tasks/initial_view.py
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The full validity table: every adversary on every task, 50 seeds outside the evaluation manifests
 (id split; --ood adds the ood split), no rendering.
 
-    python benchmarks/validity.py --workers 2 --out outputs/validity_bench [--ood]
+    python analysis/tasks/validity.py --workers 2 --out outputs/validity_bench [--ood]
 
 Prints the Markdown table of ``lerobot_activearena.validity.suite`` (also written to
 ``<out>/validity.md`` / ``.csv``) and the throughput of the episodes this call ran: episodes/hour

@@ -1,6 +1,6 @@
 """Expert success, episode length and speed per task and split (no rendering unless --render).
 
-    python benchmarks/expert_success.py --tasks all --splits id,ood --seeds 100 --workers 2
+    python analysis/tasks/expert_success.py --tasks all --splits id,ood --seeds 100 --workers 2
 
 Prints a Markdown table: success rate, mean and 95th-percentile episode length (frames, up to the
 reported success) against the task's step limit (target: p95 <= 0.9 x limit), failures by reason,

@@ -2,7 +2,7 @@
 before and after a change of the scenes' look, say): successes in each, and how many episodes kept
 their outcome.
 
-    python benchmarks/compare_runs.py docs/results/records/act_cpu_count_target_100demos \
+    python analysis/policies/compare_runs.py docs/results/records/act_cpu_count_target_100demos \
         outputs/protocol/act_cpu_count
 
 Reads each run's ``<split>/episodes/records.jsonl`` (or the committed ``.jsonl.gz``).

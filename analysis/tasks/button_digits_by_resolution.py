@@ -5,7 +5,7 @@ the paper's 50,176-pixel model input) and 384 x 512 (the rendered head image) an
 the press approach from each, scaled to the same size, side by side. At 96 x 128 a digit label is about
 4 pixels wide and the three numbers are not told apart; at 192 x 256 they are legible.
 
-    python benchmarks/button_digits_by_resolution.py --out docs/img/button_digits_by_resolution.png
+    python analysis/tasks/button_digits_by_resolution.py --out docs/img/button_digits_by_resolution.png
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Does a trained ACT policy decide a search turn from the image or from the state? A swap probe on a
 built rotate-view dataset (e.g. the bell's, built with ``--search-overshoot``):
 
-    python benchmarks/search_decision_probe.py --checkpoint outputs/train/.../pretrained_model \\
+    python analysis/policies/search_decision_probe.py --checkpoint outputs/train/.../pretrained_model \\
         --root outputs/datasets/cpu_click_bell_200_recovery --frames docs/img/bell_decision_frames.png
 
 Episodes are split by what the expert does at the first sector's end: ``found`` (it ends there, the

@@ -1,7 +1,7 @@
 """Does a trained ActiveArena-VLA know the count when it must choose the button? A linear probe on the
 count task's decision frames of a built dataset.
 
-    python benchmarks/decision_probe.py --root outputs/datasets/cpu_count_192 \\
+    python analysis/policies/decision_probe.py --root outputs/datasets/cpu_count_192 \\
         RUN_A/checkpoints/012000/pretrained_model RUN_B/checkpoints/003000/pretrained_model
 
 For every episode it takes the frame ``--offset`` steps after the expert's press subtask begins (the

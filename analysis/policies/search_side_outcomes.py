@@ -4,7 +4,7 @@ back) and counts, per policy, where the policy's view ended and how the episode 
 
     activearena-eval --policy.type=activearena_expert --env.render_pixels=false --policy.device=cpu \\
         --tasks click_bell_rotate_view --episode-indices 50-79 --videos 0 --out outputs/probe/expert
-    python benchmarks/search_side_outcomes.py outputs/probe/expert outputs/probe/POLICY_A outputs/probe/POLICY_B
+    python analysis/policies/search_side_outcomes.py outputs/probe/expert outputs/probe/POLICY_A outputs/probe/POLICY_B
 
 Each folder is an ``activearena-eval --out`` of the same episodes (ID split). The view's side is the
 sign of the recorded view target's horizontal component (``view_targets``): left, right or centre.

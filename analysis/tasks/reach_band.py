@@ -6,8 +6,8 @@ For each arm and workspace angle, with the torso turned past the target as the e
 reports the distances from the robot base at which IK reaches the pose (standing pose: the torso
 only yaws, as in every task), and with ``--plot`` draws both arms' reachable points over the level.
 
-    python benchmarks/reach_band.py                                      # lower fan
-    python benchmarks/reach_band.py --level upper --plot docs/upper_reach.png
+    python analysis/tasks/reach_band.py                                      # lower fan
+    python analysis/tasks/reach_band.py --level upper --plot docs/upper_reach.png
 """
 
 from __future__ import annotations
