@@ -1,8 +1,8 @@
 """`activearena-learning-curve`: for every checkpoint of a lerobot-train run, the open-loop action
 error on held-out episodes and the closed-loop success on the first ID manifest episodes of a task
 (with ``--validation``: on the manifest's episodes after the protocol's 50, to choose a checkpoint
-without touching the protocol's); writes ``curve.jsonl`` (one record per checkpoint, resumable) and
-``learning_curve.png``.
+without touching the protocol's); writes ``curve.jsonl`` (one record per checkpoint: success and the
+failed episodes' DM / CO / CR counts; resumable) and ``learning_curve.png``.
 
     activearena-learning-curve outputs/train/act_cpu_click_bell --task click_bell_rotate_view \\
         --heldout-repo-id local/cpu_click_bell_heldout --heldout-root outputs/datasets/cpu_click_bell_heldout \\
@@ -20,7 +20,9 @@ from pathlib import Path
 def closed_loop_success(policy_dir: Path, task: str, episodes: int, out: Path, first: int = 0) -> dict:
     """activearena-eval on ``episodes`` ID manifest episodes from index ``first``, at the
     checkpoint's image size; resumes an interrupted run."""
+    from ..episodes.episode import FAILURE_STATES
     from ..eval.learning_curve import image_size
+    from ..eval.shard import read_records
     from .eval import main as activearena_eval
 
     h, w = image_size(policy_dir)
@@ -38,10 +40,12 @@ def closed_loop_success(policy_dir: Path, task: str, episodes: int, out: Path, f
         ]
     )
     info = json.loads((out / "id" / "eval_info.json").read_text())
+    failed = [r["failure_state"] for r in read_records(out / "records").values() if not r["success"]]
     return {
         "episodes": info["overall"]["n_episodes"],
         "success": info["overall"]["pc_success"],
         "indices": f"{first}-{first + episodes - 1}",
+        "failures": {state: failed.count(state) for state in FAILURE_STATES},
     }
 
 
@@ -136,10 +140,11 @@ def main(argv: list[str] | None = None) -> None:
         records, args.out / "learning_curve.png", args.title or f"{args.train_dir.name} on {args.task}"
     )
     for r in records:
-        ol = r.get("open_loop", {})
+        ol, failures = r.get("open_loop", {}), r["closed_loop"].get("failures")
         print(
             f"step {r['step']:>6}: ID success {r['closed_loop']['success']:5.1f}% "
             f"({r['closed_loop']['episodes']} episodes)"
+            + (", failures " + " / ".join(f"{k} {v}" for k, v in failures.items()) if failures else "")
             + (f", held-out |error| {ol['l1']:.4f} (view {ol['l1_view']:.4f})" if ol else "")
         )
     best = max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))

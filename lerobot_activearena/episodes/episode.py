@@ -19,6 +19,8 @@ from ..sim.simulator import ActiveArenaSim
 from ..tasks.base import Task, TaskScene
 from ..tasks.success import SuccessMonitor
 
+FAILURE_STATES = ("DM", "CO", "CR")
+
 
 def failure_state(success: bool, ever_seen: np.ndarray, visible_now: np.ndarray) -> str:
     """'' on success; DM: some task-relevant object never observed; CO: all observed but the final

@@ -158,7 +158,10 @@ def test_the_cpu_recipe_trains_act_at_96x128_and_plays_at_that_size(tmp_path):
     args += ["--heldout-repo-id=local/cpu", f"--heldout-root={root}"]
     learning_curve_main(args)
     (rec,) = [json.loads(line) for line in (curve / "curve.jsonl").read_text().splitlines()]
-    assert rec["step"] == 2 and rec["closed_loop"] == {"episodes": 1, "success": 0.0, "indices": "0-0"}
+    assert rec["step"] == 2 and rec["closed_loop"]["success"] == 0.0
+    assert rec["closed_loop"]["episodes"] == 1 and rec["closed_loop"]["indices"] == "0-0"
+    (state,) = [k for k, n in rec["closed_loop"]["failures"].items() for _ in range(n)]  # the one failure
+    assert state == _records(curve / "eval_000002" / "id" / "episodes")[0]["failure_state"]
     assert rec["open_loop"]["frames"] == ds.num_frames and rec["open_loop"]["l1"] > 0
     assert (curve / "learning_curve.png").stat().st_size > 0
     stamp = (curve / "curve.jsonl").stat().st_mtime_ns
