@@ -20,6 +20,8 @@ def main(argv: list[str] | None = None) -> None:
         help="vision patch side in pixels (tiny only); 32 with --policy.image_max_pixels=49152 reads "
         "192 x 256 images as 12 tokens each",
     )
+    p.add_argument("--vision-hidden", type=int, help="vision tower width (tiny only; default: --hidden)")
+    p.add_argument("--vision-depth", type=int, default=2, help="vision tower blocks (tiny only)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument(
         "--architecture",
@@ -36,23 +38,30 @@ def main(argv: list[str] | None = None) -> None:
         p.error("--hidden must be a multiple of 4 and >= 32")
     if args.patch < 8 or args.patch % 8:
         p.error(f"--patch must be a multiple of 8 and >= 8, got {args.patch}")
+    vision_hidden = args.hidden if args.vision_hidden is None else args.vision_hidden
     if args.patch != 16 and args.architecture != "tiny":
         p.error("--patch applies to the tiny architecture only (the 2B model has 16 px patches)")
     from ..policies.activearena_vla.tiny_vlm import make_tiny_vlm
     from ..tasks.registry import task_texts
 
-    out = make_tiny_vlm(
-        args.out_dir,
-        hidden=args.hidden,
-        layers=args.layers,
-        seed=args.seed,
-        architecture=args.architecture,
-        texts=task_texts(),
-        patch=args.patch,
-    )
+    try:
+        out = make_tiny_vlm(
+            args.out_dir,
+            hidden=args.hidden,
+            layers=args.layers,
+            seed=args.seed,
+            architecture=args.architecture,
+            texts=task_texts(),
+            patch=args.patch,
+            vision_hidden=vision_hidden,
+            vision_depth=args.vision_depth,
+        )
+    except ValueError as e:  # a size the model cannot take (--vision-hidden / --vision-depth)
+        p.error(str(e))
     n = sum(f.stat().st_size for f in out.iterdir())
     what = (
-        f"tiny Qwen3-VL ({args.layers} layers, width {args.hidden}, {args.patch} px patches)"
+        f"tiny Qwen3-VL ({args.layers} layers, width {args.hidden}, {args.patch} px patches, "
+        f"vision tower {args.vision_depth} blocks of width {vision_hidden})"
         if args.architecture == "tiny"
         else "random Qwen3-VL with the 2B model's dimensions (not pretrained)"
     )

@@ -959,6 +959,18 @@ def test_small_presets_at_192_x_256_differ_only_in_the_image(tmp_path):
         assert {k for k in wide if wide[k] != base[k]} == {"policy", "dataset", "job_name"}
 
 
+def test_small_presets_with_the_wider_vision_tower_differ_only_in_the_backbone():
+    """The _v256d4 pair: the 96 x 128 pair on a backbone whose vision tower is 4 blocks of width 256
+    (``activearena-make-tiny-vlm --vision-hidden 256 --vision-depth 4``), nothing else changed."""
+    small = CONFIGS / "small"
+    for name in ("oft_subtask_action_12_ws", "oft_subtask_no_0_ws"):
+        base = json.loads((small / f"{name}.json").read_text())
+        wide = json.loads((small / f"{name}_v256d4.json").read_text())
+        changed = {k for k in wide["policy"] if wide["policy"][k] != base["policy"][k]}
+        assert changed == {"vlm_path"} and wide["policy"]["vlm_path"] == "outputs/small_vlm_v256d4"
+        assert {k for k in wide if wide[k] != base[k]} == {"policy", "job_name"}
+
+
 def test_a_32_px_patch_backbone_reads_twice_the_resolution_as_the_same_tokens(tmp_path, root):
     """make_tiny_vlm(patch=32) at image_max_pixels 192 * 256: a 192 x 256 frame becomes the 6 x 8
     patch grid (12 merged tokens) that 16 px patches make of 96 x 128, every pixel in the patch
@@ -993,6 +1005,29 @@ def test_a_32_px_patch_backbone_reads_twice_the_resolution_as_the_same_tokens(tm
     assert type(embed).__name__ == "LinearPatchEmbed"
     with pytest.raises(ValueError, match="image_max_pixels=1024 is below one token"):
         ActiveArenaVLMInputsStep(vlm_path=str(p32), image_max_pixels=1024)
+
+
+def test_a_wider_deeper_vision_tower_feeds_the_same_language_width(tmp_path, root):
+    """make_tiny_vlm(vision_hidden=, vision_depth=): the tower's blocks and width change, its merger
+    still projects to the language width, and the policy trains on it; the defaults are the tower of
+    width ``hidden`` and 2 blocks; a bad size or the 2B architecture is named."""
+    from transformers import AutoConfig
+
+    base = AutoConfig.from_pretrained(make_tiny_vlm(tmp_path / "base", hidden=64))
+    assert (base.vision_config.depth, base.vision_config.hidden_size) == (2, 64)
+    path = make_tiny_vlm(tmp_path / "wide", hidden=64, vision_hidden=96, vision_depth=3)
+    vision = AutoConfig.from_pretrained(path).vision_config
+    assert (vision.depth, vision.hidden_size, vision.out_hidden_size) == (3, 96, 64)
+    cfg, policy, pre, _, ds = _setup(path, root, memory="chunk", history=2, think="subtask")
+    visual = policy.vlm.model.visual
+    assert len(visual.blocks) == 3 and visual.blocks[0].mlp.linear_fc1.in_features == 96
+    loss, _ = policy.forward(collate(ds, pre, [20, len(ds) - 10]))
+    loss.backward()
+    assert torch.isfinite(loss) and visual.blocks[2].mlp.linear_fc2.weight.grad.abs().sum() > 0
+    with pytest.raises(ValueError, match="depth >= 2 and a width that is a multiple of 4"):
+        make_tiny_vlm(tmp_path / "bad", vision_hidden=90)
+    with pytest.raises(ValueError, match="tiny architecture only"):
+        make_tiny_vlm(tmp_path / "big", architecture="qwen3-vl-2b", vision_depth=4)
 
 
 @pytest.mark.parametrize("patch", [16, 32])

@@ -102,16 +102,28 @@ def make_tiny_vlm(
     architecture: str = "tiny",
     texts: Sequence[str] = (),
     patch: int = 16,
+    vision_hidden: int | None = None,
+    vision_depth: int = 2,
 ) -> Path:
     """Write a random Qwen3-VL, tokenizer and processor to ``out_dir``: tiny (``hidden`` / ``layers``), or
     with ``architecture="qwen3-vl-2b"`` the real 2B model's dimensions (saved in bfloat16, ~4.3 GB).
     ``texts`` (e.g. the benchmark's instructions and subtasks) join the tiny tokenizer's corpus.
     ``patch`` (tiny only): the vision patch side in pixels; 32 reads a 192 x 256 image as the same 12
-    tokens that 16 px patches make of 96 x 128, with every pixel in the patch embedding."""
+    tokens that 16 px patches make of 96 x 128, with every pixel in the patch embedding.
+    ``vision_hidden`` / ``vision_depth`` (tiny only): the vision tower's width (default ``hidden``) and
+    blocks; its merger still projects to ``hidden``."""
     if architecture not in ("tiny", "qwen3-vl-2b"):
         raise ValueError(f"architecture must be 'tiny' or 'qwen3-vl-2b', got {architecture!r}")
     if architecture != "tiny" and patch != 16:
         raise ValueError(f"the 2B architecture has 16 px patches; got patch={patch}")
+    vision_hidden = hidden if vision_hidden is None else vision_hidden
+    if architecture != "tiny" and (vision_hidden != hidden or vision_depth != 2):
+        raise ValueError("vision_hidden / vision_depth apply to the tiny architecture only")
+    if vision_depth < 2 or vision_hidden < 32 or vision_hidden % 4:
+        raise ValueError(
+            f"the vision tower needs depth >= 2 and a width that is a multiple of 4 and >= 32; "
+            f"got depth {vision_depth}, width {vision_hidden}"
+        )
     import torch
     from tokenizers import Tokenizer, decoders, models, pre_tokenizers, trainers
     from transformers import (
@@ -174,9 +186,9 @@ def make_tiny_vlm(
         },
     }
     vision = {
-        "depth": 2,
-        "hidden_size": hidden,
-        "intermediate_size": 2 * hidden,
+        "depth": vision_depth,
+        "hidden_size": vision_hidden,
+        "intermediate_size": 2 * vision_hidden,
         "num_heads": heads,
         "out_hidden_size": hidden,
         "num_position_embeddings": 1024,
