@@ -36,7 +36,9 @@ def policy_config(path: str) -> PreTrainedConfig:
     return PreTrainedConfig.get_choice_class(kind)(**block)
 
 
-def forward_flops(cfg: PreTrainedConfig, root: Path, repo_id: str, depth: int) -> dict[str, int]:
+def forward_flops(cfg: PreTrainedConfig, root: Path, repo_id: str, depth: int) -> tuple[dict[str, int], int]:
+    """FLOPs of one sample's forward by module name (``Global``: all), and the frames the vision
+    tower encoded."""
     meta = LeRobotDatasetMetadata(repo_id, root=root)
     policy = make_policy(cfg, ds_meta=meta)
     pre, _ = make_pre_post_processors(cfg, dataset_stats=meta.stats)
@@ -51,7 +53,7 @@ def forward_flops(cfg: PreTrainedConfig, root: Path, repo_id: str, depth: int) -
     for module in policy.modules():
         if type(module).__name__.endswith("VisionModel"):
             module.register_forward_hook(
-                lambda m, a, kw, out: images.append(len(kw.get("grid_thw", a[1] if len(a) > 1 else []))),
+                lambda m, args, kwargs, out: images.append(len(kwargs.get("grid_thw", args[-1]))),
                 with_kwargs=True,
             )
     counter = FlopCounterMode(display=False, depth=depth)
@@ -59,6 +61,11 @@ def forward_flops(cfg: PreTrainedConfig, root: Path, repo_id: str, depth: int) -
         policy.forward(pre(batch))
     counts = {name: sum(ops.values()) for name, ops in counter.get_flop_counts().items()}
     return counts, sum(images)
+
+
+def vision_flops(counts: dict[str, int]) -> int:
+    """The vision tower's share of ``forward_flops``' counts (0 for ACT, whose ResNet is its own)."""
+    return sum(n for name, n in counts.items() if "." not in name and "Vision" in name)
 
 
 def main() -> None:
@@ -78,7 +85,7 @@ def main() -> None:
         counts, images = forward_flops(cfg, args.root, args.repo_id, args.depth)
         total = counts.pop("Global", 0)
         print(f"\n{preset}: {total / 1e9:.3f} GFLOP forward per sample")
-        vision = sum(n for name, n in counts.items() if name.count(".") == 0 and "Vision" in name)
+        vision = vision_flops(counts)
         if images:
             print(
                 f"  vision tower: {vision / 1e9:.3f} GFLOP on {images} frames, {vision / images / 1e9:.3f} a frame"

@@ -14,10 +14,6 @@ compute_split = importlib.util.module_from_spec(SPEC)
 SPEC.loader.exec_module(compute_split)
 
 
-def _vision(counts: dict) -> int:
-    return sum(n for name, n in counts.items() if name.count(".") == 0 and "Vision" in name)
-
-
 def test_flops_split_by_module_and_frames_counted(tmp_path, tiny_vlm, bell_count_dataset):
     act = compute_split.policy_config(str(ROOT / compute_split.ACT))
     counts, frames = compute_split.forward_flops(act, bell_count_dataset, DATASET_REPO, depth=1)
@@ -30,8 +26,8 @@ def test_flops_split_by_module_and_frames_counted(tmp_path, tiny_vlm, bell_count
     for name, cfg, path in (("free", free, tiny_vlm), ("chunk", chunk, tiny_vlm), ("wide", free, wide_vlm)):
         cfg.vlm_path = str(path)
         counts, frames = compute_split.forward_flops(cfg, bell_count_dataset, DATASET_REPO, depth=1)
-        assert 0 < _vision(counts) < counts["Global"]
-        per_frame[name] = (_vision(counts) / frames, frames)
+        assert 0 < compute_split.vision_flops(counts) < counts["Global"]
+        per_frame[name] = (compute_split.vision_flops(counts) / frames, frames)
     assert per_frame["free"][1] == 1 and per_frame["chunk"][1] > 1  # mid-episode: some memory frames
     assert abs(per_frame["chunk"][0] / per_frame["free"][0] - 1) < 0.01  # the same tower per frame
     assert per_frame["wide"][0] > 3 * per_frame["free"][0]
