@@ -1,0 +1,41 @@
+"""analysis/policies/training_scenes.py: a checkpoint re-played on its training scenes. Evaluation must
+feed a memory policy what training fed it: with the env replaying a demonstration, the chunk from the
+env's observation and the policy's own memory bank equals the chunk from the dataset sample of the same
+frame (history from the delta timestamps), up to the video compression of the dataset's frames."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+from helpers.params import BELL, DATASET_REPO
+from helpers.policy_runs import train_preset
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEC = importlib.util.spec_from_file_location(
+    "training_scenes", ROOT / "analysis/policies/training_scenes.py"
+)
+training_scenes = importlib.util.module_from_spec(SPEC)
+SPEC.loader.exec_module(training_scenes)
+
+
+def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm, bell_count_dataset):
+    preset = ROOT / "configs/policy/small/oft_subtask_action_12_ws.json"
+    ckpt = train_preset(preset, bell_count_dataset, tiny_vlm, tmp_path / "run")
+    scenes = training_scenes.TrainingScenes(ckpt, DATASET_REPO, bell_count_dataset)
+    episode = next(e for e, info in scenes.recorded.items() if info["task"] == BELL)
+
+    aligned = scenes.replay(episode)
+    assert [t for t, _, _ in aligned] == list(range(0, len(scenes.frames(episode)), 16))
+    assert len(scenes.policy.memory(0)) == min(12, len(aligned))  # chunk memory: one frame per boundary
+    # the largest gap where the policy reads memory frames (radians; 0.03 measured)
+    gap = max(float(np.abs(a - b).max()) for _, a, b in aligned[1:])
+    # controls: the dataset's sample 8 frames later (another image, state and history; 0.16), and
+    # the env side's memory images blanked (0.8): a wrong memory shows
+    shifted = max(float(np.abs(a - b).max()) for _, a, b in scenes.replay(episode, offset=8)[1:])
+    scenes.policy.config.memory_ablation = "blank"
+    blanked = max(float(np.abs(a - b).max()) for _, a, b in scenes.replay(episode)[1:])
+    scenes.policy.config.memory_ablation = "none"
+    assert gap < 0.4 * shifted < 0.4 * blanked, (gap, shifted, blanked)
+
+    info, state = scenes.closed_loop(episode)
+    assert "is_success" in info and state.shape == (18,)
