@@ -39,3 +39,27 @@ def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm,
 
     info, state = scenes.closed_loop(episode)
     assert "is_success" in info and state.shape == (18,)
+
+
+SPEC_PROBE = importlib.util.spec_from_file_location(
+    "state_swap_probe", ROOT / "analysis/policies/state_swap_probe.py"
+)
+state_swap_probe = importlib.util.module_from_spec(SPEC_PROBE)
+SPEC_PROBE.loader.exec_module(state_swap_probe)
+
+
+def test_the_swap_probe_moves_a_state_policy_and_not_a_stateless_one(tmp_path, tiny_vlm, bell_count_dataset):
+    preset = ROOT / "configs/policy/small/oft_subtask_action_12_ws.json"
+    rows = {}
+    for use_state in (True, False):
+        out = tmp_path / f"state_{use_state}"
+        ckpt = train_preset(
+            preset, bell_count_dataset, tiny_vlm, out, f"--policy.use_state={str(use_state).lower()}"
+        )
+        scenes = training_scenes.TrainingScenes(ckpt, DATASET_REPO, bell_count_dataset)
+        rows[use_state] = state_swap_probe.swap_errors(scenes, frame=50, pairs=2, episodes=[0, 1])
+    for r in rows.values():
+        assert r.shape == (2, 4) and np.isfinite(r).all() and (r[:, 3] > 0).all()
+    # the swapped prediction against the image's episode: unchanged without state, moved with it
+    assert np.array_equal(rows[False][:, 0], rows[False][:, 2])
+    assert (rows[True][:, 0] != rows[True][:, 2]).all()
