@@ -971,6 +971,19 @@ def test_small_presets_with_the_wider_vision_tower_differ_only_in_the_backbone()
         assert {k for k in wide if wide[k] != base[k]} == {"policy", "job_name"}
 
 
+def test_small_stateless_preset_differs_from_the_chunk_12_preset_as_the_papers_pair():
+    """oft_subtask_action_12_wos: the small chunk-12 preset without state tokens, the change between the
+    paper's oft_subtask_action_12_ws and _wos presets."""
+    small, full = {}, {}
+    for suffix in ("ws", "wos"):
+        small[suffix] = json.loads((CONFIGS / "small" / f"oft_subtask_action_12_{suffix}.json").read_text())
+        full[suffix] = json.loads((CONFIGS / f"oft_subtask_action_12_{suffix}.json").read_text())
+    for pair in (small, full):
+        changed = {k for k in pair["ws"]["policy"] if pair["ws"]["policy"][k] != pair["wos"]["policy"].get(k)}
+        assert changed == {"use_state"} and not pair["wos"]["policy"]["use_state"]
+        assert {k for k in pair["ws"] if pair["ws"][k] != pair["wos"][k]} == {"policy", "job_name"}
+
+
 def test_a_32_px_patch_backbone_reads_twice_the_resolution_as_the_same_tokens(tmp_path, root):
     """make_tiny_vlm(patch=32) at image_max_pixels 192 * 256: a 192 x 256 frame becomes the 6 x 8
     patch grid (12 merged tokens) that 16 px patches make of 96 x 128, every pixel in the patch
