@@ -1,6 +1,8 @@
 """Where a policy's presses land on a press-device task (the bell, the stapler, the switch): per
 episode, whether the device's working part went past its press threshold, and how far the instructed
-arm's tool centre was from the press point (horizontally) while it did. Shows what the strict
+arm's tool centre was from the press point (horizontally) while it did; the nearest it came at any
+height (``closest``: a fly-over counts) and where it came lowest (``where lowest``: where a press
+comes down; its median over the episodes whose arm reached within 20 cm). Shows what the strict
 ``centered_within`` check rejects that the release's check (closed gripper touching within 2.5 cm)
 would count.
 
@@ -33,11 +35,14 @@ def _recording(evaluate):
         checks = evaluate(self, sim, scene, monitor)
         device = scene.obj(self.device)
         point = predicates.press_point(sim, device)
-        r = STEPS.setdefault(scene.seed, {"pressed_offsets": [], "min_offset": 9.0, "contact": False})
+        r = STEPS.setdefault(
+            scene.seed, {"pressed_offsets": [], "min_offset": 9.0, "lowest": (9.0, 9.0), "contact": False}
+        )
         arm = self.arms[0]
         tcp = sim.data.site(predicates.embodiment.TCP_SITES[arm]).xpos
         offset = float(np.hypot(*(tcp[:2] - point[:2])))
         r["min_offset"] = min(r["min_offset"], offset)
+        r["lowest"] = min(r["lowest"], (float(tcp[2] - point[2]), offset))  # (height, offset) where lowest
         if predicates.press_moved(sim, device):
             r["pressed_offsets"].append(offset)
             r["contact"] |= predicates.gripper_closed(sim, arm) and predicates.gripper_contact_near(
@@ -69,8 +74,10 @@ def main() -> None:
         records = [json.loads(x) for x in (Path(out) / args.split / "episodes" / "records.jsonl").open()]
     counts = {"success": 0, "pressed, off centre": 0, "never pressed": 0}
     for rec in sorted(records, key=lambda r: r["episode"]):
+        nan = float("nan")
         r = STEPS.get(
-            rec["scene_seed"], {"pressed_offsets": [], "min_offset": float("nan"), "contact": False}
+            rec["scene_seed"],
+            {"pressed_offsets": [], "min_offset": nan, "lowest": (nan, nan), "contact": False},
         )
         pressed = r["pressed_offsets"]
         kind = "success" if rec["success"] else ("pressed, off centre" if pressed else "never pressed")
@@ -78,9 +85,16 @@ def main() -> None:
         at_press = f"{100 * min(pressed):.1f}-{100 * max(pressed):.1f} cm" if pressed else "-"
         print(
             f"episode {rec['episode']:3d}  {kind:20s} tool centre at the press {at_press:>13s}  "
-            f"closest {100 * r['min_offset']:.1f} cm  release's contact check {'yes' if r['contact'] else 'no'}"
+            f"closest {100 * r['min_offset']:.1f} cm  where lowest {100 * r['lowest'][1]:.1f} cm  "
+            f"release's contact check {'yes' if r['contact'] else 'no'}"
         )
     print(", ".join(f"{k}: {v}" for k, v in counts.items()), f"of {len(records)} episodes")
+    lowest = [r["lowest"][1] for r in STEPS.values() if r["lowest"][1] < 0.2]
+    if lowest:
+        print(
+            f"where lowest: median {100 * np.median(lowest):.1f} cm from the press point over the "
+            f"{len(lowest)} episodes that reached within 20 cm; within 2 cm in {sum(x < 0.02 for x in lowest)}"
+        )
 
 
 if __name__ == "__main__":
