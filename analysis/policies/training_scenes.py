@@ -10,7 +10,7 @@ Per training episode (its scene seed re-played in the env):
   predicts is compared with the chunk it predicts from the dataset sample of the same frame (history
   from the dataset's delta timestamps, as in training). Near zero means evaluation and training agree.
 - **closed loop**: the policy drives the env itself; success, and how far its torso yaw and left arm
-  end from the demonstration's last frame (radians).
+  (the bell's pressing arm) end from the demonstration's last frame (radians).
 """
 
 from __future__ import annotations
@@ -91,9 +91,8 @@ class TrainingScenes:
         from lerobot_activearena.eval.learning_curve import policy_inputs
 
         sample = {k: v[None] if isinstance(v, torch.Tensor) else [v] for k, v in self.ds[index].items()}
-        return self.post(self.policy.predict_action_chunk(self.pre(policy_inputs(sample, self.cfg)))).numpy()[
-            0
-        ]
+        chunk = self.policy.predict_action_chunk(self.pre(policy_inputs(sample, self.cfg)))
+        return self.post(chunk).numpy()[0]
 
     @torch.no_grad()
     def replay(self, episode: int, offset: int = 0) -> list[tuple[int, np.ndarray, np.ndarray]]:
@@ -141,6 +140,9 @@ def main() -> None:
     args = p.parse_args()
     scenes = TrainingScenes(args.checkpoint, args.repo_id, args.root)
     episodes, wins = int_ranges(args.episodes), 0
+    missing = sorted(set(episodes) - set(scenes.recorded))
+    if missing:
+        p.error(f"--episodes {missing} are not in {args.root} (it has {len(scenes.recorded)} episodes)")
     view = [TORSO_YAW, HEAD_PITCH]
     for ep in episodes:
         gaps = np.concatenate([np.abs(a - b) for _, a, b in scenes.replay(ep)])
