@@ -10,7 +10,9 @@ Per training episode (its scene seed re-played in the env):
   predicts is compared with the chunk it predicts from the dataset sample of the same frame (history
   from the dataset's delta timestamps, as in training). Near zero means evaluation and training agree.
 - **closed loop**: the policy drives the env itself; success, and how far its torso yaw and left arm
-  (the bell's pressing arm) end from the demonstration's last frame (radians).
+  (the bell's pressing arm) end from the demonstration's last frame (radians). With
+  ``--show-demonstration image|state --at T`` the policy sees, at step T only, the demonstration's
+  head image or state instead of its own: which of the two its decision there follows.
 """
 
 from __future__ import annotations
@@ -113,20 +115,39 @@ class TrainingScenes:
         env.close()
         return out
 
+    def demonstration_observation(self, episode: int, t: int, obs: dict, show: str) -> dict:
+        """``obs`` with the demonstration's step-t head image (``show="image"``: the dataset's decoded
+        frame) or state (``show="state"``) in place of the env's own."""
+        index = self.frames(episode)[t]
+        out = dict(obs)
+        if show == "state":
+            out["agent_pos"] = (
+                self.ds.hf_dataset[index]["observation.state"].numpy().astype(obs["agent_pos"].dtype)
+            )
+        elif show == "image":
+            frame = self.ds[index]["observation.images.head"][-1].permute(1, 2, 0).numpy()
+            out["pixels"] = dict(obs["pixels"], head=(frame * 255).round().astype(np.uint8))
+        else:
+            raise ValueError(f"show must be 'image' or 'state', got {show!r}")
+        return out
+
     @torch.no_grad()
-    def closed_loop(self, episode: int) -> tuple[dict, np.ndarray]:
-        """The policy drives the episode's scene to the end; the last step's info and state."""
+    def closed_loop(self, episode: int, show: str | None = None, at: int = 16) -> tuple[dict, np.ndarray]:
+        """The policy drives the episode's scene to the end; the last step's info and state. With
+        ``show``, at step ``at`` the policy sees the demonstration's image or state instead of its own
+        (the env is not touched): which of the two its decision there follows."""
         env, env_pre, env_post = self.env(episode)
         obs, _ = env.reset(seed=self.recorded[episode]["seed"])
         self.policy.reset()
-        done, info = False, {}
+        done, info, t = False, {}, 0
         while not done:
+            seen = self.demonstration_observation(episode, t, obs, show) if show and t == at else obs
             action = self.post(
-                self.policy.select_action(env_batch(obs, env.task_description, env_pre, self.pre))
+                self.policy.select_action(env_batch(seen, env.task_description, env_pre, self.pre))
             )
             action = env_post({"action": action})["action"].numpy()[0]
             obs, _, terminated, truncated, info = env.step(action)
-            done = terminated or truncated
+            done, t = terminated or truncated, t + 1
         env.close()
         return info, np.asarray(obs["agent_pos"])
 
@@ -137,6 +158,12 @@ def main() -> None:
     p.add_argument("--repo-id", required=True)
     p.add_argument("--root", type=Path, required=True, help="the dataset the checkpoint was trained on")
     p.add_argument("--episodes", default="0-9", help="dataset episode indices, e.g. 0-9,20")
+    p.add_argument(
+        "--show-demonstration",
+        choices=["image", "state"],
+        help="in closed loop, at step --at the policy sees the demonstration's image or state",
+    )
+    p.add_argument("--at", type=int, default=16, help="the step of --show-demonstration (default 16)")
     args = p.parse_args()
     scenes = TrainingScenes(args.checkpoint, args.repo_id, args.root)
     episodes, wins = int_ranges(args.episodes), 0
@@ -146,7 +173,7 @@ def main() -> None:
     view = [TORSO_YAW, HEAD_PITCH]
     for ep in episodes:
         gaps = np.concatenate([np.abs(a - b) for _, a, b in scenes.replay(ep)])
-        info, final = scenes.closed_loop(ep)
+        info, final = scenes.closed_loop(ep, args.show_demonstration, args.at)
         demo_final = scenes.ds.hf_dataset[scenes.frames(ep)[-1]]["observation.state"].numpy()
         success = bool(info.get("is_success"))
         wins += success

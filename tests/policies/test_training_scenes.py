@@ -7,6 +7,7 @@ import importlib.util
 from pathlib import Path
 
 import numpy as np
+import pytest
 from helpers.params import BELL, DATASET_REPO
 from helpers.policy_runs import train_preset
 
@@ -39,6 +40,21 @@ def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm,
 
     info, state = scenes.closed_loop(episode)
     assert "is_success" in info and state.shape == (18,)
+
+    # what --show-demonstration puts in front of the policy: one of the two, the other its own
+    env, _, _ = scenes.env(episode)
+    obs, _ = env.reset(seed=scenes.recorded[episode]["seed"] + 1)  # another scene than the demonstration's
+    recorded = scenes.ds.hf_dataset[scenes.frames(episode)[16]]
+    state = scenes.demonstration_observation(episode, 16, obs, "state")
+    assert np.array_equal(state["agent_pos"], recorded["observation.state"].numpy())
+    assert state["pixels"]["head"] is obs["pixels"]["head"]
+    image = scenes.demonstration_observation(episode, 16, obs, "image")
+    assert image["agent_pos"] is obs["agent_pos"] and image["pixels"]["head"].dtype == np.uint8
+    assert image["pixels"]["head"].shape == obs["pixels"]["head"].shape
+    assert not np.array_equal(image["pixels"]["head"], obs["pixels"]["head"])
+    with pytest.raises(ValueError, match="image' or 'state'"):
+        scenes.demonstration_observation(episode, 16, obs, "memory")
+    env.close()
 
 
 SPEC_PROBE = importlib.util.spec_from_file_location(
