@@ -1,17 +1,12 @@
 """analysis/policies/compute_split.py: forward FLOPs per sample by module, and the frames the vision
 tower encodes, for ACT's CPU preset and the small VLA presets."""
 
-import importlib.util
-from pathlib import Path
-
+from helpers.analysis_scripts import ROOT, load
 from helpers.params import DATASET_REPO
 
 from lerobot_activearena.policies.activearena_vla.tiny_vlm import make_tiny_vlm
 
-ROOT = Path(__file__).resolve().parents[2]
-SPEC = importlib.util.spec_from_file_location("compute_split", ROOT / "analysis/policies/compute_split.py")
-compute_split = importlib.util.module_from_spec(SPEC)
-SPEC.loader.exec_module(compute_split)
+compute_split = load("analysis/policies/compute_split.py")
 
 
 def test_flops_split_by_module_and_frames_counted(tmp_path, tiny_vlm, bell_count_dataset):

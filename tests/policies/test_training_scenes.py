@@ -3,20 +3,14 @@ feed a memory policy what training fed it: with the env replaying a demonstratio
 env's observation and the policy's own memory bank equals the chunk from the dataset sample of the same
 frame (history from the delta timestamps), up to the video compression of the dataset's frames."""
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 import pytest
+from helpers.analysis_scripts import ROOT, load
 from helpers.params import BELL, DATASET_REPO
 from helpers.policy_runs import train_preset
 
-ROOT = Path(__file__).resolve().parents[2]
-SPEC = importlib.util.spec_from_file_location(
-    "training_scenes", ROOT / "analysis/policies/training_scenes.py"
-)
-training_scenes = importlib.util.module_from_spec(SPEC)
-SPEC.loader.exec_module(training_scenes)
+training_scenes = load("analysis/policies/training_scenes.py")
+state_swap_probe = load("analysis/policies/state_swap_probe.py")
 
 
 def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm, bell_count_dataset):
@@ -55,13 +49,6 @@ def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm,
     with pytest.raises(ValueError, match="image' or 'state'"):
         scenes.demonstration_observation(episode, 16, obs, "memory")
     env.close()
-
-
-SPEC_PROBE = importlib.util.spec_from_file_location(
-    "state_swap_probe", ROOT / "analysis/policies/state_swap_probe.py"
-)
-state_swap_probe = importlib.util.module_from_spec(SPEC_PROBE)
-SPEC_PROBE.loader.exec_module(state_swap_probe)
 
 
 def test_the_swap_probe_moves_a_state_policy_and_not_a_stateless_one(tmp_path, tiny_vlm, bell_count_dataset):
