@@ -71,6 +71,14 @@ def parser() -> argparse.ArgumentParser:
         "the arm and view joints the simulator executes, faded out in presses; the dataset records the "
         "expert's own commands, which lead back to its path (default 0: the benchmark's expert)",
     )
+    p.add_argument(
+        "--decision-period",
+        type=int,
+        default=None,
+        help="chunk-aligned demonstrations: the expert's search reacts to what the camera shows only "
+        "every N frames, where a policy executing N-action chunks plans its next one, so no chunk of a "
+        "demonstration depends on a view the policy has not seen yet (default 1: the benchmark's expert)",
+    )
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
     p.add_argument("--executor", default="local", choices=["local", "slurm"])
     p.add_argument(
@@ -169,6 +177,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         image_size=image_size(pick("image_size")),
         search_overshoot=float(pick("search_overshoot")),
         action_noise=float(pick("action_noise")),
+        decision_period=int(pick("decision_period")),
     )
 
 

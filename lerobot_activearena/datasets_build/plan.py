@@ -45,6 +45,7 @@ class BuildPlan:
     image_size: tuple[int, int] = HEAD_SIZE  # head video (height, width), 3:4
     search_overshoot: float = 0.0  # recovery demonstrations (``ExpertContext``); 0: the benchmark's expert
     action_noise: float = 0.0  # perturbed demonstrations (``ActionNoise``), rad; 0: the benchmark's expert
+    decision_period: int = 1  # chunk-aligned demonstrations (``ExpertContext``); 1: the benchmark's expert
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -61,7 +62,7 @@ class BuildPlan:
         if self.episodes_per_shard < 1:
             raise ValueError(f"--episodes-per-shard must be >= 1, got {self.episodes_per_shard}")
         self.image_size = validate_head_size(*self.image_size)
-        _ = self.variation  # validates both values
+        _ = self.variation  # validates its values
         self.tasks = [t for sel in self.tasks for t in task_names(sel)]
         self.shards = self._make_shards()
 
@@ -86,14 +87,16 @@ class BuildPlan:
 
     @property
     def variation(self) -> DemoVariation:
-        return DemoVariation(self.search_overshoot, self.action_noise)
+        return DemoVariation(self.search_overshoot, self.action_noise, self.decision_period)
 
     def to_json(self) -> dict:
         from .features import dataset_features  # the feature set is part of a build's identity
 
         d = asdict(self)
-        for key in ("search_overshoot", "action_noise"):  # builds made before an option keep their identity
-            if not d[key]:
+        for key, default in asdict(
+            DemoVariation()
+        ).items():  # builds made before an option keep their identity
+            if d[key] == default:
                 del d[key]
         d["features"] = json.loads(json.dumps(dataset_features(self.max_objects, self.image_size)))
         d["shards"] = [asdict(s) for s in self.shards]

@@ -20,6 +20,7 @@ RECIPE_KEYS = {
     "image_size": "384x512",  # head video height x width (3:4)
     "search_overshoot": 0.0,  # recovery demonstrations: probability per empty end sector of a search
     "action_noise": 0.0,  # perturbed demonstrations: joint noise (rad) on the executed commands
+    "decision_period": 1,  # chunk-aligned demonstrations: the search reacts every N frames
 }
 
 

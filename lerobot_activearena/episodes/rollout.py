@@ -95,10 +95,11 @@ def make_sidecar(
 class DemoVariation:
     """How a dataset's demonstrations differ from the benchmark's expert (the defaults: they do not).
     ``search_overshoot``: ``ExpertContext``'s recovery demonstrations; ``action_noise``: ``ActionNoise``'s
-    sigma in rad."""
+    sigma in rad; ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame)."""
 
     search_overshoot: float = 0.0
     action_noise: float = 0.0
+    decision_period: int = 1
 
     def __post_init__(self):
         if not 0.0 <= self.search_overshoot <= 1.0:
@@ -107,6 +108,11 @@ class DemoVariation:
             raise ValueError(
                 f"--action-noise is a joint standard deviation in [0, {MAX_ACTION_NOISE}] rad, got "
                 f"{self.action_noise}"
+            )
+        if not isinstance(self.decision_period, int) or self.decision_period < 1:
+            raise ValueError(
+                f"--decision-period is a number of frames >= 1 (1: the benchmark's expert), got "
+                f"{self.decision_period!r}"
             )
 
 
@@ -160,6 +166,7 @@ class ExpertDriver:
         perception: PerceptionMemory,
         contain_errors: bool = False,
         search_overshoot: float = 0.0,
+        decision_period: int = 1,
     ):
         ik, gaze = shared_kinematics()
         self.task = task
@@ -176,6 +183,7 @@ class ExpertDriver:
             n_subtasks=len(task.subtasks),
             search_overshoot=search_overshoot,
             rng=rng,
+            decision_period=decision_period,
         )
         self._script = task.expert(self.ctx, scene)
         self.finished = False
@@ -217,6 +225,7 @@ def run_expert_episode(
     image_size: tuple[int, int] = HEAD_SIZE,
     search_overshoot: float = 0.0,
     action_noise: float = 0.0,
+    decision_period: int = 1,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
@@ -224,13 +233,21 @@ def run_expert_episode(
     pixel-space fields (boxes, camera intrinsics) follow it. ``search_overshoot``: the probability of a
     recovery demonstration per empty end sector of a search (``ExpertContext``; 0 = the benchmark's
     expert). ``action_noise``: ``ActionNoise``'s sigma in rad (0 = none): ``actions`` stay the expert's,
-    ``states`` are where the perturbed commands took the robot."""
+    ``states`` are where the perturbed commands took the robot. ``decision_period``: the search reacts
+    to the view only every that many frames (``ExpertContext``; 1 = the benchmark's expert)."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
     episode = Episode(task, scene, max_penetration=PENETRATION_LIMIT, image_size=image_size)
     sim = episode.sim
-    driver = ExpertDriver(task, scene, sim, episode.perception, search_overshoot=search_overshoot)
+    driver = ExpertDriver(
+        task,
+        scene,
+        sim,
+        episode.perception,
+        search_overshoot=search_overshoot,
+        decision_period=decision_period,
+    )
     perturb = ActionNoise(action_noise, seed, task.name) if action_noise else None
     frames, actions, states = [], [], []
     failure = None

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from contextlib import contextmanager
 
 import numpy as np
@@ -34,7 +35,10 @@ class ExpertContext:
         n_subtasks: int = 1,
         search_overshoot: float = 0.0,
         rng: np.random.Generator | None = None,
+        decision_period: int = 1,
     ):
+        if not isinstance(decision_period, int) or decision_period < 1:
+            raise ValueError(f"decision_period is a number of frames >= 1, got {decision_period!r}")
         if not 0.0 <= search_overshoot <= 1.0:
             raise ValueError(f"search_overshoot is a probability in [0, 1], got {search_overshoot}")
         if search_overshoot > 0.0 and rng is None:
@@ -44,6 +48,10 @@ class ExpertContext:
         # search sweep that found nothing in an end sector goes on to the torso's joint limit before it
         # turns back, so a memory-free policy sees what to do after an overshoot (``search``).
         self.search_overshoot, self.rng = search_overshoot, rng
+        # Chunk-aligned demonstrations for datasets (1 = the benchmark's expert): the search reacts to
+        # what the camera shows only at frames that are multiples of this period, where a policy that
+        # executes chunks of that many actions open-loop plans its next chunk (``search``).
+        self.decision_period = decision_period
         self.n_subtasks = n_subtasks
         self.objects = list(objects)
         self.info = {o.name: o for o in sim.info.objects}
@@ -124,6 +132,15 @@ class ExpertContext:
                 del self.trailing[side]
         self.frame += 1
         return self.action.copy()
+
+    def deciding(self) -> bool:
+        """Whether the next emitted action starts a decision period (``decision_period``)."""
+        return self.frame % self.decision_period == 0
+
+    def await_decision(self) -> Iterator[np.ndarray]:
+        """Hold the command until the next action starts a decision period (none for period 1)."""
+        while not self.deciding():
+            yield self.emit()
 
     def overshoots(self, sector: int) -> bool:
         """Whether this empty end sector's sweep goes on to the joint limit (``search_overshoot``)."""

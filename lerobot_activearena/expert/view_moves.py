@@ -34,9 +34,15 @@ HEAD_VMAX, HEAD_AMAX = embodiment.HEAD_LIMITS  # the paper's 10 rad/s, 25 rad/s^
 
 
 def move_head_torso_to(
-    ctx: ExpertContext, yaw: float, pitch: float, mode: int, stop_when: Callable[[], bool] | None = None
+    ctx: ExpertContext,
+    yaw: float,
+    pitch: float,
+    mode: int,
+    stop_when: Callable[[], bool] | None = None,
+    settle_after: bool = True,
 ) -> Iterator[np.ndarray]:
-    """Turn torso and head together to (yaw, pitch); returns True if ``stop_when`` fired."""
+    """Turn torso and head together to (yaw, pitch); returns True if ``stop_when`` fired. Unless it
+    fired or ``settle_after`` is False, hold the command until the drives have caught up."""
     y0, p0 = ctx.yaw, ctx.pitch
     yaw = float(np.clip(yaw, *embodiment.TORSO_YAW_RANGE))
     pitch = float(np.clip(pitch, *embodiment.HEAD_PITCH_RANGE))
@@ -55,7 +61,7 @@ def move_head_torso_to(
             break
     ctx.intent.camera_mode = CAMERA_HOLD
     ctx.intent.camera_target_theta = math.nan
-    if not fired:
+    if not fired and settle_after:
         yield from settle(ctx)
     return fired
 
@@ -105,22 +111,30 @@ def face_for_arm(ctx: ExpertContext, point, side: str) -> Actions:
 
 def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
     """Find object ``i``: if it was seen before, turn to where it was; else sweep unexplored sectors
-    nearest-first (explored ones last), stop as soon as it is visible, then centre it."""
+    nearest-first (explored ones last), stop as soon as it is visible, then centre it. With
+    ``ctx.decision_period`` N > 1 "as soon as" means at the next frame that is a multiple of N, and a
+    sector is declared empty there too: what the expert does in each N-frame chunk follows from the
+    view at the chunk's first frame, as for a policy that executes N-action chunks."""
     it = ctx.intent
     it.focus, it.stage, it.info_complete = i, STAGE_SEARCH, False
     it.search_targets = it.search_targets | {i}
     if i not in ctx.memory:
 
-        def seen() -> bool:
-            return bool(ctx.perception.visible[i])
+        def seen() -> bool:  # a decision frame where the camera shows it
+            return ctx.deciding() and bool(ctx.perception.visible[i])
 
         views = ctx.views  # lower sectors first, then (two-level) the upper ones
         order = sorted(
             range(len(views)),
             key=lambda s: (s in ctx.explored, views[s][1] != SEARCH_PITCH, abs(views[s][0] - ctx.yaw)),
         )
+        chunked = ctx.decision_period > 1  # the drives settle while it waits for its decision frame
         for s in order:
-            yield from move_head_torso_to(ctx, *views[s], CAMERA_SEARCH, stop_when=seen)
+            there = math.isclose(ctx.yaw, views[s][0]) and math.isclose(ctx.pitch, views[s][1])
+            if not (chunked and there):  # (a move to where it is would still take a frame)
+                yield from move_head_torso_to(
+                    ctx, *views[s], CAMERA_SEARCH, stop_when=seen, settle_after=not chunked
+                )
             if seen():
                 break
             if ctx.overshoots(s):  # a recovery demonstration: on to the limit, then back
@@ -128,7 +142,10 @@ def search(ctx: ExpertContext, i: int, center: bool = True) -> Actions:
                 yield from move_head_torso_to(ctx, limit, views[s][1], CAMERA_SEARCH, stop_when=seen)
                 if seen():
                     break
-            yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
+            if chunked:
+                yield from ctx.await_decision()
+            else:
+                yield from hold(ctx, 2)  # let the view settle before declaring the sector empty
             ctx.explored.add(s)
             if seen():
                 break

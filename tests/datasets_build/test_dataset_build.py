@@ -352,13 +352,18 @@ def test_bad_arguments_get_clear_errors():
 
 @pytest.mark.parametrize(
     ("key", "value", "flag", "bad"),
-    [("search_overshoot", 0.5, "1", 1.5), ("action_noise", 0.02, "0.03", 0.5)],
+    [
+        ("search_overshoot", 0.5, "1", 1.5),
+        ("action_noise", 0.02, "0.03", 0.5),
+        ("decision_period", 16, "8", 0),
+    ],
 )
 def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, value, flag, bad):
     plan = make_plan(
         _parse_build_args(["--repo-id", "a/b", "--root", "/x", "--tasks", BELL, "--episodes", "1"])
     )
-    assert getattr(plan, key) == 0.0 and key not in plan.to_json()  # old builds resume
+    default = getattr(DemoVariation(), key)
+    assert getattr(plan, key) == default and key not in plan.to_json()  # old builds resume
     recipe = tmp_path / "r.json"
     recipe.write_text(json.dumps({"repo_id": "a/b", "tasks": BELL, "episodes": 1, key: value}))
     from_recipe = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x"]))

@@ -288,6 +288,33 @@ def test_search_overshoot_demonstrates_turning_back_from_the_joint_limit(expert_
         ExpertContext(None, [], None, None, None, search_overshoot=0.5)
 
 
+def test_decision_period_makes_each_chunk_of_the_search_follow_the_view_at_its_first_frame():
+    """Chunk-aligned demonstrations for datasets: with ``decision_period=16`` the search reacts to the
+    camera only at frames 0, 16, 32..., so a scene whose bell shows up in the first sector swept
+    (seed 3) and one whose bell lies in the other (seed 0) share their first 16 actions and part at
+    frame 16, where a chunked policy sees which it is. The benchmark's expert (period 1) parts
+    inside the first chunk."""
+    from lerobot_activearena.episodes.rollout import run_expert_episode
+    from lerobot_activearena.expert.context import ExpertContext
+
+    task = "click_bell_rotate_view"
+
+    def actions(seed, period):
+        episode = run_expert_episode(task, seed, "id", image_size=(96, 128), decision_period=period)
+        assert episode.success, episode.failure
+        return np.array(episode.actions)
+
+    first_side, other_side = actions(3, 16), actions(0, 16)
+    np.testing.assert_array_equal(first_side[:16], other_side[:16])
+    assert np.abs(first_side[16] - other_side[16]).max() > 0.01
+    plain_first, plain_other = actions(3, 1), actions(0, 1)
+    n = min(len(plain_first), len(plain_other))
+    parted = np.flatnonzero(np.abs(plain_first[:n] - plain_other[:n]).max(axis=1) > 1e-9)[0]
+    assert 0 < parted < 16
+    with pytest.raises(ValueError, match="decision_period"):
+        ExpertContext(None, [], None, None, None, decision_period=0)
+
+
 def test_action_noise_perturbs_what_runs_and_records_the_experts_own_commands(expert_episode):
     """Perturbed demonstrations (DART): the executed commands carry a smooth joint noise, the recorded
     actions are the expert's, so the states leave the commanded path; the press still lands (the
