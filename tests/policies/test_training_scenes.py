@@ -11,6 +11,7 @@ from helpers.policy_runs import train_preset
 
 training_scenes = load("analysis/policies/training_scenes.py")
 state_swap_probe = load("analysis/policies/state_swap_probe.py")
+chunk_decision = load("analysis/policies/chunk_decision.py")
 
 
 def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm, bell_count_dataset):
@@ -31,6 +32,15 @@ def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm,
     blanked = max(float(np.abs(a - b).max()) for _, a, b in scenes.replay(episode)[1:])
     scenes.policy.config.memory_ablation = "none"
     assert gap < 0.4 * shifted < 0.4 * blanked, (gap, shifted, blanked)
+
+    # chunk_decision: the demonstration's turn at frame 16 read from its recorded actions, and the
+    # prediction's from the chunk the policy predicts there
+    ((ep, recorded_turns, predicted_turns),) = chunk_decision.decisions(scenes, [episode], at=16)
+    frames = scenes.frames(episode)
+    yaw = np.array([scenes.ds.hf_dataset[frames[16 + k]]["action"][16].item() for k in range(16)])
+    assert ep == episode and recorded_turns == (yaw.max() - yaw.min() > 0.5)
+    assert predicted_turns == chunk_decision.turns(scenes.dataset_chunk(frames[16]))
+    assert chunk_decision.decisions(scenes, [episode], at=len(frames) - 8) == []  # no full chunk left
 
     info, state = scenes.closed_loop(episode)
     assert "is_success" in info and state.shape == (18,)
@@ -66,3 +76,11 @@ def test_the_swap_probe_moves_a_state_policy_and_not_a_stateless_one(tmp_path, t
     # the swapped prediction against the image's episode: unchanged without state, moved with it
     assert np.array_equal(rows[False][:, 0], rows[False][:, 2])
     assert (rows[True][:, 0] != rows[True][:, 2]).all()
+
+
+def test_a_chunk_turns_across_when_its_torso_yaw_spans_more_than_half_a_radian():
+    chunk = np.zeros((16, 18))
+    chunk[:, 16] = np.linspace(-0.95, -1.2, 16)  # centring a bell on the side it faces
+    assert not chunk_decision.turns(chunk)
+    chunk[:, 16] = np.linspace(-0.93, 0.95, 16)  # across to the other side
+    assert chunk_decision.turns(chunk)

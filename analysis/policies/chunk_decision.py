@@ -1,0 +1,78 @@
+"""Does the policy take the search's decision at a chunk boundary? Stay with the side it faces, or turn
+across, as the demonstration did, predicted from the training samples themselves.
+
+    python analysis/policies/chunk_decision.py --repo-id local/cpu_click_bell_200_p16 \\
+        --root outputs/datasets/cpu_click_bell_200_p16_vla --episodes 0-39 --at 16 CHECKPOINT...
+
+At frame ``--at`` of each training episode the demonstration either turns its torso across (more than
+0.5 rad within the next 16 frames: the bell is not on this side) or stays (it centres the bell it
+sees). The chunk predicted from the dataset sample of that frame (history from the delta timestamps,
+as in training) is classified the same way. Printed per checkpoint: the right decisions among the
+episodes that stay and among those that turn. A policy that always turns scores all of one and none
+of the other; one that reads the bell from the image scores both.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import os
+from pathlib import Path
+
+import numpy as np
+
+from lerobot_activearena.cli.args import int_ranges
+from lerobot_activearena.sim.action import TORSO_YAW
+
+_SPEC = importlib.util.spec_from_file_location(
+    "training_scenes", Path(__file__).with_name("training_scenes.py")
+)
+training_scenes = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(training_scenes)
+
+TURN = 0.5  # rad of torso yaw within a chunk: a turn across to the other side
+
+
+def turns(chunk: np.ndarray) -> bool:
+    """Whether a chunk of actions turns the torso across (its yaw range exceeds ``TURN``)."""
+    yaw = chunk[:, TORSO_YAW]
+    return bool(yaw.max() - yaw.min() > TURN)
+
+
+def decisions(scenes, episodes: list[int], at: int) -> list[tuple[int, bool, bool]]:
+    """(episode, the demonstration turns, the predicted chunk turns) at frame ``at`` of each episode
+    that has a full chunk after it."""
+    out = []
+    for ep in episodes:
+        frames = scenes.frames(ep)
+        if len(frames) < at + 16:
+            continue
+        recorded = np.stack([scenes.ds.hf_dataset[frames[at + k]]["action"].numpy() for k in range(16)])
+        out.append((ep, turns(recorded), turns(scenes.dataset_chunk(frames[at]))))
+    return out
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("checkpoints", type=Path, nargs="+", help="pretrained_model folders")
+    p.add_argument("--repo-id", required=True)
+    p.add_argument("--root", type=Path, required=True, help="the dataset the checkpoints were trained on")
+    p.add_argument("--episodes", default="0-39", help="dataset episode indices, e.g. 0-39")
+    p.add_argument("--at", type=int, default=16, help="the chunk boundary (default 16)")
+    args = p.parse_args()
+    print("| checkpoint | demonstration stays: policy stays | demonstration turns: policy turns |")
+    print("|---|---|---|")
+    for ckpt in args.checkpoints:
+        scenes = training_scenes.TrainingScenes(ckpt, args.repo_id, args.root)
+        rows = decisions(scenes, int_ranges(args.episodes), args.at)
+        stay = [pred for _, rec, pred in rows if not rec]
+        turn = [pred for _, rec, pred in rows if rec]
+        name = "/".join(ckpt.parts[-4:-1]) if len(ckpt.parts) >= 4 else str(ckpt)
+        print(
+            f"| {name} | {stay.count(False)} of {len(stay)} | {turn.count(True)} of {len(turn)} |", flush=True
+        )
+
+
+if __name__ == "__main__":
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    main()
