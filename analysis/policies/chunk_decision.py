@@ -9,7 +9,10 @@ At frame ``--at`` of each training episode the demonstration either turns its to
 sees). The chunk predicted from the dataset sample of that frame (history from the delta timestamps,
 as in training) is classified the same way. Printed per checkpoint: the right decisions among the
 episodes that stay and among those that turn. A policy that always turns scores all of one and none
-of the other; one that reads the bell from the image scores both.
+of the other; one that reads the bell from the image scores both. With ``--probe``, also whether the
+demonstration's decision is linearly readable from the policy's last-layer states at the action
+queries (``decision_probe.py``'s logistic regression, cross-validated over the episodes; the
+majority class is the floor): whether what the head lacks is in the features at all.
 """
 
 from __future__ import annotations
@@ -29,6 +32,11 @@ _SPEC = importlib.util.spec_from_file_location(
 )
 training_scenes = importlib.util.module_from_spec(_SPEC)
 _SPEC.loader.exec_module(training_scenes)
+_SPEC = importlib.util.spec_from_file_location(
+    "decision_probe", Path(__file__).with_name("decision_probe.py")
+)
+decision_probe = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(decision_probe)
 
 TURN = 0.5  # rad of torso yaw within a chunk: a turn across to the other side
 
@@ -59,18 +67,24 @@ def main() -> None:
     p.add_argument("--root", type=Path, required=True, help="the dataset the checkpoints were trained on")
     p.add_argument("--episodes", default="0-39", help="dataset episode indices, e.g. 0-39")
     p.add_argument("--at", type=int, default=16, help="the chunk boundary (default 16)")
+    p.add_argument("--probe", action="store_true", help="also a linear probe of the decision")
     args = p.parse_args()
-    print("| checkpoint | demonstration stays: policy stays | demonstration turns: policy turns |")
-    print("|---|---|---|")
+    head = "| checkpoint | demonstration stays: policy stays | demonstration turns: policy turns |"
+    print(head + (" linear probe (majority class) |" if args.probe else ""))
+    print("|---|---|---|" + ("---|" if args.probe else ""))
     for ckpt in args.checkpoints:
         scenes = training_scenes.TrainingScenes(ckpt, args.repo_id, args.root)
         rows = decisions(scenes, int_ranges(args.episodes), args.at)
         stay = [pred for _, rec, pred in rows if not rec]
         turn = [pred for _, rec, pred in rows if rec]
         name = "/".join(ckpt.parts[-4:-1]) if len(ckpt.parts) >= 4 else str(ckpt)
-        print(
-            f"| {name} | {stay.count(False)} of {len(stay)} | {turn.count(True)} of {len(turn)} |", flush=True
-        )
+        line = f"| {name} | {stay.count(False)} of {len(stay)} | {turn.count(True)} of {len(turn)} |"
+        if args.probe:
+            y = np.array([rec for _, rec, _ in rows])
+            indices = [scenes.frames(ep)[args.at] for ep, _, _ in rows]
+            x, _, _ = decision_probe.features(ckpt, args.repo_id, args.root, indices)
+            line += f" {decision_probe.best_probe(x, y)} ({max(y.mean(), 1 - y.mean()):.0%}) |"
+        print(line, flush=True)
 
 
 if __name__ == "__main__":
