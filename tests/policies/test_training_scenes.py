@@ -41,6 +41,12 @@ def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm,
     assert ep == episode and recorded_turns == (yaw.max() - yaw.min() > 0.5)
     assert predicted_turns == chunk_decision.turns(scenes.dataset_chunk(frames[16]))
     assert chunk_decision.decisions(scenes, [episode], at=len(frames) - 8) == []  # no full chunk left
+    # --probe's features: one row of action-query states per frame
+    states, chunks, _ = chunk_decision.decision_probe.features(
+        ckpt, DATASET_REPO, bell_count_dataset, [frames[16]]
+    )
+    assert states.shape[0] == 1 and np.isfinite(states).all()
+    assert chunks.shape == (1, 16 * 18)  # the chunk decoded from those states (normalised)
 
     info, state = scenes.closed_loop(episode)
     assert "is_success" in info and state.shape == (18,)
@@ -84,3 +90,12 @@ def test_a_chunk_turns_across_when_its_torso_yaw_spans_more_than_half_a_radian()
     assert not chunk_decision.turns(chunk)
     chunk[:, 16] = np.linspace(-0.93, 0.95, 16)  # across to the other side
     assert chunk_decision.turns(chunk)
+
+
+def test_the_decision_probe_reads_a_linearly_separable_label_and_not_noise():
+    rng = np.random.default_rng(0)
+    x = rng.normal(size=(60, 8))
+    separable = x[:, 0] > 0
+    assert int(chunk_decision.decision_probe.best_probe(x, separable).rstrip("%")) >= 90
+    noise = rng.random(60) > 0.5
+    assert int(chunk_decision.decision_probe.best_probe(x, noise).rstrip("%")) < 80
