@@ -177,7 +177,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         image_size=image_size(pick("image_size")),
         search_overshoot=float(pick("search_overshoot")),
         action_noise=float(pick("action_noise")),
-        decision_period=int(pick("decision_period")),
+        decision_period=pick("decision_period"),  # an int, or the clear error of a recipe's 16.5
     )
 
 

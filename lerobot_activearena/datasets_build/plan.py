@@ -93,9 +93,8 @@ class BuildPlan:
         from .features import dataset_features  # the feature set is part of a build's identity
 
         d = asdict(self)
-        for key, default in asdict(
-            DemoVariation()
-        ).items():  # builds made before an option keep their identity
+        # builds made before an option keep their identity: a default value is not written
+        for key, default in asdict(DemoVariation()).items():
             if d[key] == default:
                 del d[key]
         d["features"] = json.loads(json.dumps(dataset_features(self.max_objects, self.image_size)))
