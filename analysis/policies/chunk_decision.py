@@ -27,16 +27,16 @@ import numpy as np
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.sim.action import TORSO_YAW
 
-_SPEC = importlib.util.spec_from_file_location(
-    "training_scenes", Path(__file__).with_name("training_scenes.py")
-)
-training_scenes = importlib.util.module_from_spec(_SPEC)
-_SPEC.loader.exec_module(training_scenes)
-_SPEC = importlib.util.spec_from_file_location(
-    "decision_probe", Path(__file__).with_name("decision_probe.py")
-)
-decision_probe = importlib.util.module_from_spec(_SPEC)
-_SPEC.loader.exec_module(decision_probe)
+
+def _sibling(name: str):
+    """Another script of this folder, as a module (the folder is not a package)."""
+    spec = importlib.util.spec_from_file_location(name, Path(__file__).with_name(f"{name}.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+training_scenes, decision_probe = _sibling("training_scenes"), _sibling("decision_probe")
 
 TURN = 0.5  # rad of torso yaw within a chunk: a turn across to the other side
 
