@@ -1,0 +1,70 @@
+"""`activearena-ground-vision VLM_DIR --root BUILD --out OUT_DIR`: fit a from-scratch Qwen3-VL's vision
+tower to where the focus object is in a build's head frames (which merged token holds it, or none), and
+save the grounded model for ``--policy.vlm_path=OUT_DIR``.
+
+A tiny backbone from ``activearena-make-tiny-vlm`` starts without the visual grounding Qwen3-VL-2B brings
+from pretraining; this gives it that from the build's per-frame annotations before policy training.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+
+def main(argv: list[str] | None = None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0].split(": ", 1)[1])
+    p.add_argument(
+        "vlm_dir", type=Path, help="the Qwen3-VL to ground (a folder from activearena-make-tiny-vlm)"
+    )
+    p.add_argument("--root", type=Path, required=True, help="a full build (activearena-build-dataset --root)")
+    p.add_argument("--out", type=Path, required=True, help="where the grounded model is written")
+    p.add_argument("--epochs", type=int, default=5)
+    p.add_argument("--batch-size", type=int, default=64)
+    p.add_argument("--lr", type=float, default=3e-4)
+    p.add_argument(
+        "--image-max-pixels",
+        type=int,
+        default=12288,
+        help="as the policy's --policy.image_max_pixels (12,288: 96 x 128 images at their size)",
+    )
+    p.add_argument("--val-every", type=int, default=10, help="hold out every N-th episode and score it")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--overwrite", action="store_true")
+    args = p.parse_args(argv)
+    if not (args.vlm_dir / "config.json").exists():
+        p.error(f"{args.vlm_dir} holds no model; make one with `activearena-make-tiny-vlm {args.vlm_dir}`")
+    if not (args.root / "meta/info.json").exists():
+        p.error(f"{args.root} is not a LeRobot dataset; build one with activearena-build-dataset")
+    if args.out.resolve() == args.vlm_dir.resolve():
+        p.error("--out must differ from VLM_DIR: the ungrounded model is kept")
+    if (args.out / "config.json").exists() and not args.overwrite:
+        p.error(f"{args.out} already holds a model; pass --overwrite to replace it")
+    if args.epochs < 1 or args.batch_size < 1 or args.val_every < 2:
+        p.error("--epochs and --batch-size must be >= 1 and --val-every >= 2")
+    from ..policies.activearena_vla.vision_grounding import ground_vision_tower
+
+    try:
+        report = ground_vision_tower(
+            args.vlm_dir,
+            args.root,
+            args.out,
+            epochs=args.epochs,
+            batch_size=args.batch_size,
+            lr=args.lr,
+            max_pixels=args.image_max_pixels,
+            val_every=args.val_every,
+            seed=args.seed,
+        )
+    except ValueError as e:  # a build without the annotations
+        p.error(str(e))
+    last = report["history"][-1]
+    print(
+        f"{args.out}: held-out episodes, in view or not {last['in_view_accuracy']:.1%}, token "
+        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames); "
+        f"use --policy.vlm_path={args.out}"
+    )
+
+
+if __name__ == "__main__":
+    main()

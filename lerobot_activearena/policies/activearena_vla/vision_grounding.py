@@ -1,0 +1,228 @@
+"""Visual grounding for a backbone trained from scratch.
+
+Qwen3-VL-2B arrives knowing where things are in an image; a tiny Qwen3-VL made by
+``activearena-make-tiny-vlm`` knows nothing. This fits the tiny model's vision tower to say where the
+current subtask's focus object is in the head image, from a built dataset's per-frame annotations
+(``focus_object_visible``, ``target_uv_norm``): which merged visual token holds it, or none. The
+policy then trains from the grounded backbone as the paper's trains from Qwen3-VL's.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import torch
+from torch import nn
+
+ANNOTATIONS = ("focus_object_visible", "target_uv_norm")
+
+
+@dataclass
+class GroundingFrames:
+    """A build's head frames and where their focus object is."""
+
+    images: torch.Tensor  # (N, 3, H, W) uint8
+    visible: np.ndarray  # (N,) bool
+    uv: np.ndarray  # (N, 2) normalised (u, v); (-1, -1) where not visible
+    episodes: np.ndarray  # (N,) episode index
+    frames: np.ndarray  # (N,) frame index in the episode
+
+
+def token_cells(visible: np.ndarray, uv: np.ndarray, rows: int, cols: int) -> np.ndarray:
+    """Each frame's class: the row-major index of the merged token (of a ``rows`` x ``cols`` grid) that
+    holds the focus object's image point, or ``rows * cols`` where it is not visible."""
+    col = np.clip((uv[:, 0] * cols).astype(int), 0, cols - 1)
+    row = np.clip((uv[:, 1] * rows).astype(int), 0, rows - 1)
+    return np.where(visible, row * cols + col, rows * cols)
+
+
+def load_grounding_frames(root: str | Path, camera: str = "observation.images.head") -> GroundingFrames:
+    """Every frame of the build at ``root``: its decoded head image and its focus annotations."""
+    import pandas as pd
+    from lerobot.datasets.video_utils import decode_video_frames
+    from tqdm import tqdm
+
+    root = Path(root)
+    data = pd.concat(pd.read_parquet(f) for f in sorted(root.glob("data/*/*.parquet")))
+    missing = [c for c in ANNOTATIONS if c not in data.columns]
+    if missing:
+        raise ValueError(
+            f"{root} has no per-frame {', '.join(missing)}: ground on the full build that "
+            "activearena-build-dataset wrote, not on its slimmed copy (activearena-slim-dataset drops them)"
+        )
+    info = json.loads((root / "meta/info.json").read_text())
+    if camera not in info["features"]:
+        raise ValueError(f"{root} has no {camera}; its features: {sorted(info['features'])}")
+    episodes = pd.concat(pd.read_parquet(f) for f in sorted((root / "meta/episodes").glob("*/*.parquet")))
+    data = data.sort_values("index")
+    images = []
+    for _, ep in tqdm(list(episodes.iterrows()), desc="decoding frames", unit="episode"):
+        rows = data[data["episode_index"] == ep["episode_index"]]
+        path = root / info["video_path"].format(
+            video_key=camera,
+            chunk_index=int(ep[f"videos/{camera}/chunk_index"]),
+            file_index=int(ep[f"videos/{camera}/file_index"]),
+        )
+        stamps = (
+            float(ep[f"videos/{camera}/from_timestamp"]) + rows["frame_index"].to_numpy() / info["fps"]
+        ).tolist()
+        images.append(
+            decode_video_frames(path, stamps, 1 / (2 * info["fps"]), backend="pyav", return_uint8=True)
+        )
+    order = pd.concat(data[data["episode_index"] == e] for e in episodes["episode_index"])
+    return GroundingFrames(
+        images=torch.cat(images),
+        visible=order["focus_object_visible"].to_numpy().astype(bool),
+        uv=np.stack(order["target_uv_norm"].to_numpy()).astype(np.float32),
+        episodes=order["episode_index"].to_numpy(),
+        frames=order["frame_index"].to_numpy(),
+    )
+
+
+class GroundingHead(nn.Module):
+    """A logit per merged token (the object is there) and one for "not in view" from their mean."""
+
+    def __init__(self, width: int):
+        super().__init__()
+        self.token = nn.Linear(width, 1)
+        self.absent = nn.Linear(width, 1)
+
+    def forward(self, tokens: torch.Tensor) -> torch.Tensor:  # (N, T, D) -> (N, T + 1)
+        return torch.cat([self.token(tokens)[..., 0], self.absent(tokens.mean(1))], dim=-1)
+
+
+class GroundedTower(nn.Module):
+    """A Qwen3-VL's vision tower with a grounding head on its merged tokens and one on each DeepStack
+    feature (the tower's middle layers, which the language model also reads). Returns their logits."""
+
+    def __init__(self, vlm, image_processor, max_pixels: int):
+        super().__init__()
+        self.vlm, self.image_processor, self.max_pixels = vlm, image_processor, max_pixels
+        taps = len(vlm.config.vision_config.deepstack_visual_indexes)
+        self.heads = nn.ModuleList(
+            GroundingHead(vlm.config.vision_config.out_hidden_size) for _ in range(1 + taps)
+        )
+
+    def grid(self, images: torch.Tensor) -> tuple[int, int]:
+        """The merged-token grid (rows, cols) the processor makes of these images."""
+        from .processor_activearena_vla import image_inputs, one_token_pixels
+
+        _, thw = image_inputs(
+            self.image_processor, images[:1], self.max_pixels, one_token_pixels(self.image_processor), "cpu"
+        )
+        merge = self.image_processor.merge_size
+        return int(thw[0, 1]) // merge, int(thw[0, 2]) // merge
+
+    def forward(self, images: torch.Tensor) -> list[torch.Tensor]:
+        from .processor_activearena_vla import image_inputs, one_token_pixels
+
+        pv, thw = image_inputs(
+            self.image_processor, images, self.max_pixels, one_token_pixels(self.image_processor), "cpu"
+        )
+        out = self.vlm.model.get_image_features(pv.flatten(0, 1), thw)
+        n = len(images)
+        features = [
+            torch.stack(list(out.pooler_output)),
+            *(d.reshape(n, -1, d.shape[-1]) for d in out.deepstack_features),
+        ]
+        return [head(f) for head, f in zip(self.heads, features, strict=True)]
+
+
+def _accuracy(model: GroundedTower, images, cells, none: int, batch: int) -> dict[str, float]:
+    """Held-out figures; ``none`` is the "not in view" class."""
+    model.eval()
+    with torch.no_grad():
+        pred = torch.cat([model(images[i : i + batch])[0].argmax(-1) for i in range(0, len(images), batch)])
+    model.train()
+    cells = torch.as_tensor(cells)
+    absent = cells == none
+    return {
+        "frames": len(cells),
+        "in_view_accuracy": float(((pred == none) == absent).float().mean()),
+        "token_accuracy_where_visible": float((pred[~absent] == cells[~absent]).float().mean())
+        if (~absent).any()
+        else float("nan"),
+        "accuracy": float((pred == cells).float().mean()),
+    }
+
+
+def ground_vision_tower(
+    vlm_path: str | Path,
+    root: str | Path,
+    out_dir: str | Path,
+    epochs: int = 6,
+    batch_size: int = 64,
+    lr: float = 3e-4,
+    max_pixels: int = 12288,
+    val_every: int = 10,
+    seed: int = 0,
+) -> dict:
+    """Fit ``vlm_path``'s vision tower to the focus object's place in the build at ``root``'s head frames
+    and save the whole model (tokenizer and processor copied) to ``out_dir``. Every ``val_every``-th
+    episode is held out and scored. Returns the figures also written to ``out_dir/grounding.json``."""
+    from tqdm import tqdm
+    from transformers import AutoProcessor, Qwen3VLForConditionalGeneration
+
+    torch.manual_seed(seed)
+    frames = load_grounding_frames(root)
+    vlm = Qwen3VLForConditionalGeneration.from_pretrained(vlm_path, dtype=torch.float32)
+    processor = AutoProcessor.from_pretrained(vlm_path)
+    model = GroundedTower(vlm, processor.image_processor, max_pixels)
+    rows, cols = model.grid(frames.images)
+    cells = token_cells(frames.visible, frames.uv, rows, cols)
+    held = frames.episodes % val_every == val_every - 1
+    if not held.any() or held.all():
+        raise ValueError(
+            f"holding out every {val_every}-th episode leaves no held-out or no training episode of "
+            f"{len(set(frames.episodes.tolist()))}; build more episodes or change val_every"
+        )
+    train_idx = np.flatnonzero(~held)
+    params = [*vlm.model.visual.parameters(), *model.heads.parameters()]
+    opt = torch.optim.AdamW(params, lr=lr, weight_decay=1e-4)
+    steps = epochs * int(np.ceil(len(train_idx) / batch_size))
+    sched = torch.optim.lr_scheduler.OneCycleLR(opt, max_lr=lr, total_steps=steps, pct_start=0.1)
+    rng = np.random.default_rng(seed)
+    target = torch.as_tensor(cells)
+    history = []
+    with tqdm(total=steps, desc="grounding the vision tower", unit="step") as bar:
+        for epoch in range(epochs):
+            order, losses = rng.permutation(train_idx), []
+            for i in range(0, len(order), batch_size):
+                b = order[i : i + batch_size]
+                loss = sum(nn.functional.cross_entropy(o, target[b]) for o in model(frames.images[b])) / len(
+                    model.heads
+                )
+                opt.zero_grad()
+                loss.backward()
+                opt.step()
+                sched.step()
+                losses.append(loss.item())
+                bar.update()
+                bar.set_postfix(epoch=epoch, loss=f"{loss.item():.3f}")
+            scores = _accuracy(model, frames.images[held], cells[held], rows * cols, 4 * batch_size)
+            history.append({"epoch": epoch + 1, "train_loss": round(float(np.mean(losses)), 4), **scores})
+            tqdm.write(json.dumps(history[-1]))
+    out = Path(out_dir)
+    tmp = out.with_name(out.name + ".partial")
+    shutil.rmtree(tmp, ignore_errors=True)
+    shutil.copytree(vlm_path, tmp)
+    vlm.save_pretrained(tmp)
+    report = {
+        "vlm_path": str(vlm_path),
+        "dataset_root": str(root),
+        "grid": [rows, cols],
+        "train_frames": int(len(train_idx)),
+        "held_out_episodes": sorted(set(frames.episodes[held].tolist())),
+        "epochs": epochs,
+        "batch_size": batch_size,
+        "lr": lr,
+        "history": history,
+    }
+    (tmp / "grounding.json").write_text(json.dumps(report, indent=1) + "\n")
+    shutil.rmtree(out, ignore_errors=True)
+    tmp.rename(out)
+    return report

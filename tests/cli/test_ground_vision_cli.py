@@ -1,0 +1,74 @@
+"""`activearena-ground-vision`: a from-scratch backbone's vision tower learns where the focus object is
+in a build's head frames, and the grounded model loads as a ``--policy.vlm_path``."""
+
+import json
+
+import numpy as np
+import pytest
+import torch
+from helpers.params import DATASET_REPO
+from lerobot.datasets.lerobot_dataset import LeRobotDataset
+from safetensors.torch import load_file
+
+from lerobot_activearena.cli.ground_vision import main as ground_main
+from lerobot_activearena.cli.slim_dataset import main as slim_main
+from lerobot_activearena.policies.activearena_vla.vision_grounding import load_grounding_frames, token_cells
+
+
+def test_token_cells_name_the_merged_token_under_the_object_or_none():
+    visible = np.array([True, True, True, False])
+    uv = np.array([[0.1, 0.9], [0.99, 0.01], [0.5, 0.5], [-1.0, -1.0]])
+    # a 3 x 4 grid: (u 0.1, v 0.9) is row 2, column 0; (0.99, 0.01) row 0, column 3; the centre row 1,
+    # column 2; not visible is the 13th class
+    np.testing.assert_array_equal(token_cells(visible, uv, 3, 4), [8, 3, 6, 12])
+
+
+def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dataset):
+    frames = load_grounding_frames(bell_count_dataset)
+    ds = LeRobotDataset(DATASET_REPO, root=bell_count_dataset)
+    assert len(frames.images) == ds.num_frames == len(frames.visible)
+    assert frames.visible.any() and not frames.visible.all()
+    for i in (0, ds.num_frames // 3, ds.num_frames - 1):
+        item = ds[i]
+        at = np.flatnonzero(
+            (frames.episodes == int(item["episode_index"])) & (frames.frames == int(item["frame_index"]))
+        )
+        assert len(at) == 1
+        image = (item["observation.images.head"] * 255).round().to(torch.uint8)
+        assert (frames.images[at[0]].int() - image.int()).abs().max() <= 1
+        assert frames.visible[at[0]] == bool(item["focus_object_visible"])
+        np.testing.assert_allclose(frames.uv[at[0]], item["target_uv_norm"].numpy())
+
+
+def test_ground_vision_fits_the_tower_and_keeps_the_language_model(
+    bell_count_dataset, tiny_vlm, tmp_path, capsys
+):
+    out = tmp_path / "grounded"
+    args = [str(tiny_vlm), "--root", str(bell_count_dataset), "--out", str(out), "--val-every", "2"]
+    ground_main([*args, "--epochs", "3", "--batch-size", "32", "--lr", "1e-3"])
+    assert "held-out episodes" in capsys.readouterr().out
+    report = json.loads((out / "grounding.json").read_text())
+    assert report["grid"] == [3, 4] and report["held_out_episodes"] == [1]
+    losses = [h["train_loss"] for h in report["history"]]
+    assert len(losses) == 3 and losses[-1] < losses[0]
+    before, after = load_file(tiny_vlm / "model.safetensors"), load_file(out / "model.safetensors")
+    assert before.keys() == after.keys()
+    vision = [k for k in before if ".visual." in k]
+    assert vision and all(not torch.equal(before[k], after[k]) for k in vision if k.endswith("weight"))
+    assert all(torch.equal(before[k], after[k]) for k in before if ".language_model." in k)
+    from transformers import AutoProcessor, Qwen3VLForConditionalGeneration
+
+    Qwen3VLForConditionalGeneration.from_pretrained(out)
+    AutoProcessor.from_pretrained(out)
+
+    with pytest.raises(SystemExit):  # an existing model is never replaced silently
+        ground_main(args)
+
+
+def test_ground_vision_refuses_a_build_without_annotations(bell_count_dataset, tiny_vlm, tmp_path, capsys):
+    slim = tmp_path / "slim"
+    slim_main(["--root", str(bell_count_dataset), "--out", str(slim)])
+    with pytest.raises(SystemExit):
+        ground_main([str(tiny_vlm), "--root", str(slim), "--out", str(tmp_path / "g")])
+    assert "full build" in capsys.readouterr().err
+    assert not (tmp_path / "g").exists()
