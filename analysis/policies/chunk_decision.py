@@ -13,12 +13,17 @@ of the other; one that reads the bell from the image scores both. With ``--probe
 demonstration's decision is linearly readable from the policy's last-layer states at the action
 queries (``decision_probe.py``'s logistic regression, cross-validated over the episodes; the
 majority class is the floor): whether what the head lacks is in the features at all.
+
+``--record FILE.jsonl`` appends each checkpoint's figures there and skips checkpoints it already holds
+(an interrupted sweep goes on where it stopped); ``--plot FILE.png`` draws every run in the record:
+the right decisions against the training step.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib.util
+import json
 import os
 from pathlib import Path
 
@@ -60,6 +65,48 @@ def decisions(scenes, episodes: list[int], at: int) -> list[tuple[int, bool, boo
     return out
 
 
+def checkpoint_key(ckpt: Path) -> tuple[str, int]:
+    """(run folder name, training step) of a ``RUN/checkpoints/STEP/pretrained_model`` folder."""
+    ckpt = ckpt.resolve()
+    if ckpt.parent.parent.name != "checkpoints" or not ckpt.parent.name.isdigit():
+        raise SystemExit(f"{ckpt}: not a RUN/checkpoints/<step>/pretrained_model folder")
+    return ckpt.parents[2].name, int(ckpt.parent.name)
+
+
+def read_record(path: Path | None) -> list[dict]:
+    if path is None or not path.exists():
+        return []
+    return [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+
+
+def plot(rows: list[dict], out: Path) -> None:
+    """Per run, the share of right decisions among the stays and among the turns, by training step."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for i, run in enumerate(dict.fromkeys(r["run"] for r in rows)):
+        mine = sorted((r for r in rows if r["run"] == run), key=lambda r: r["step"])
+        steps = [r["step"] for r in mine]
+        colour = f"C{i}"
+        ax.plot(
+            steps, [r["stays_right"] / r["stays"] for r in mine], "-o", color=colour, label=f"{run}: stays"
+        )
+        ax.plot(
+            steps, [r["turns_right"] / r["turns"] for r in mine], "--s", color=colour, label=f"{run}: turns"
+        )
+    ax.set_xlabel("training step")
+    ax.set_ylabel("right decisions at the chunk boundary")
+    ax.set_ylim(-0.03, 1.03)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    print(f"wrote {out}")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("checkpoints", type=Path, nargs="+", help="pretrained_model folders")
@@ -68,11 +115,20 @@ def main() -> None:
     p.add_argument("--episodes", default="0-39", help="dataset episode indices, e.g. 0-39")
     p.add_argument("--at", type=int, default=16, help="the chunk boundary (default 16)")
     p.add_argument("--probe", action="store_true", help="also a linear probe of the decision")
+    p.add_argument("--record", type=Path, help="append each checkpoint's figures to this .jsonl")
+    p.add_argument("--plot", type=Path, help="draw the record's runs to this .png")
     args = p.parse_args()
+    if args.plot and not args.record:
+        p.error("--plot draws the --record file; pass --record FILE.jsonl")
+    done = {(r["run"], r["step"], r["at"], r["episodes"]) for r in read_record(args.record)}
     head = "| checkpoint | demonstration stays: policy stays | demonstration turns: policy turns |"
     print(head + (" linear probe (majority class) |" if args.probe else ""))
     print("|---|---|---|" + ("---|" if args.probe else ""))
     for ckpt in args.checkpoints:
+        run, step = checkpoint_key(ckpt) if args.record else ("", 0)
+        if args.record and (run, step, args.at, args.episodes) in done:
+            print(f"| {run}/{step} | in {args.record} |")
+            continue
         scenes = training_scenes.TrainingScenes(ckpt, args.repo_id, args.root)
         rows = decisions(scenes, int_ranges(args.episodes), args.at)
         stay = [pred for _, rec, pred in rows if not rec]
@@ -85,6 +141,15 @@ def main() -> None:
             x, _, _ = decision_probe.features(ckpt, args.repo_id, args.root, indices)
             line += f" {decision_probe.best_probe(x, y)} ({max(y.mean(), 1 - y.mean()):.0%}) |"
         print(line, flush=True)
+        if args.record:
+            row = {"run": run, "step": step, "at": args.at, "episodes": args.episodes}
+            row.update(
+                stays_right=stay.count(False), stays=len(stay), turns_right=turn.count(True), turns=len(turn)
+            )
+            with args.record.open("a") as f:
+                f.write(json.dumps(row) + "\n")
+    if args.plot:
+        plot(read_record(args.record), args.plot)
 
 
 if __name__ == "__main__":

@@ -3,6 +3,8 @@ feed a memory policy what training fed it: with the env replaying a demonstratio
 env's observation and the policy's own memory bank equals the chunk from the dataset sample of the same
 frame (history from the delta timestamps), up to the video compression of the dataset's frames."""
 
+import json
+
 import numpy as np
 import pytest
 from helpers.analysis_scripts import ROOT, load
@@ -99,3 +101,24 @@ def test_the_decision_probe_reads_a_linearly_separable_label_and_not_noise():
     assert int(chunk_decision.decision_probe.best_probe(x, separable).rstrip("%")) >= 90
     noise = rng.random(60) > 0.5
     assert int(chunk_decision.decision_probe.best_probe(x, noise).rstrip("%")) < 80
+
+
+def test_chunk_decision_record_keys_checkpoints_by_run_and_step_and_plots_each_run(tmp_path):
+    ckpt = tmp_path / "run_a" / "checkpoints" / "001250" / "pretrained_model"
+    ckpt.mkdir(parents=True)
+    assert chunk_decision.checkpoint_key(ckpt) == ("run_a", 1250)
+    with pytest.raises(SystemExit, match="not a RUN/checkpoints"):
+        chunk_decision.checkpoint_key(tmp_path / "run_a")
+    record = tmp_path / "decisions.jsonl"
+    assert chunk_decision.read_record(record) == []
+    rows = [
+        {"run": r, "step": s, "stays_right": k, "stays": 10, "turns_right": 10 - k, "turns": 10}
+        for r in ("a", "b")
+        for s, k in ((500, 0), (1000, 7))
+    ]
+    record.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    assert chunk_decision.read_record(record) == rows
+    chunk_decision.plot(rows, tmp_path / "d.png")
+    from PIL import Image
+
+    assert Image.open(tmp_path / "d.png").size[0] > 400
