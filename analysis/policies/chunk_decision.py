@@ -86,7 +86,7 @@ def plot(rows: list[dict], out: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(8, 4.8))
     for i, run in enumerate(dict.fromkeys(r["run"] for r in rows)):
         mine = sorted((r for r in rows if r["run"] == run), key=lambda r: r["step"])
         steps = [r["step"] for r in mine]
@@ -101,7 +101,7 @@ def plot(rows: list[dict], out: Path) -> None:
     ax.set_ylabel("right decisions at the chunk boundary")
     ax.set_ylim(-0.03, 1.03)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2)
     fig.tight_layout()
     fig.savefig(out, dpi=120)
     print(f"wrote {out}")
@@ -109,9 +109,9 @@ def plot(rows: list[dict], out: Path) -> None:
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("checkpoints", type=Path, nargs="+", help="pretrained_model folders")
-    p.add_argument("--repo-id", required=True)
-    p.add_argument("--root", type=Path, required=True, help="the dataset the checkpoints were trained on")
+    p.add_argument("checkpoints", type=Path, nargs="*", help="pretrained_model folders")
+    p.add_argument("--repo-id")
+    p.add_argument("--root", type=Path, help="the dataset the checkpoints were trained on")
     p.add_argument("--episodes", default="0-39", help="dataset episode indices, e.g. 0-39")
     p.add_argument("--at", type=int, default=16, help="the chunk boundary (default 16)")
     p.add_argument("--probe", action="store_true", help="also a linear probe of the decision")
@@ -120,10 +120,15 @@ def main() -> None:
     args = p.parse_args()
     if args.plot and not args.record:
         p.error("--plot draws the --record file; pass --record FILE.jsonl")
+    if args.checkpoints and not (args.repo_id and args.root):
+        p.error("checkpoints are scored on their training dataset: pass --repo-id and --root")
+    if not (args.checkpoints or args.plot):
+        p.error("pass checkpoints to score, or --record FILE --plot FILE.png to draw a record")
     done = {(r["run"], r["step"], r["at"], r["episodes"]) for r in read_record(args.record)}
     head = "| checkpoint | demonstration stays: policy stays | demonstration turns: policy turns |"
-    print(head + (" linear probe (majority class) |" if args.probe else ""))
-    print("|---|---|---|" + ("---|" if args.probe else ""))
+    if args.checkpoints:
+        print(head + (" linear probe (majority class) |" if args.probe else ""))
+        print("|---|---|---|" + ("---|" if args.probe else ""))
     for ckpt in args.checkpoints:
         run, step = checkpoint_key(ckpt) if args.record else ("", 0)
         if args.record and (run, step, args.at, args.episodes) in done:
