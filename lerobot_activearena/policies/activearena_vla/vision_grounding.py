@@ -59,9 +59,10 @@ def load_grounding_frames(root: str | Path, camera: str = "observation.images.he
         raise ValueError(f"{root} has no {camera}; its features: {sorted(info['features'])}")
     episodes = pd.concat(pd.read_parquet(f) for f in sorted((root / "meta/episodes").glob("*/*.parquet")))
     data = data.sort_values("index")
-    images = []
+    images, parts = [], []
     for _, ep in tqdm(list(episodes.iterrows()), desc="decoding frames", unit="episode"):
         rows = data[data["episode_index"] == ep["episode_index"]]
+        parts.append(rows)
         path = root / info["video_path"].format(
             video_key=camera,
             chunk_index=int(ep[f"videos/{camera}/chunk_index"]),
@@ -73,7 +74,7 @@ def load_grounding_frames(root: str | Path, camera: str = "observation.images.he
         images.append(
             decode_video_frames(path, stamps, 1 / (2 * info["fps"]), backend="pyav", return_uint8=True)
         )
-    order = pd.concat(data[data["episode_index"] == e] for e in episodes["episode_index"])
+    order = pd.concat(parts)
     return GroundingFrames(
         images=torch.cat(images),
         visible=order["focus_object_visible"].to_numpy().astype(bool),
@@ -154,7 +155,7 @@ def ground_vision_tower(
     vlm_path: str | Path,
     root: str | Path,
     out_dir: str | Path,
-    epochs: int = 6,
+    epochs: int = 5,
     batch_size: int = 64,
     lr: float = 3e-4,
     max_pixels: int = 12288,
