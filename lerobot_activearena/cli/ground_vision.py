@@ -30,6 +30,12 @@ def main(argv: list[str] | None = None) -> None:
     )
     p.add_argument("--val-every", type=int, default=10, help="hold out every N-th episode and score it")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument(
+        "--point-weight",
+        type=float,
+        default=0.0,
+        help="weight of also fitting where in its token the object lies (0: the token only)",
+    )
     p.add_argument("--overwrite", action="store_true")
     args = p.parse_args(argv)
     if not (args.vlm_dir / "config.json").exists():
@@ -40,8 +46,8 @@ def main(argv: list[str] | None = None) -> None:
         p.error("--out must differ from VLM_DIR: the ungrounded model is kept")
     if (args.out / "config.json").exists() and not args.overwrite:
         p.error(f"{args.out} already holds a model; pass --overwrite to replace it")
-    if args.epochs < 1 or args.batch_size < 1 or args.val_every < 2:
-        p.error("--epochs and --batch-size must be >= 1 and --val-every >= 2")
+    if args.epochs < 1 or args.batch_size < 1 or args.val_every < 2 or args.point_weight < 0:
+        p.error("--epochs and --batch-size must be >= 1, --val-every >= 2 and --point-weight >= 0")
     from ..policies.activearena_vla.vision_grounding import ground_vision_tower
 
     try:
@@ -55,13 +61,20 @@ def main(argv: list[str] | None = None) -> None:
             max_pixels=args.image_max_pixels,
             val_every=args.val_every,
             seed=args.seed,
+            point_weight=args.point_weight,
         )
     except ValueError as e:  # a build without the annotations
         p.error(str(e))
     last = report["history"][-1]
+    point = (
+        f", point {last['median_point_error_px']:.1f} px from the object (token centre "
+        f"{last['median_centre_error_px']:.1f} px)"
+        if "median_point_error_px" in last
+        else ""
+    )
     print(
         f"{args.out}: held-out episodes, in view or not {last['in_view_accuracy']:.1%}, token "
-        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames); "
+        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames){point}; "
         f"use --policy.vlm_path={args.out}"
     )
 

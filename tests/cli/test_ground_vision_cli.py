@@ -12,7 +12,12 @@ from safetensors.torch import load_file
 
 from lerobot_activearena.cli.ground_vision import main as ground_main
 from lerobot_activearena.cli.slim_dataset import main as slim_main
-from lerobot_activearena.policies.activearena_vla.vision_grounding import load_grounding_frames, token_cells
+from lerobot_activearena.policies.activearena_vla.vision_grounding import (
+    grounding_loss,
+    load_grounding_frames,
+    token_cells,
+    within_cells,
+)
 
 
 def test_token_cells_name_the_merged_token_under_the_object_or_none():
@@ -21,6 +26,31 @@ def test_token_cells_name_the_merged_token_under_the_object_or_none():
     # a 3 x 4 grid: (u 0.1, v 0.9) is row 2, column 0; (0.99, 0.01) row 0, column 3; the centre row 1,
     # column 2; not visible is the 13th class
     np.testing.assert_array_equal(token_cells(visible, uv, 3, 4), [8, 3, 6, 12])
+
+
+def test_within_cells_place_the_point_inside_its_token():
+    uv = np.array([[0.1, 0.9], [1.0, 0.0], [0.5, 0.5]])
+    # 3 x 4 grid: u 0.1 -> 0.4 columns in, v 0.9 -> 2.7 rows (0.7 into row 2); u 1.0 is the far edge of
+    # the last column
+    np.testing.assert_allclose(within_cells(uv, 3, 4), [[0.4, 0.7], [1.0, 0.0], [0.0, 0.5]], atol=1e-6)
+
+
+def test_grounding_loss_fits_the_point_only_in_the_objects_token():
+    cells = torch.tensor([1, 2])  # two tokens + "not in view": frame 0 shows the object in token 1
+    within = torch.tensor([[0.25, 0.75], [0.0, 0.0]])
+    logits = torch.tensor([[0.0, 5.0, 0.0], [0.0, 0.0, 5.0]])
+    points = torch.full((2, 2, 2), 0.5)
+    base = grounding_loss([(logits, points)], cells, within, point_weight=0.0)
+    assert torch.isclose(base, torch.nn.functional.cross_entropy(logits, cells))
+    weighted = grounding_loss([(logits, points)], cells, within, point_weight=2.0)
+    assert torch.isclose(weighted - base, torch.tensor(2.0 * 0.25))  # |0.5 - 0.25|, |0.5 - 0.75|
+    elsewhere = points.clone()
+    elsewhere[0, 0] = 0.0  # another token of the same frame, and the frame without the object
+    elsewhere[1] = 0.9
+    assert torch.isclose(grounding_loss([(logits, elsewhere)], cells, within, 2.0), weighted)
+    exact = points.clone()
+    exact[0, 1] = within[0]
+    assert torch.isclose(grounding_loss([(logits, exact)], cells, within, 2.0), base)
 
 
 def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dataset):
@@ -45,10 +75,17 @@ def test_ground_vision_fits_the_tower_and_keeps_the_language_model(
 ):
     out = tmp_path / "grounded"
     args = [str(tiny_vlm), "--root", str(bell_count_dataset), "--out", str(out), "--val-every", "2"]
-    ground_main([*args, "--epochs", "3", "--batch-size", "32", "--lr", "1e-3"])
+    ground_main([*args, "--epochs", "3", "--batch-size", "32", "--lr", "1e-3", "--point-weight", "1"])
     assert "held-out episodes" in capsys.readouterr().out
     report = json.loads((out / "grounding.json").read_text())
     assert report["grid"] == [3, 4] and report["held_out_episodes"] == [1]
+    assert report["point_weight"] == 1.0
+    info = json.loads((bell_count_dataset / "meta/info.json").read_text())
+    h, w = info["features"]["observation.images.head"]["shape"][:2]
+    half_diagonal = 0.5 * np.hypot(h / 3, w / 4)  # a token's centre is no farther from a point in it
+    for epoch in report["history"]:
+        assert 0 <= epoch["median_centre_error_px"] <= half_diagonal
+        assert 0 <= epoch["median_point_error_px"] <= 2 * half_diagonal
     losses = [h["train_loss"] for h in report["history"]]
     assert len(losses) == 3 and losses[-1] < losses[0]
     before, after = load_file(tiny_vlm / "model.safetensors"), load_file(out / "model.safetensors")

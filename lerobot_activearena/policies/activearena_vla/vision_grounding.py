@@ -40,6 +40,13 @@ def token_cells(visible: np.ndarray, uv: np.ndarray, rows: int, cols: int) -> np
     return np.where(visible, row * cols + col, rows * cols)
 
 
+def within_cells(uv: np.ndarray, rows: int, cols: int) -> np.ndarray:
+    """Where in its merged token the focus object's image point lies: (u, v) in [0, 1] from the token's
+    top-left corner (meaningless where the object is not visible)."""
+    scaled = np.clip(uv, 0.0, 1.0) * np.array([cols, rows], dtype=np.float32)
+    return np.clip(scaled - np.minimum(np.floor(scaled), [cols - 1, rows - 1]), 0.0, 1.0).astype(np.float32)
+
+
 def load_grounding_frames(root: str | Path, camera: str = "observation.images.head") -> GroundingFrames:
     """Every frame of the build at ``root``: its decoded head image and its focus annotations."""
     import pandas as pd
@@ -85,20 +92,24 @@ def load_grounding_frames(root: str | Path, camera: str = "observation.images.he
 
 
 class GroundingHead(nn.Module):
-    """A logit per merged token (the object is there) and one for "not in view" from their mean."""
+    """A logit per merged token (the object is there) and one for "not in view" from their mean; and, per
+    token, where in it the object would be ((u, v) in [0, 1])."""
 
     def __init__(self, width: int):
         super().__init__()
         self.token = nn.Linear(width, 1)
         self.absent = nn.Linear(width, 1)
+        self.point = nn.Linear(width, 2)
 
-    def forward(self, tokens: torch.Tensor) -> torch.Tensor:  # (N, T, D) -> (N, T + 1)
-        return torch.cat([self.token(tokens)[..., 0], self.absent(tokens.mean(1))], dim=-1)
+    def forward(self, tokens: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """(N, T, D) -> logits (N, T + 1) and points (N, T, 2)."""
+        logits = torch.cat([self.token(tokens)[..., 0], self.absent(tokens.mean(1))], dim=-1)
+        return logits, torch.sigmoid(self.point(tokens))
 
 
 class GroundedTower(nn.Module):
     """A Qwen3-VL's vision tower with a grounding head on its merged tokens and one on each DeepStack
-    feature (the tower's middle layers, which the language model also reads). Returns their logits."""
+    feature (the tower's middle layers, which the language model also reads). Returns their outputs."""
 
     def __init__(self, vlm, image_processor, max_pixels: int):
         super().__init__()
@@ -118,7 +129,7 @@ class GroundedTower(nn.Module):
         merge = self.image_processor.merge_size
         return int(thw[0, 1]) // merge, int(thw[0, 2]) // merge
 
-    def forward(self, images: torch.Tensor) -> list[torch.Tensor]:
+    def forward(self, images: torch.Tensor) -> list[tuple[torch.Tensor, torch.Tensor]]:
         from .processor_activearena_vla import image_inputs, one_token_pixels
 
         pv, thw = image_inputs(
@@ -133,22 +144,56 @@ class GroundedTower(nn.Module):
         return [head(f) for head, f in zip(self.heads, features, strict=True)]
 
 
-def _accuracy(model: GroundedTower, images, cells, none: int, batch: int) -> dict[str, float]:
-    """Held-out figures; ``none`` is the "not in view" class."""
+def grounding_loss(
+    outputs: list[tuple[torch.Tensor, torch.Tensor]],
+    cells: torch.Tensor,
+    within: torch.Tensor,
+    point_weight: float,
+) -> torch.Tensor:
+    """Cross-entropy over the tokens and "not in view", plus ``point_weight`` x the L1 error of the point
+    predicted in the token that holds the object (frames that show it), averaged over the heads."""
+    none = outputs[0][0].shape[-1] - 1
+    seen = torch.nonzero(cells != none).flatten()
+    total = 0.0
+    for logits, points in outputs:
+        total = total + nn.functional.cross_entropy(logits, cells)
+        if point_weight and len(seen):
+            guess = points[seen, cells[seen]]
+            total = total + point_weight * nn.functional.l1_loss(guess, within[seen])
+    return total / len(outputs)
+
+
+def _accuracy(model: GroundedTower, images, cells, uv, grid: tuple[int, int], batch: int) -> dict[str, float]:
+    """Held-out figures. Point errors are in pixels of ``images``, over the frames that show the object and
+    whose token is named right: the predicted point's, and the token centre's for comparison."""
+    rows, cols = grid
     model.eval()
     with torch.no_grad():
-        pred = torch.cat([model(images[i : i + batch])[0].argmax(-1) for i in range(0, len(images), batch)])
+        outs = [model(images[i : i + batch])[0] for i in range(0, len(images), batch)]
     model.train()
+    pred = torch.cat([logits.argmax(-1) for logits, _ in outs])
+    points = torch.cat([p for _, p in outs])
     cells = torch.as_tensor(cells)
-    absent = cells == none
-    return {
+    absent = cells == rows * cols
+    figures = {
         "frames": len(cells),
-        "in_view_accuracy": float(((pred == none) == absent).float().mean()),
+        "in_view_accuracy": float(((pred == rows * cols) == absent).float().mean()),
         "token_accuracy_where_visible": float((pred[~absent] == cells[~absent]).float().mean())
         if (~absent).any()
         else float("nan"),
         "accuracy": float((pred == cells).float().mean()),
     }
+    hit = torch.nonzero((pred == cells) & ~absent).flatten()
+    if len(hit):
+        cell = cells[hit]
+        corner = torch.stack([cell % cols, cell // cols], -1).float()
+        scale = torch.tensor([images.shape[-1] / cols, images.shape[-2] / rows])
+        true = torch.as_tensor(uv[hit.numpy()]) * scale * torch.tensor([cols, rows])
+        point = (corner + points[hit, cell]) * scale
+        centre = (corner + 0.5) * scale
+        figures["median_point_error_px"] = round(float((point - true).norm(dim=-1).median()), 2)
+        figures["median_centre_error_px"] = round(float((centre - true).norm(dim=-1).median()), 2)
+    return figures
 
 
 def ground_vision_tower(
@@ -161,10 +206,12 @@ def ground_vision_tower(
     max_pixels: int = 12288,
     val_every: int = 10,
     seed: int = 0,
+    point_weight: float = 0.0,
 ) -> dict:
     """Fit ``vlm_path``'s vision tower to the focus object's place in the build at ``root``'s head frames
     and save the whole model (tokenizer and processor copied) to ``out_dir``. Every ``val_every``-th
-    episode is held out and scored. Returns the figures also written to ``out_dir/grounding.json``."""
+    episode is held out and scored. ``point_weight`` > 0 also fits where in its token the object lies (the
+    token alone places it within half a token). Returns the figures also written to ``out_dir/grounding.json``."""
     from tqdm import tqdm
     from transformers import AutoProcessor, Qwen3VLForConditionalGeneration
 
@@ -175,6 +222,7 @@ def ground_vision_tower(
     model = GroundedTower(vlm, processor.image_processor, max_pixels)
     rows, cols = model.grid(frames.images)
     cells = token_cells(frames.visible, frames.uv, rows, cols)
+    within = torch.as_tensor(within_cells(frames.uv, rows, cols))
     held = frames.episodes % val_every == val_every - 1
     if not held.any() or held.all():
         raise ValueError(
@@ -194,9 +242,7 @@ def ground_vision_tower(
             order, losses = rng.permutation(train_idx), []
             for i in range(0, len(order), batch_size):
                 b = order[i : i + batch_size]
-                loss = sum(nn.functional.cross_entropy(o, target[b]) for o in model(frames.images[b])) / len(
-                    model.heads
-                )
+                loss = grounding_loss(model(frames.images[b]), target[b], within[b], point_weight)
                 opt.zero_grad()
                 loss.backward()
                 opt.step()
@@ -204,7 +250,9 @@ def ground_vision_tower(
                 losses.append(loss.item())
                 bar.update()
                 bar.set_postfix(epoch=epoch, loss=f"{loss.item():.3f}")
-            scores = _accuracy(model, frames.images[held], cells[held], rows * cols, 4 * batch_size)
+            scores = _accuracy(
+                model, frames.images[held], cells[held], frames.uv[held], (rows, cols), 4 * batch_size
+            )
             history.append({"epoch": epoch + 1, "train_loss": round(float(np.mean(losses)), 4), **scores})
             tqdm.write(json.dumps(history[-1]))
     out = Path(out_dir)
@@ -221,6 +269,7 @@ def ground_vision_tower(
         "epochs": epochs,
         "batch_size": batch_size,
         "lr": lr,
+        "point_weight": point_weight,
         "history": history,
     }
     (tmp / "grounding.json").write_text(json.dumps(report, indent=1) + "\n")
