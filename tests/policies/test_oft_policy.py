@@ -971,6 +971,36 @@ def test_small_presets_with_the_wider_vision_tower_differ_only_in_the_backbone()
         assert {k for k in wide if wide[k] != base[k]} == {"policy", "job_name"}
 
 
+def test_grounded_bell_presets_are_the_wider_pair_with_the_grounded_backbone_and_the_bell_recipe():
+    """The _grounded_bell pair: the _v256d4 pair on the backbone grounded by activearena-ground-vision,
+    with the bell recipe's build, batch and schedule; the two still differ only in the memory."""
+    small = CONFIGS / "small"
+    pair = {}
+    for name in ("oft_subtask_action_12_ws", "oft_subtask_no_0_ws"):
+        wide = json.loads((small / f"{name}_v256d4.json").read_text())
+        grounded = pair[name] = json.loads((small / f"{name}_grounded_bell.json").read_text())
+        changed = {k for k in grounded["policy"] if grounded["policy"][k] != wide["policy"][k]}
+        assert changed == {"vlm_path", "scheduler_decay_steps"}
+        assert grounded["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_grounded_bell"
+        assert grounded["dataset"] == dict(wide["dataset"], repo_id="local/cpu_click_bell_200_p16")
+        assert (grounded["batch_size"], grounded["steps"], grounded["save_freq"]) == (64, 3000, 250)
+        assert grounded["policy"]["scheduler_decay_steps"] == grounded["steps"]
+        assert {k for k in grounded if grounded[k] != wide[k]} == {
+            "policy",
+            "dataset",
+            "batch_size",
+            "steps",
+            "save_freq",
+            "job_name",
+        }
+    chunk, free = pair.values()
+    assert {k for k in chunk["policy"] if chunk["policy"][k] != free["policy"][k]} == {"memory", "history"}
+    from lerobot.configs.train import TrainPipelineConfig
+
+    cfg = TrainPipelineConfig.from_pretrained(small / "oft_subtask_action_12_ws_grounded_bell.json")
+    assert (cfg.policy.type, cfg.batch_size, cfg.policy.history) == ("activearena_oft", 64, 12)
+
+
 def test_small_stateless_preset_differs_from_the_chunk_12_preset_as_the_papers_pair():
     """oft_subtask_action_12_wos: the small chunk-12 preset without state tokens, the change between the
     paper's oft_subtask_action_12_ws and _wos presets."""
