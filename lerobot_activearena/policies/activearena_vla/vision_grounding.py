@@ -188,7 +188,7 @@ def _accuracy(model: GroundedTower, images, cells, uv, grid: tuple[int, int], ba
         cell = cells[hit]
         corner = torch.stack([cell % cols, cell // cols], -1).float()
         scale = torch.tensor([images.shape[-1] / cols, images.shape[-2] / rows])
-        true = torch.as_tensor(uv[hit.numpy()]) * scale * torch.tensor([cols, rows])
+        true = torch.as_tensor(uv[hit.numpy()]) * torch.tensor([images.shape[-1], images.shape[-2]])
         point = (corner + points[hit, cell]) * scale
         centre = (corner + 0.5) * scale
         figures["median_point_error_px"] = round(float((point - true).norm(dim=-1).median()), 2)
