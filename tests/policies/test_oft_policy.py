@@ -1001,6 +1001,28 @@ def test_grounded_bell_presets_are_the_wider_pair_with_the_grounded_backbone_and
     assert (cfg.policy.type, cfg.batch_size, cfg.policy.history) == ("activearena_oft", 64, 12)
 
 
+def test_grounded_count_presets_are_the_bell_pair_at_192_x_256_on_the_count_build():
+    """The _grounded_count pair: the _grounded_bell recipe on the counting task's 192 x 256 build (where
+    the buttons' digits are legible), read by the 32 px patch backbone grounded on that build."""
+    small = CONFIGS / "small"
+    pair = {}
+    for name in ("oft_subtask_action_12_ws", "oft_subtask_no_0_ws"):
+        bell = json.loads((small / f"{name}_grounded_bell.json").read_text())
+        count = pair[name] = json.loads((small / f"{name}_grounded_count.json").read_text())
+        changed = {k for k in count["policy"] if count["policy"][k] != bell["policy"][k]}
+        assert changed == {"vlm_path", "image_max_pixels"}
+        assert count["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_p32_grounded_count"
+        assert count["policy"]["image_max_pixels"] == 192 * 256
+        assert count["dataset"] == dict(bell["dataset"], repo_id="local/cpu_count_200_p16_192")
+        assert {k for k in count if count[k] != bell[k]} == {"policy", "dataset", "job_name"}
+    chunk, free = pair.values()
+    assert {k for k in chunk["policy"] if chunk["policy"][k] != free["policy"][k]} == {"memory", "history"}
+    from lerobot.configs.train import TrainPipelineConfig
+
+    cfg = TrainPipelineConfig.from_pretrained(small / "oft_subtask_no_0_ws_grounded_count.json")
+    assert (cfg.policy.memory, cfg.policy.image_max_pixels, cfg.steps) == ("none", 49152, 3000)
+
+
 def test_small_stateless_preset_differs_from_the_chunk_12_preset_as_the_papers_pair():
     """oft_subtask_action_12_wos: the small chunk-12 preset without state tokens, the change between the
     paper's oft_subtask_action_12_ws and _wos presets."""
