@@ -935,11 +935,12 @@ def test_small_presets_differ_only_in_their_memory():
     assert chunk["policy"]["scheduler_decay_steps"] == chunk["steps"]
 
 
-def test_small_jitter_preset_adds_only_act_cpu_jitter_colour_jitter():
-    """oft_subtask_action_12_ws_jitter: the chunk-12 preset with the image transforms of ACT's
-    colour-jitter preset, nothing else changed."""
-    base = json.loads((CONFIGS / "small" / "oft_subtask_action_12_ws.json").read_text())
-    jitter = json.loads((CONFIGS / "small" / "oft_subtask_action_12_ws_jitter.json").read_text())
+@pytest.mark.parametrize("preset", ["oft_subtask_action_12_ws", "oft_subtask_action_12_ws_grounded_bell"])
+def test_small_jitter_presets_add_only_act_cpu_jitter_colour_jitter(preset):
+    """<preset>_jitter: the chunk-12 preset with the image transforms of ACT's colour-jitter preset,
+    nothing else changed."""
+    base = json.loads((CONFIGS / "small" / f"{preset}.json").read_text())
+    jitter = json.loads((CONFIGS / "small" / f"{preset}_jitter.json").read_text())
     act = json.loads((CONFIGS / "baselines" / "act_cpu_jitter.json").read_text())
     assert jitter["dataset"] == dict(base["dataset"], image_transforms=act["dataset"]["image_transforms"])
     assert {"brightness", "hue"} <= set(jitter["dataset"]["image_transforms"]["tfs"])
