@@ -40,6 +40,12 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     memory: str = "chunk"
     history: int = 12
     use_state: bool = True
+    # Keep the vision tower as it was loaded (no gradient, not optimised): a grounded tower as a fixed
+    # feature extractor. With it, ``vision_cache`` (a table from activearena-cache-vision) gives the chunk
+    # memory's history frames their features at training time by frame index: LeRobot then decodes only
+    # the current frame and the tower reads only that (evaluation computes every frame live, the same).
+    freeze_vision: bool = False
+    vision_cache: str | None = None
     # Evaluation-only ablation: "blank" replaces every memory image with a uniform gray one (the memory's
     # state tokens and frame slots stay), so a trained checkpoint can be scored without what it saw.
     memory_ablation: str = "none"
@@ -185,10 +191,16 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
                 f"chunk memory writes every {STRIDE}th frame and was trained to act on that grid: "
                 f"--policy.n_action_steps must be {STRIDE}, got {self.n_action_steps}"
             )
+        if self.vision_cache and not (self.freeze_vision and self.memory == "chunk" and self.history > 0):
+            raise ValueError(
+                "--policy.vision_cache holds a frozen tower's features of the chunk memory's frames: it needs "
+                "--policy.freeze_vision=true and memory=chunk with history > 0 "
+                f"(got freeze_vision={self.freeze_vision}, memory={self.memory}, history={self.history})"
+            )
         # A local folder is stored absolute, so a checkpoint reloads from any working directory.
-        for name in ("vlm_path", "dataset_root"):
+        for name in ("vlm_path", "dataset_root", "vision_cache"):
             value = getattr(self, name)
-            if value and Path(value).expanduser().is_dir():
+            if value and Path(value).expanduser().exists():
                 setattr(self, name, str(Path(value).expanduser().resolve()))
 
     @property
@@ -204,7 +216,8 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     def observation_delta_indices(self) -> list[int] | None:
         # chunk memory reads its stride-16 history straight from the dataset; keyframe memories load
         # their frames through the annotation step (a per-sample set LeRobot's delta indices cannot express)
-        if self.memory == "chunk" and self.history > 0:
+        # (with a vision cache the annotation step supplies the history by index: LeRobot reads the current frame)
+        if self.memory == "chunk" and self.history > 0 and not self.vision_cache:
             return [-STRIDE * k for k in range(self.history, 0, -1)] + [0]
         return None
 

@@ -95,3 +95,30 @@ class DatasetAnnotations:
                 states[b, history] = state[b]
             pad[b, history] = False
         return images, states, pad
+
+    def memory_index_batch(
+        self, index: torch.Tensor, state: torch.Tensor | None, history: int
+    ) -> tuple[torch.Tensor, torch.Tensor | None]:
+        """The chunk memory by index (for a vision cache): (B, history) global indices of the memory frames,
+        left-padded with -1, and (B, history+1, D) states (the memory frames' from the dataset, zeros where
+        padded, then the current one), or None without a state."""
+        batch_size = len(index)
+        rows = torch.full((batch_size, history), -1, dtype=torch.long)
+        states = None if state is None else state.new_zeros((batch_size, history + 1, state.shape[-1]))
+        for b in range(batch_size):
+            mem = self.memory_indices(int(index[b]), "chunk", history)
+            if mem:
+                rows[b, history - len(mem) :] = torch.tensor(mem)
+                if states is not None:
+                    states[b, history - len(mem) : history] = torch.from_numpy(self.states[mem]).to(state)
+            if states is not None:
+                states[b, history] = state[b]
+        return rows, states
+
+    @property
+    def states(self) -> np.ndarray:
+        """Every frame's ``observation.state``, (N, D) by global index (loaded at first use)."""
+        if not hasattr(self, "_states"):
+            column = self.ds.hf_dataset.with_format("numpy").select_columns(["observation.state"])[:]
+            self._states = np.stack(column["observation.state"]).astype(np.float32)
+        return self._states

@@ -34,6 +34,7 @@ from .processor_activearena_vla import (
     FRAME_VALID,
     FRAMES,
     GRID,
+    MEMORY_INDEX,
     PIXELS,
     PREFIX_IDS,
     PROMPT_IDS,
@@ -75,6 +76,14 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
 
         patch_embed_as_linear(self.vlm)
         batch_vision_attention(self.vlm)
+        if config.freeze_vision:
+            self.vlm.model.visual.requires_grad_(False)
+        if config.vision_cache and type(self).forward is not ActiveArenaVLAPolicy.forward:
+            raise ValueError(
+                f"{self.name} trains with its own forward pass, which reads no vision cache: "
+                "train it without --policy.vision_cache"
+            )
+        self._vision_table = None  # the vision cache, loaded at the first training batch that reads it
         if config.residual_dtype == "compute":
             residual_in_compute_dtype(self.vlm)
         if config.gradient_checkpointing:
@@ -146,10 +155,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         prompt_mask: Tensor,
         think: Tensor | None = None,
         think_mask: Tensor | None = None,
+        without_pixels: set | None = None,
     ) -> dict[str, Tensor]:
         """One right-padded token sequence per sample: the frames (each followed by its state token), the
         prompt, the action queries, then the optional think span. Returns the backbone's inputs and the
-        per-position ``kind`` (-1 = padding)."""
+        per-position ``kind`` (-1 = padding). ``pixels`` holds every present frame's pixel values except
+        those of the (sample, frame) slots in ``without_pixels``, whose features the caller supplies."""
         batch_size, n_frames = valid.shape
         dev = self.device
         # The token bookkeeping reads these small integer tensors element by element: on the host, one
@@ -211,10 +222,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             embeds = embeds.masked_scatter(
                 (kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype)
             )
-        if len(pixels) != len(images):
+        pixel_frames = [i for i, k in enumerate(images) if not without_pixels or k not in without_pixels]
+        if len(pixels) != len(pixel_frames):
             raise ValueError(
-                f"pixel values for {len(pixels)} frames, but frame_valid marks {len(images)} present: "
-                "pixel_values holds the present frames only, packed in (sample, frame) order"
+                f"pixel values for {len(pixels)} frames, but frame_valid marks {len(pixel_frames)} present "
+                "that need them: pixel_values holds the present frames only, packed in (sample, frame) order"
             )
         pv = pixels.flatten(0, 1).to(dev, self.vlm.dtype)  # (patches of all frames, dim)
         return {
@@ -227,6 +239,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             "image_grid_thw": thw,
             "mm_token_type_ids": mm,
             "images": images,
+            "pixel_frames": pixel_frames,
         }
 
     def vision_features(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
@@ -245,10 +258,13 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         frames found in ``vision_cache`` ((sample, frame) -> bank entry) reuse the entry's features;
         the others are computed and stored there. Returns the output and each image's features."""
         vision_cache = vision_cache or {}
-        images, grid = seq["images"], seq["image_grid_thw"]
-        rows = torch.split(seq["pixel_values"], grid.prod(-1).tolist())
+        images, grid, pixel_frames = seq["images"], seq["image_grid_thw"], seq["pixel_frames"]
+        sizes = grid.prod(-1)[pixel_frames].tolist()
+        rows = dict(zip(pixel_frames, torch.split(seq["pixel_values"], sizes), strict=True))
         feats: list = [vision_cache[k].get("vision") if k in vision_cache else None for k in images]
         todo = [i for i, f in enumerate(feats) if f is None]
+        if any(i not in rows for i in todo):
+            raise ValueError("a frame without pixel values has no features in the vision cache either")
         if todo:
             for i, f in zip(
                 todo, self.vision_features(torch.cat([rows[i] for i in todo]), grid[todo]), strict=True
@@ -307,7 +323,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def hidden_states(self, *args, vision_cache: dict | None = None) -> tuple[Tensor, Tensor, Tensor | None]:
         """The backbone's last-layer states, the per-position ``kind`` and, when a think span is given,
         its LM loss. Arguments as ``assemble``."""
-        seq = self.assemble(*args)
+        without = {k for k, e in vision_cache.items() if "pixels" not in e} if vision_cache else None
+        seq = self.assemble(*args, without_pixels=without)
         kind, input_ids = seq["kind"], seq["input_ids"]
         h = self.run_backbone(seq, vision_cache=vision_cache)[0].last_hidden_state
         if not (kind == THINK).any():
@@ -341,9 +358,37 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             batch.get(THINK_MASK),
         )
 
+    def cached_memory(self, batch: dict[str, Tensor]) -> dict | None:
+        """The memory frames' features from the vision cache (``MEMORY_INDEX``): (sample, slot) -> entry
+        without pixels, or None when the batch carries its memory as images."""
+        if MEMORY_INDEX not in batch:
+            return None
+        if not self.config.vision_cache:
+            raise ValueError("the batch indexes a vision cache, but --policy.vision_cache is not set")
+        if self._vision_table is None:
+            from .vision_cache import VisionCache
+
+            self._vision_table = VisionCache(
+                self.config.vision_cache, self.vlm.model.visual, self.config.image_max_pixels
+            )
+        table, grid = self._vision_table, batch[GRID][:, -1].cpu()
+        if not bool((grid == table.grid).all()):
+            raise ValueError(
+                f"the vision cache's frames have grid {table.grid.tolist()}, this batch's current frames "
+                f"{grid[0].tolist()}: the cache was made from images of another size"
+            )
+        cache = {}
+        for b, row in enumerate(batch[MEMORY_INDEX].cpu().tolist()):
+            for slot, g in enumerate(row):
+                if g >= 0:
+                    cache[(b, slot)] = {"vision": table.features(g, self.device)}
+        return cache
+
     @in_precision
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
-        h, kind, lm_loss = self.hidden_states(*self.training_args(batch))
+        h, kind, lm_loss = self.hidden_states(
+            *self.training_args(batch), vision_cache=self.cached_memory(batch)
+        )
         per_sample, info = self.action_loss(h, kind, batch)
         loss = per_sample.mean() if reduction == "mean" else per_sample
         if lm_loss is not None:

@@ -33,6 +33,8 @@ VLM = "observation.vlm."
 PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
 PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
+# training with a vision cache: (batch, history) global indices of the memory frames, -1 where padded
+MEMORY_INDEX = VLM + "memory_index"
 FRAMES = VLM + "frames"  # an env step's current frames (EnvFrames), until the policy needs their pixels
 PREFIX = "<|im_start|>user\n"
 ASSISTANT = "<|im_end|>\n<|im_start|>assistant\n"  # closes a user turn, opens the answer
@@ -98,13 +100,22 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     history: int = 12
     think: str = "none"
     subtask_prompt: bool = False  # the prompt names the current subtask (ActiveArena-Plan's executor)
+    # the chunk memory's frames come as indices into a vision cache (their states from the dataset)
+    cached_memory: bool = False
     _ann: Any = field(default=None, init=False, repr=False)
 
     def _needs_subtask(self) -> bool:
         return self.think == "subtask" or self.subtask_prompt
 
+    def _cached_chunk(self) -> bool:
+        return self.cached_memory and self.memory == "chunk" and self.history > 0
+
     def _needed(self) -> bool:
-        return self._needs_subtask() or (self.memory in KEYFRAME_MEMORIES and self.history > 0)
+        return (
+            self._needs_subtask()
+            or (self.memory in KEYFRAME_MEMORIES and self.history > 0)
+            or self._cached_chunk()
+        )
 
     def __call__(self, transition):
         comp = transition.get(TransitionKey.COMPLEMENTARY_DATA) or {}
@@ -134,6 +145,12 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             )
             if states is not None:
                 obs[OBS_STATE] = states
+        if self._cached_chunk():
+            comp[MEMORY_INDEX], states = self._ann.memory_index_batch(
+                torch.tensor(idx), obs.get(OBS_STATE), self.history
+            )
+            if states is not None:
+                obs[OBS_STATE] = states
         out = dict(transition)
         out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
         return out
@@ -146,6 +163,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             "history": self.history,
             "think": self.think,
             "subtask_prompt": self.subtask_prompt,
+            "cached_memory": self.cached_memory,
         }
 
     def transform_features(self, features: dict[PipelineFeatureType, dict[str, PolicyFeature]]):
@@ -216,6 +234,14 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         img = img[:, None] if img.dim() == 4 else img
         batch_size, n_frames = img.shape[:2]
         valid = ~_pad_flag(comp, batch_size, n_frames)
+        memory_index = comp.pop(MEMORY_INDEX, None)
+        if memory_index is not None:  # the memory frames' features come from a vision cache by index
+            if n_frames != 1:
+                raise ValueError(
+                    f"a vision-cached memory reads the current frame only from the dataset, got {n_frames} "
+                    "frames a sample: the policy's observation_delta_indices must be None"
+                )
+            obs[MEMORY_INDEX] = memory_index
         # Padded history frames (before the episode start) are never read: only present frames go
         # through the image processor, and only theirs are kept (all frames share one size and grid).
         keep = valid.flatten()
@@ -236,6 +262,9 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
                 grids[keep] = grid
             obs[PIXELS] = pv
             obs[GRID] = grids.reshape(batch_size, n_frames, 3)
+        if memory_index is not None:  # history slots first (every frame has the current one's grid)
+            obs[GRID] = obs[GRID].repeat(1, memory_index.shape[1] + 1, 1)
+            valid = torch.cat([memory_index >= 0, valid], dim=1)
         obs[FRAME_VALID] = valid
         if OBS_STATE in obs:
             obs[RAW_STATE] = obs[OBS_STATE].clone()
@@ -334,6 +363,7 @@ def make_activearena_vla_pre_post_processors(
         history=config.history,
         think=config.think,
         subtask_prompt=subtask_prompt,
+        cached_memory=bool(getattr(config, "vision_cache", None)),
     )
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,

@@ -1,0 +1,130 @@
+"""Training with a frozen vision tower and a vision cache (``activearena-cache-vision``): the chunk memory's
+frames read from the table give the loss and gradients of decoding them and running the tower, the
+dataset then decodes the current frame only, a table of another tower or image size is refused, and the
+preset pair trains through lerobot-train."""
+
+import json
+from pathlib import Path
+
+import pytest
+import torch
+from helpers.params import DATASET_REPO as REPO
+from helpers.policy_runs import build_policy, collate, train_preset
+
+from lerobot_activearena.cli.cache_vision import main as cache_vision
+from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
+from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+    FRAME_VALID,
+    MEMORY_INDEX,
+    PIXELS,
+)
+
+CONFIGS = Path(__file__).resolve().parents[2] / "configs" / "policy"
+PIXELS_96 = 96 * 128
+
+
+@pytest.fixture(scope="module")
+def table(tiny_vlm, bell_count_dataset, tmp_path_factory):
+    out = tmp_path_factory.mktemp("vision_cache") / "tiny.safetensors"
+    cache_vision(
+        [str(tiny_vlm), "--root", str(bell_count_dataset), "--repo-id", REPO, "--out", str(out)]
+        + ["--image-max-pixels", str(PIXELS_96)]
+    )
+    return out
+
+
+def _config(vlm, **overrides):
+    settings = {
+        "memory": "chunk",
+        "history": 4,
+        "think": "subtask",
+        "freeze_vision": True,
+        "image_max_pixels": PIXELS_96,
+    }
+    return ActiveArenaOFTConfig(vlm_path=str(vlm), device="cpu", state_hidden=32, **(settings | overrides))
+
+
+def test_cached_memory_gives_the_loss_and_gradients_of_decoding_it(tiny_vlm, bell_count_dataset, table):
+    live_cfg, cached_cfg = _config(tiny_vlm), _config(tiny_vlm, vision_cache=str(table))
+    assert cached_cfg.observation_delta_indices is None  # LeRobot reads the current frame only
+    live, live_pre, _, live_ds = build_policy(live_cfg, bell_count_dataset)
+    cached, cached_pre, _, cached_ds = build_policy(cached_cfg, bell_count_dataset)
+    indices = [3, 70, len(live_ds) - 40]  # the first one's memory is mostly before the episode start
+    a, b = collate(live_ds, live_pre, indices), collate(cached_ds, cached_pre, indices)
+    assert torch.equal(a[FRAME_VALID], b[FRAME_VALID]) and not bool(a[FRAME_VALID][0].all())
+    assert torch.allclose(a["observation.state"][a[FRAME_VALID]], b["observation.state"][b[FRAME_VALID]])
+    assert len(b[PIXELS]) == len(indices) < len(a[PIXELS])  # pixels of the current frames only
+    assert b[MEMORY_INDEX].shape == (3, 4) and int(b[MEMORY_INDEX][1, -1]) == 70 - 16
+    loss_a, _ = live.forward(a)
+    loss_b, _ = cached.forward(b)
+    assert torch.allclose(loss_a, loss_b, atol=1e-5)
+    loss_a.backward()
+    loss_b.backward()
+    params_a, params_b = dict(live.named_parameters()), dict(cached.named_parameters())
+    for name in (
+        "action_queries",
+        "state_encoder.frame.weight",
+        "vlm.model.language_model.layers.0.mlp.up_proj.weight",
+    ):
+        assert torch.allclose(params_a[name].grad, params_b[name].grad, atol=1e-5, rtol=1e-4), name
+    frozen = [p for n, p in cached.named_parameters() if n.startswith("vlm.model.visual.")]
+    assert frozen and all(p.grad is None and not p.requires_grad for p in frozen)
+    optimised = {id(p) for g in cached.get_optim_params() for p in g["params"]}
+    assert not any(id(p) in optimised for p in frozen)
+
+
+def test_a_cache_of_another_tower_or_image_size_is_refused(tiny_vlm, bell_count_dataset, table):
+    policy, pre, _, ds = build_policy(_config(tiny_vlm, vision_cache=str(table)), bell_count_dataset)
+    batch = collate(ds, pre, [70])
+    with torch.no_grad():
+        next(policy.vlm.model.visual.parameters()).add_(0.01)  # no longer the tower the table came from
+    with pytest.raises(ValueError, match="different vision tower.*activearena-cache-vision"):
+        policy.forward(batch)
+    policy, pre, _, ds = build_policy(
+        _config(tiny_vlm, vision_cache=str(table), image_max_pixels=2 * PIXELS_96), bell_count_dataset
+    )
+    with pytest.raises(ValueError, match="image_max_pixels=12288.*--image-max-pixels 24576"):
+        policy.forward(collate(ds, pre, [70]))
+
+
+def test_vision_cache_settings_that_cannot_work_are_named(tiny_vlm, table, tmp_path):
+    with pytest.raises(ValueError, match="freeze_vision=true"):
+        _config(tiny_vlm, vision_cache=str(table), freeze_vision=False)
+    with pytest.raises(ValueError, match="memory=chunk"):
+        _config(tiny_vlm, vision_cache=str(table), memory="none")
+    with pytest.raises(SystemExit):  # an existing table is kept
+        cache_vision([str(tiny_vlm), "--root", str(tmp_path), "--repo-id", REPO, "--out", str(table)])
+
+
+def test_the_frozen_count_pair_trains_through_lerobot_train(tiny_vlm, bell_count_dataset, table, tmp_path):
+    small = CONFIGS / "small"
+    chunk = json.loads((small / "oft_subtask_action_12_ws_grounded_count_frozen.json").read_text())
+    free = json.loads((small / "oft_subtask_no_0_ws_grounded_count_frozen.json").read_text())
+    base = json.loads((small / "oft_subtask_action_12_ws_grounded_count.json").read_text())
+    assert {k for k in chunk["policy"] if chunk["policy"][k] != base["policy"].get(k)} == {
+        "freeze_vision",
+        "vision_cache",
+    }
+    assert {
+        k
+        for k in set(chunk["policy"]) | set(free["policy"])
+        if chunk["policy"].get(k) != free["policy"].get(k)
+    } == {
+        "memory",
+        "history",
+        "vision_cache",
+    }
+    for name, extra in (
+        ("oft_subtask_action_12_ws_grounded_count_frozen", [f"--policy.vision_cache={table}"]),
+        ("oft_subtask_no_0_ws_grounded_count_frozen", []),
+    ):
+        ckpt = train_preset(
+            small / f"{name}.json",
+            bell_count_dataset,
+            tiny_vlm,
+            tmp_path / name,
+            f"--policy.image_max_pixels={PIXELS_96}",
+            *extra,
+        )
+        saved = json.loads((ckpt / "config.json").read_text())
+        assert saved["freeze_vision"] is True
