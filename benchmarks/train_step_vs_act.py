@@ -6,7 +6,7 @@ through ``lerobot-train`` itself (loading, preprocessing, forward, backward, Ada
         configs/policy/small/oft_subtask_action_12_ws.json configs/policy/small/oft_subtask_no_0_ws.json
 
 Runs each preset and ACT (``configs/policy/baselines/act_cpu.json``) in turn, ``--rounds`` times
-interleaved so that the machine's drift falls on all of them, for ``--steps`` steps at batch 16,
+interleaved so that the machine's drift falls on all of them, for ``--steps`` steps at ``--batch-size`` (16),
 and reads lerobot-train's own per-step figures (``updt_s``: forward + backward + optimizer; ``data_s``:
 waiting for the next batch) from its log, the first ``--log-every`` steps dropped as warm-up. Prints the
 seconds per step of each and its ratio to ACT's from the same round (the issue's budget: <= 1.5x).
@@ -63,11 +63,27 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--log-every", type=int, default=10)
     p.add_argument("--rounds", type=int, default=2)
     p.add_argument("--vlm-path", help="--policy.vlm_path for the VLA presets (default: the preset's)")
+    p.add_argument("--batch-size", type=int, default=16, help="every run's batch size (the budget's: 16)")
+    p.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="STEM=ARG",
+        help="a lerobot-train argument for the preset of that file stem only, e.g. "
+        "oft_subtask_action_12_ws_grounded_count_frozen=--policy.vision_cache=FILE",
+    )
     args = p.parse_args(argv)
+    per_preset: dict[str, list[str]] = {}
+    for item in args.set:
+        stem, sep, arg = item.partition("=")
+        if not sep or not arg.startswith("--"):
+            p.error(f"--set takes STEM=--lerobot.train.arg=VALUE, got {item!r}")
+        per_preset.setdefault(stem, []).append(arg)
     rows: dict[str, list[dict]] = {c: [] for c in [ACT, *args.configs]}
     for r in range(args.rounds):
         for config in rows:
             extra = [f"--policy.vlm_path={args.vlm_path}"] if args.vlm_path and config != ACT else []
+            extra += [f"--batch_size={args.batch_size}", *per_preset.get(Path(config).stem, [])]
             fig = step_time(config, args.root, args.repo_id, args.steps, args.log_every, extra)
             rows[config].append(fig)
             print(
@@ -75,13 +91,13 @@ def main(argv: list[str] | None = None) -> None:
                 f"(updt {fig['updt_s']:.3f} + data {fig['data_s']:.3f})",
                 flush=True,
             )
-    print(f"\nbatch 16, {args.steps} steps a run, {args.rounds} rounds, dataset {args.root}")
+    print(f"\nbatch {args.batch_size}, {args.steps} steps a run, {args.rounds} rounds, dataset {args.root}")
     for config, figs in rows.items():
         step = [f["step_s"] for f in figs]
         ratio = [f["step_s"] / a["step_s"] for f, a in zip(figs, rows[ACT], strict=True)]
         print(
             f"{Path(config).parent.name + '/' + Path(config).stem:45s} {min(step):.3f}-{max(step):.3f} s/step "
-            f"({16 / statistics.median(step):.1f} samples/s)  vs ACT {min(ratio):.2f}-{max(ratio):.2f}x"
+            f"({args.batch_size / statistics.median(step):.1f} samples/s)  vs ACT {min(ratio):.2f}-{max(ratio):.2f}x"
         )
 
 
