@@ -23,8 +23,9 @@ def test_handover_points_name_env_steps():
 
 
 def test_the_expert_drives_until_the_handover_and_the_policy_after():
-    """On a saved tiny (untrained) checkpoint: the expert alone (``never``) rings the bell, the policy
-    from the start does not, and a late handover leaves the expert's episode to the policy's end."""
+    """On a saved tiny (untrained) checkpoint: the expert alone (``never``) rings the bell, and the policy
+    from the start does not: it plays to the step limit or until a validity check ends its episode (its
+    flailing can knock the bell over, depending on the machine's float rounding)."""
     with policy_in_env(
         SAVED / "checkpoint",
         "click_bell_rotate_view",
@@ -40,4 +41,7 @@ def test_the_expert_drives_until_the_handover_and_the_policy_after():
         assert vec.step.__func__ is type(vec).step  # the env's own step is back after each episode
     expert, policy_alone = records
     assert expert["success"] and expert["steps"] < 137
-    assert not policy_alone["success"] and policy_alone["steps"] == 137
+    assert not policy_alone["success"]
+    assert policy_alone["steps"] == 137 or (
+        0 < policy_alone["steps"] < 137 and policy_alone["failure_reason"]
+    )
