@@ -47,7 +47,7 @@ from .processor_activearena_vla import (
     to_uint8,
 )
 from .state_encoder import StateEncoder
-from .vlm_loading import load_from_vlm_path
+from .vlm_loading import load_from_vlm_path, load_policy_vlm
 
 TEXT, IMAGE, STATE, QUERY, THINK = 0, 1, 2, 3, 4
 
@@ -62,20 +62,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         super().__init__(config)
         config.validate_features()
         self.config = config
-        from transformers import Qwen3VLForConditionalGeneration
-
-        self.vlm = load_from_vlm_path(
-            Qwen3VLForConditionalGeneration.from_pretrained,
-            config.vlm_path,
-            "model",
-            dtype=weights_dtype(config),
-            attn_implementation=config.attn_implementation,
-        )
-        from .patch_embedding import patch_embed_as_linear
-        from .vision_attention import batch_vision_attention
-
-        patch_embed_as_linear(self.vlm)
-        batch_vision_attention(self.vlm)
+        self.vlm = load_policy_vlm(config.vlm_path, weights_dtype(config), config.attn_implementation)
         if config.freeze_vision:
             self.vlm.model.visual.requires_grad_(False)
         if config.vision_cache and type(self).forward is not ActiveArenaVLAPolicy.forward:

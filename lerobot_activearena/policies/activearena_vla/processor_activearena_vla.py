@@ -363,7 +363,7 @@ def make_activearena_vla_pre_post_processors(
         history=config.history,
         think=config.think,
         subtask_prompt=subtask_prompt,
-        cached_memory=bool(getattr(config, "vision_cache", None)),
+        cached_memory=bool(config.vision_cache),
     )
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,

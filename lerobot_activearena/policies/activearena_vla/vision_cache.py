@@ -28,23 +28,6 @@ def tower_fingerprint(visual: nn.Module) -> str:
     return h.hexdigest()[:16]
 
 
-def load_policy_vlm(vlm_path: str):
-    """The Qwen3-VL as the ActiveArena-VLA policy builds it (float32, linear patch embedding, batched
-    vision attention), so its tower computes what the policy's computes."""
-    from transformers import Qwen3VLForConditionalGeneration
-
-    from .patch_embedding import patch_embed_as_linear
-    from .vision_attention import batch_vision_attention
-    from .vlm_loading import load_from_vlm_path
-
-    vlm = load_from_vlm_path(
-        Qwen3VLForConditionalGeneration.from_pretrained, vlm_path, "model", dtype=torch.float32
-    )
-    patch_embed_as_linear(vlm)
-    batch_vision_attention(vlm)
-    return vlm.eval()
-
-
 def episode_frames(ds, episode: int) -> torch.Tensor:
     """An episode's head frames as (T, 3, H, W) uint8, decoded as LeRobot's dataset decodes them."""
     from lerobot.datasets.video_utils import decode_video_frames
@@ -77,9 +60,9 @@ def compute_vision_cache(
     from transformers import AutoProcessor
 
     from .processor_activearena_vla import image_inputs, one_token_pixels
-    from .vlm_loading import load_from_vlm_path
+    from .vlm_loading import load_from_vlm_path, load_policy_vlm
 
-    vlm = load_policy_vlm(vlm_path)
+    vlm = load_policy_vlm(vlm_path).eval()
     images = load_from_vlm_path(AutoProcessor.from_pretrained, vlm_path, "processor").image_processor
     ds = LeRobotDataset(repo_id, root=root)
     if IMAGE_KEY not in ds.meta.video_keys:
