@@ -213,11 +213,15 @@ def ground_vision_tower(
     episode is held out and scored. ``point_weight`` > 0 also fits where in its token the object lies (the
     token alone places it within half a token). Returns the figures also written to ``out_dir/grounding.json``."""
     from tqdm import tqdm
-    from transformers import AutoProcessor, Qwen3VLForConditionalGeneration
+    from transformers import AutoProcessor
+
+    from .vlm_loading import load_policy_vlm
 
     torch.manual_seed(seed)
     frames = load_grounding_frames(root)
-    vlm = Qwen3VLForConditionalGeneration.from_pretrained(vlm_path, dtype=torch.float32)
+    # as the policy builds it (linear patch embedding, batched vision attention): the same weights, and
+    # PyTorch's CPU Conv3d backward is most of a grounding step otherwise
+    vlm = load_policy_vlm(str(vlm_path))
     processor = AutoProcessor.from_pretrained(vlm_path)
     model = GroundedTower(vlm, processor.image_processor, max_pixels)
     rows, cols = model.grid(frames.images)
