@@ -101,10 +101,16 @@ def test_the_frozen_count_pair_trains_through_lerobot_train(tiny_vlm, bell_count
     chunk = json.loads((small / "oft_subtask_action_12_ws_grounded_count_frozen.json").read_text())
     free = json.loads((small / "oft_subtask_no_0_ws_grounded_count_frozen.json").read_text())
     base = json.loads((small / "oft_subtask_action_12_ws_grounded_count.json").read_text())
+    # the frozen tower and its table, and the frozen pair's own shorter, faster schedule
     assert {k for k in chunk["policy"] if chunk["policy"][k] != base["policy"].get(k)} == {
         "freeze_vision",
         "vision_cache",
+        "optimizer_lr",
+        "head_lr",
+        "scheduler_warmup_steps",
+        "scheduler_decay_steps",
     }
+    assert (chunk["steps"], chunk["batch_size"]) == (free["steps"], free["batch_size"])
     assert {
         k
         for k in set(chunk["policy"]) | set(free["policy"])
