@@ -79,6 +79,14 @@ def parser() -> argparse.ArgumentParser:
         "every N frames, where a policy executing N-action chunks plans its next one, so no chunk of a "
         "demonstration depends on a view the policy has not seen yet (default 1: the benchmark's expert)",
     )
+    p.add_argument(
+        "--press-arm",
+        choices=["left", "right"],
+        default=None,
+        help="one-arm demonstrations: the count-and-press tasks' expert presses with this arm wherever the "
+        "button is (as the click_bell expert always uses the left), so which arm moves does not depend "
+        "on the count (default: the arm on the button's half of the fan, the benchmark's expert)",
+    )
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: all cores)")
     p.add_argument("--executor", default="local", choices=["local", "slurm"])
     p.add_argument(
@@ -178,6 +186,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         search_overshoot=float(pick("search_overshoot")),
         action_noise=float(pick("action_noise")),
         decision_period=pick("decision_period"),  # an int, or the clear error of a recipe's 16.5
+        press_arm=pick("press_arm"),
     )
 
 

@@ -46,6 +46,7 @@ class BuildPlan:
     search_overshoot: float = 0.0  # recovery demonstrations (``ExpertContext``); 0: the benchmark's expert
     action_noise: float = 0.0  # perturbed demonstrations (``ActionNoise``), rad; 0: the benchmark's expert
     decision_period: int = 1  # chunk-aligned demonstrations (``ExpertContext``); 1: the benchmark's expert
+    press_arm: str | None = None  # one-arm count presses (``ExpertContext``); None: the benchmark's expert
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -87,7 +88,7 @@ class BuildPlan:
 
     @property
     def variation(self) -> DemoVariation:
-        return DemoVariation(self.search_overshoot, self.action_noise, self.decision_period)
+        return DemoVariation(self.search_overshoot, self.action_noise, self.decision_period, self.press_arm)
 
     def to_json(self) -> dict:
         from .features import dataset_features  # the feature set is part of a build's identity

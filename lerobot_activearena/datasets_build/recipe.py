@@ -21,6 +21,7 @@ RECIPE_KEYS = {
     "search_overshoot": 0.0,  # recovery demonstrations: probability per empty end sector of a search
     "action_noise": 0.0,  # perturbed demonstrations: joint noise (rad) on the executed commands
     "decision_period": 1,  # chunk-aligned demonstrations: the search reacts every N frames
+    "press_arm": None,  # one-arm demonstrations: the count-and-press tasks press with this arm
 }
 
 

@@ -95,11 +95,14 @@ def make_sidecar(
 class DemoVariation:
     """How a dataset's demonstrations differ from the benchmark's expert (the defaults: they do not).
     ``search_overshoot``: ``ExpertContext``'s recovery demonstrations; ``action_noise``: ``ActionNoise``'s
-    sigma in rad; ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame)."""
+    sigma in rad; ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame);
+    ``press_arm``: ``ExpertContext``'s one arm for the count-and-press tasks' press (None: the arm on
+    the button's half of the fan)."""
 
     search_overshoot: float = 0.0
     action_noise: float = 0.0
     decision_period: int = 1
+    press_arm: str | None = None
 
     def __post_init__(self):
         if not 0.0 <= self.search_overshoot <= 1.0:
@@ -114,8 +117,13 @@ class DemoVariation:
                 f"--decision-period is a number of frames >= 1 (1: the benchmark's expert), got "
                 f"{self.decision_period!r}"
             )
+        if self.press_arm not in PRESS_ARMS:
+            raise ValueError(
+                f"--press-arm is 'left' or 'right' (unset: the arm on the button's half), got {self.press_arm!r}"
+            )
 
 
+PRESS_ARMS = (None, "left", "right")
 MAX_ACTION_NOISE = 0.1  # rad: beyond it the expert's strokes fail more often than they succeed
 
 
@@ -167,6 +175,7 @@ class ExpertDriver:
         contain_errors: bool = False,
         search_overshoot: float = 0.0,
         decision_period: int = 1,
+        press_arm: str | None = None,
     ):
         ik, gaze = shared_kinematics()
         self.task = task
@@ -184,6 +193,7 @@ class ExpertDriver:
             search_overshoot=search_overshoot,
             rng=rng,
             decision_period=decision_period,
+            press_arm=press_arm,
         )
         self._script = task.expert(self.ctx, scene)
         self.finished = False
@@ -226,6 +236,7 @@ def run_expert_episode(
     search_overshoot: float = 0.0,
     action_noise: float = 0.0,
     decision_period: int = 1,
+    press_arm: str | None = None,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
@@ -234,7 +245,9 @@ def run_expert_episode(
     recovery demonstration per empty end sector of a search (``ExpertContext``; 0 = the benchmark's
     expert). ``action_noise``: ``ActionNoise``'s sigma in rad (0 = none): ``actions`` stay the expert's,
     ``states`` are where the perturbed commands took the robot. ``decision_period``: the search reacts
-    to the view only every that many frames (``ExpertContext``; 1 = the benchmark's expert)."""
+    to the view only every that many frames (``ExpertContext``; 1 = the benchmark's expert).
+    ``press_arm``: the count-and-press tasks' press with that arm (``ExpertContext``; None = the
+    benchmark's expert)."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed, split)
@@ -247,6 +260,7 @@ def run_expert_episode(
         episode.perception,
         search_overshoot=search_overshoot,
         decision_period=decision_period,
+        press_arm=press_arm,
     )
     perturb = ActionNoise(action_noise, seed, task.name) if action_noise else None
     frames, actions, states = [], [], []

@@ -36,6 +36,7 @@ class ExpertContext:
         search_overshoot: float = 0.0,
         rng: np.random.Generator | None = None,
         decision_period: int = 1,
+        press_arm: str | None = None,
     ):
         if not isinstance(decision_period, int) or decision_period < 1:
             raise ValueError(f"decision_period is a number of frames >= 1, got {decision_period!r}")
@@ -52,6 +53,12 @@ class ExpertContext:
         # what the camera shows only at frames that are multiples of this period, where a policy that
         # executes chunks of that many actions open-loop plans its next chunk (``search``).
         self.decision_period = decision_period
+        # One-arm demonstrations for datasets (None = the benchmark's expert): the count-and-press
+        # tasks press with this arm wherever the button is, not with the arm on its half of the fan,
+        # so which arm moves does not depend on the count (the click_bell expert's one arm).
+        if press_arm not in (None, "left", "right"):
+            raise ValueError(f"press_arm is 'left', 'right' or None, got {press_arm!r}")
+        self.press_arm = press_arm
         self.n_subtasks = n_subtasks
         self.objects = list(objects)
         self.info = {o.name: o for o in sim.info.objects}

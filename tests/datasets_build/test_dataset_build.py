@@ -356,6 +356,7 @@ def test_bad_arguments_get_clear_errors():
         ("search_overshoot", 0.5, "1", 1.5),
         ("action_noise", 0.02, "0.03", 0.5),
         ("decision_period", 16, "8", 0),
+        ("press_arm", "left", "right", "both"),
     ],
 )
 def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, value, flag, bad):
@@ -371,7 +372,7 @@ def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, 
     assert getattr(from_recipe.variation, key) == value  # what the shards' expert runs with
     option = "--" + key.replace("_", "-")
     flagged = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x", option, flag]))
-    assert getattr(flagged, key) == float(flag)
+    assert getattr(flagged, key) == type(value)(flag)
     plan.save(tmp_path / "plan.json")
     assert not flagged.same_as(tmp_path / "plan.json")  # a resume with another value is refused
     with pytest.raises(ValueError, match=option):

@@ -315,6 +315,29 @@ def test_decision_period_makes_each_chunk_of_the_search_follow_the_view_at_its_f
         ExpertContext(None, [], None, None, None, decision_period=0)
 
 
+def test_press_arm_makes_the_count_expert_press_with_one_arm_wherever_the_button_is():
+    """One-arm demonstrations for datasets: the benchmark's count expert presses with the arm on the
+    button's half of the fan (seed 0: the right one); with ``press_arm="left"`` it presses the same
+    button with the left arm, the right arm never moves, and the episode still succeeds."""
+    from lerobot_activearena.episodes.rollout import DemoVariation, run_expert_episode
+    from lerobot_activearena.expert.context import ExpertContext
+
+    task = "count_target_press_button"
+
+    def arms_moved(press_arm):
+        episode = run_expert_episode(task, 0, "id", image_size=(96, 128), press_arm=press_arm)
+        assert episode.success, episode.failure
+        moved = np.abs(np.diff(np.array(episode.actions), axis=0)).max(axis=0)
+        return moved[0:7].max() > 1e-3, moved[8:15].max() > 1e-3  # left arm joints, right arm joints
+
+    assert arms_moved(None) == (False, True)
+    assert arms_moved("left") == (True, False)
+    with pytest.raises(ValueError, match="press_arm"):
+        ExpertContext(None, [], None, None, None, press_arm="both")
+    with pytest.raises(ValueError, match="--press-arm"):
+        DemoVariation(press_arm="middle")
+
+
 def test_action_noise_perturbs_what_runs_and_records_the_experts_own_commands(expert_episode):
     """Perturbed demonstrations (DART): the executed commands carry a smooth joint noise, the recorded
     actions are the expert's, so the states leave the commanded path; the press still lands (the

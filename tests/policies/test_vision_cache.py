@@ -134,3 +134,40 @@ def test_the_frozen_count_pair_trains_through_lerobot_train(tiny_vlm, bell_count
         )
         saved = json.loads((ckpt / "config.json").read_text())
         assert saved["freeze_vision"] is True
+
+
+def test_the_one_arm_count_pair_is_the_frozen_pair_on_its_own_build():
+    """The _count_left_frozen pair: the frozen count pair on the one-arm build (``--press-arm left``),
+    read through the tower grounded on that build and its table, 2,000 steps; the two still differ
+    only in the memory, and LeRobot parses both."""
+    from lerobot.configs.train import TrainPipelineConfig
+
+    small = CONFIGS / "small"
+    pair = {}
+    for memory in ("action_12", "no_0"):
+        left = pair[memory] = json.loads(
+            (small / f"oft_subtask_{memory}_ws_grounded_count_left_frozen.json").read_text()
+        )
+        frozen = json.loads((small / f"oft_subtask_{memory}_ws_grounded_count_frozen.json").read_text())
+        assert left["dataset"] == {**frozen["dataset"], "repo_id": "local/cpu_count_left_200_p16_192"}
+        changed = {k for k in left["policy"] if left["policy"][k] != frozen["policy"].get(k)}
+        assert changed == {"vlm_path", "scheduler_decay_steps"} | (
+            {"vision_cache"} if memory == "action_12" else set()
+        )
+        assert left["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_p32_grounded_count_left"
+        assert left["steps"] == left["policy"]["scheduler_decay_steps"] == 2000
+        cfg = TrainPipelineConfig.from_pretrained(
+            small / f"oft_subtask_{memory}_ws_grounded_count_left_frozen.json"
+        )
+        assert cfg.policy.freeze_vision and cfg.dataset.repo_id == "local/cpu_count_left_200_p16_192"
+    chunk, free = pair["action_12"], pair["no_0"]
+    assert {
+        k
+        for k in set(chunk["policy"]) | set(free["policy"])
+        if chunk["policy"].get(k) != free["policy"].get(k)
+    } == {
+        "memory",
+        "history",
+        "vision_cache",
+    }
+    assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}

@@ -77,6 +77,6 @@ class CountAndPressTask(Task):
         with ctx.subtask(2):
             button = ctx.idx(f"button_{count}")
             ctx.intent.search_targets = {button}
-            side = yield from routines.find_and_face(ctx, button)
+            side = yield from routines.find_and_face(ctx, button, side=ctx.press_arm)
             yield from routines.press_object(ctx, side, button, depth=0.012)
             yield from routines.finish(ctx, side)
