@@ -2,8 +2,9 @@
 (`activearena-cache-vision`) of a count build, a small probe (a per-token MLP whose outputs are
 summed over the frame's tokens) learns the number of counted objects in view (green blocks by
 default) from the frame's visual tokens, on the counting subtask's frames of episodes 0-159; it
-prints train and held-out (episodes 160+) accuracy beside the majority class. A tower the policy
-can count through gives a probe well above the majority class on held-out frames.
+prints train and held-out (episodes 160+) accuracy beside the majority class. On the one-arm count
+build no cache beats the majority class held out, and neither does the green-pixel share of each
+64 px cell: the label (`visible_object_mask`) or the probe does not yet measure what counting needs.
 
     python analysis/policies/vision_feature_probe.py --root outputs/datasets/cpu_count_left_200_p16_192 \\
         outputs/vision_cache/cpu_count_left_200_p16_192_grounded.safetensors CACHE...
