@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..annotations.writer import AnnotationWriter
-from ..expert.context import ExpertContext, ExpertError
+from ..expert.context import PRESS_ARMS, ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
 from ..sim.action import GRIPPER_INDICES
 from ..sim.health import PENETRATION_LIMIT
@@ -123,7 +123,6 @@ class DemoVariation:
             )
 
 
-PRESS_ARMS = (None, "left", "right")
 MAX_ACTION_NOISE = 0.1  # rad: beyond it the expert's strokes fail more often than they succeed
 
 

@@ -21,6 +21,13 @@ class ExpertError(RuntimeError):
     """The scripted expert cannot finish this episode (object not found, grasp lost, IK failure)."""
 
 
+PRESS_ARMS = (
+    None,
+    "left",
+    "right",
+)  # ``press_arm``: None is the benchmark's expert (the arm on the button's half)
+
+
 class ExpertContext:
     """Shared by all primitives of one episode. Search decisions read only ``memory`` (positions of
     objects the camera has seen); manipulation reads the true pose of an object once it is known."""
@@ -56,7 +63,7 @@ class ExpertContext:
         # One-arm demonstrations for datasets (None = the benchmark's expert): the count-and-press
         # tasks press with this arm wherever the button is, not with the arm on its half of the fan,
         # so which arm moves does not depend on the count (the click_bell expert's one arm).
-        if press_arm not in (None, "left", "right"):
+        if press_arm not in PRESS_ARMS:
             raise ValueError(f"press_arm is 'left', 'right' or None, got {press_arm!r}")
         self.press_arm = press_arm
         self.n_subtasks = n_subtasks

@@ -20,6 +20,18 @@ from lerobot_activearena.policies.activearena_vla.processor_activearena_vla impo
 )
 
 CONFIGS = Path(__file__).resolve().parents[2] / "configs" / "policy"
+MEMORY_KEYS = {
+    "memory",
+    "history",
+    "vision_cache",
+}  # where a chunk-12 preset and its memory-free partner differ
+
+
+def differing_policy_keys(a: dict, b: dict) -> set[str]:
+    """The policy keys whose values differ between two presets."""
+    return {k for k in set(a["policy"]) | set(b["policy"]) if a["policy"].get(k) != b["policy"].get(k)}
+
+
 PIXELS_96 = 96 * 128
 
 
@@ -111,15 +123,7 @@ def test_the_frozen_count_pair_trains_through_lerobot_train(tiny_vlm, bell_count
         "scheduler_decay_steps",
     }
     assert (chunk["steps"], chunk["batch_size"]) == (free["steps"], free["batch_size"])
-    assert {
-        k
-        for k in set(chunk["policy"]) | set(free["policy"])
-        if chunk["policy"].get(k) != free["policy"].get(k)
-    } == {
-        "memory",
-        "history",
-        "vision_cache",
-    }
+    assert differing_policy_keys(chunk, free) == MEMORY_KEYS
     for name, extra in (
         ("oft_subtask_action_12_ws_grounded_count_frozen", [f"--policy.vision_cache={table}"]),
         ("oft_subtask_no_0_ws_grounded_count_frozen", []),
@@ -161,13 +165,5 @@ def test_the_one_arm_count_pair_is_the_frozen_pair_on_its_own_build():
         )
         assert cfg.policy.freeze_vision and cfg.dataset.repo_id == "local/cpu_count_left_200_p16_192"
     chunk, free = pair["action_12"], pair["no_0"]
-    assert {
-        k
-        for k in set(chunk["policy"]) | set(free["policy"])
-        if chunk["policy"].get(k) != free["policy"].get(k)
-    } == {
-        "memory",
-        "history",
-        "vision_cache",
-    }
+    assert differing_policy_keys(chunk, free) == MEMORY_KEYS
     assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
