@@ -36,6 +36,8 @@ FRAME_FIELDS: dict[str, tuple[type, tuple]] = {
     "action_target_mask": (np.int8, ("N",)),
     "carried_object_mask": (np.int8, ("N",)),
     "target_uv_norm": (np.float32, (2,)),
+    # ours, beyond the paper's table: every task object's image point (the counted blocks' too)
+    "object_uv_norm": (np.float32, ("N", 2)),
     "intrinsic_cv": (np.float32, (3, 3)),
     "extrinsic_cv": (np.float32, (4, 4)),
     "cam2world_gl": (np.float32, (4, 4)),

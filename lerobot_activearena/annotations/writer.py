@@ -67,6 +67,7 @@ class AnnotationWriter:
             "action_target_mask": self._mask(intent.action_targets),
             "carried_object_mask": self._mask(intent.carried),
             "target_uv_norm": seen.uv[f] if focus_visible else np.array([-1.0, -1.0]),
+            "object_uv_norm": np.where(seen.visible[:, None], seen.uv, -1.0),
             "intrinsic_cv": cam["intrinsic_cv"],
             "extrinsic_cv": cam["extrinsic_cv"],
             "cam2world_gl": cam["cam2world_gl"],

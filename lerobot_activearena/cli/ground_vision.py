@@ -36,6 +36,13 @@ def main(argv: list[str] | None = None) -> None:
         default=0.0,
         help="weight of also fitting where in its token the object lies (0: the token only)",
     )
+    p.add_argument(
+        "--search-weight",
+        type=float,
+        default=0.0,
+        help="weight of also fitting which tokens hold the task's search targets in view and how many "
+        "there are (a count task's blocks to count; 0: the focus object only)",
+    )
     p.add_argument("--overwrite", action="store_true")
     args = p.parse_args(argv)
     if not (args.vlm_dir / "config.json").exists():
@@ -46,8 +53,15 @@ def main(argv: list[str] | None = None) -> None:
         p.error("--out must differ from VLM_DIR: the ungrounded model is kept")
     if (args.out / "config.json").exists() and not args.overwrite:
         p.error(f"{args.out} already holds a model; pass --overwrite to replace it")
-    if args.epochs < 1 or args.batch_size < 1 or args.val_every < 2 or args.point_weight < 0:
-        p.error("--epochs and --batch-size must be >= 1, --val-every >= 2 and --point-weight >= 0")
+    if (
+        args.epochs < 1
+        or args.batch_size < 1
+        or args.val_every < 2
+        or min(args.point_weight, args.search_weight) < 0
+    ):
+        p.error(
+            "--epochs and --batch-size must be >= 1, --val-every >= 2, --point-weight and --search-weight >= 0"
+        )
     from ..policies.activearena_vla.vision_grounding import ground_vision_tower
 
     try:
@@ -62,6 +76,7 @@ def main(argv: list[str] | None = None) -> None:
             val_every=args.val_every,
             seed=args.seed,
             point_weight=args.point_weight,
+            search_weight=args.search_weight,
         )
     except ValueError as e:  # a build without the annotations
         p.error(str(e))
@@ -72,9 +87,16 @@ def main(argv: list[str] | None = None) -> None:
         if "median_point_error_px" in last
         else ""
     )
+    search = (
+        f"; search targets in view counted right {last['search_count_accuracy']:.1%} (the most common "
+        f"count {last['search_count_majority']:.1%}), their tokens at precision "
+        f"{last['search_token_precision']:.1%} / recall {last['search_token_recall']:.1%}"
+        if "search_count_accuracy" in last
+        else ""
+    )
     print(
         f"{args.out}: held-out episodes, in view or not {last['in_view_accuracy']:.1%}, token "
-        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames){point}; "
+        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames){point}{search}; "
         f"use --policy.vlm_path={args.out}"
     )
 

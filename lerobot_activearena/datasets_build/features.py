@@ -42,6 +42,7 @@ COLUMN_DOCS = {
     "action_target_mask": "per task object: the object being manipulated or used",
     "carried_object_mask": "per task object: held by a gripper",
     "target_uv_norm": "focus object's normalised image point, (-1, -1) when not visible",
+    "object_uv_norm": "per task object: (u, v) as `target_uv_norm`, flattened; (-1, -1) when not visible",
     "intrinsic_cv": "3x3 camera intrinsics, row-major",
     "extrinsic_cv": "4x4 world-to-camera (OpenCV), row-major",
     "cam2world_gl": "4x4 camera-to-world (OpenGL), row-major",

@@ -13,11 +13,21 @@ from safetensors.torch import load_file
 from lerobot_activearena.cli.ground_vision import main as ground_main
 from lerobot_activearena.cli.slim_dataset import main as slim_main
 from lerobot_activearena.policies.activearena_vla.vision_grounding import (
+    GroundingOutput,
     grounding_loss,
     load_grounding_frames,
+    search_target_points,
+    search_token_targets,
     token_cells,
     within_cells,
 )
+
+
+def outputs(logits, points, search=None, count=None):
+    n, t = points.shape[:2]
+    search = torch.zeros(n, t) if search is None else search
+    count = torch.zeros(n, 2) if count is None else count
+    return [GroundingOutput(logits, points, search, count)]
 
 
 def test_token_cells_name_the_merged_token_under_the_object_or_none():
@@ -40,17 +50,55 @@ def test_grounding_loss_fits_the_point_only_in_the_objects_token():
     within = torch.tensor([[0.25, 0.75], [0.0, 0.0]])
     logits = torch.tensor([[0.0, 5.0, 0.0], [0.0, 0.0, 5.0]])
     points = torch.full((2, 2, 2), 0.5)
-    base = grounding_loss([(logits, points)], cells, within, point_weight=0.0)
+    base = grounding_loss(outputs(logits, points), cells, within, point_weight=0.0)
     assert torch.isclose(base, torch.nn.functional.cross_entropy(logits, cells))
-    weighted = grounding_loss([(logits, points)], cells, within, point_weight=2.0)
+    weighted = grounding_loss(outputs(logits, points), cells, within, point_weight=2.0)
     assert torch.isclose(weighted - base, torch.tensor(2.0 * 0.25))  # |0.5 - 0.25|, |0.5 - 0.75|
     elsewhere = points.clone()
     elsewhere[0, 0] = 0.0  # another token of the same frame, and the frame without the object
     elsewhere[1] = 0.9
-    assert torch.isclose(grounding_loss([(logits, elsewhere)], cells, within, 2.0), weighted)
+    assert torch.isclose(grounding_loss(outputs(logits, elsewhere), cells, within, 2.0), weighted)
     exact = points.clone()
     exact[0, 1] = within[0]
-    assert torch.isclose(grounding_loss([(logits, exact)], cells, within, 2.0), base)
+    assert torch.isclose(grounding_loss(outputs(logits, exact), cells, within, 2.0), base)
+
+
+def test_search_targets_are_the_searched_objects_in_view_that_the_task_needs():
+    # three objects: 0 a block to count, 1 a distractor (searched for, not needed), 2 the button
+    object_uv = np.array([[0.1, 0.2, 0.5, 0.5, 0.9, 0.9], [0.1, 0.2, -1, -1, 0.9, 0.9]])
+    visible = np.array([[1, 1, 1], [1, 0, 1]])
+    searched = np.array([[1, 1, 0], [0, 0, 1]])  # frame 0 counts, frame 1 presses
+    points = search_target_points(object_uv, visible, searched, [np.array([0, 2])] * 2)
+    np.testing.assert_allclose(points[0], [[0.1, 0.2], [-1, -1], [-1, -1]])
+    np.testing.assert_allclose(points[1], [[-1, -1], [-1, -1], [0.9, 0.9]])
+
+
+def test_search_token_targets_mark_each_targets_token_and_count_them():
+    points = np.array(
+        [
+            [[0.1, 0.1], [0.15, 0.2], [0.9, 0.9]],  # two in token 0 (a 2 x 2 grid), one in token 3
+            [[-1, -1], [-1, -1], [-1, -1]],
+        ],
+        np.float32,
+    )
+    occupied, count = search_token_targets(points, 2, 2)
+    np.testing.assert_array_equal(occupied, [[1, 0, 0, 1], [0, 0, 0, 0]])
+    np.testing.assert_array_equal(count, [3, 0])
+
+
+def test_grounding_loss_adds_the_search_terms_with_their_weight():
+    cells = torch.tensor([2])
+    logits, points = torch.tensor([[0.0, 0.0, 3.0]]), torch.full((1, 2, 2), 0.5)
+    search, count = torch.tensor([[2.0, -1.0]]), torch.tensor([[0.0, 1.0, 0.0]])
+    out = outputs(logits, points, search, count)
+    occupied, number = torch.tensor([[1.0, 0.0]]), torch.tensor([1])
+    base = grounding_loss(out, cells, None, 0.0)
+    both = grounding_loss(out, cells, None, 0.0, (occupied, number), 0.5)
+    bce = torch.nn.functional.binary_cross_entropy_with_logits(search, occupied)
+    ce = torch.nn.functional.cross_entropy(count, number)
+    assert torch.isclose(both - base, 0.5 * (bce + ce))
+    wrong = grounding_loss(out, cells, None, 0.0, (occupied, torch.tensor([2])), 0.5)
+    assert wrong > both  # the count is read
 
 
 def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dataset):
@@ -68,6 +116,12 @@ def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dat
         assert (frames.images[at[0]].int() - image.int()).abs().max() <= 1
         assert frames.visible[at[0]] == bool(item["focus_object_visible"])
         np.testing.assert_allclose(frames.uv[at[0]], item["target_uv_norm"].numpy())
+    searched = load_grounding_frames(bell_count_dataset, search=True).search_uv
+    assert searched.shape == (len(frames.images), 16, 2)
+    # the focus object, where it is a search target, is one of them; the count task's counting frames
+    # (no focus object) still show some
+    assert (searched[..., 0] >= 0).any(1)[frames.visible].mean() > 0.5
+    assert (searched[..., 0] >= 0).any(1)[~frames.visible].any()
 
 
 def test_ground_vision_fits_the_tower_and_keeps_the_language_model(
@@ -75,11 +129,25 @@ def test_ground_vision_fits_the_tower_and_keeps_the_language_model(
 ):
     out = tmp_path / "grounded"
     args = [str(tiny_vlm), "--root", str(bell_count_dataset), "--out", str(out), "--val-every", "2"]
-    ground_main([*args, "--epochs", "3", "--batch-size", "32", "--lr", "1e-3", "--point-weight", "1"])
-    assert "held-out episodes" in capsys.readouterr().out
+    fit = [
+        "--epochs",
+        "3",
+        "--batch-size",
+        "32",
+        "--lr",
+        "1e-3",
+        "--point-weight",
+        "1",
+        "--search-weight",
+        "1",
+    ]
+    ground_main([*args, *fit])
+    assert "search targets in view counted right" in capsys.readouterr().out
     report = json.loads((out / "grounding.json").read_text())
     assert report["grid"] == [3, 4] and report["held_out_episodes"] == [1]
-    assert report["point_weight"] == 1.0
+    assert report["point_weight"] == 1.0 and report["search_weight"] == 1.0
+    for epoch in report["history"]:
+        assert 0 <= epoch["search_count_accuracy"] <= 1 and 0 < epoch["search_count_majority"] <= 1
     info = json.loads((bell_count_dataset / "meta/info.json").read_text())
     h, w = info["features"]["observation.images.head"]["shape"][:2]
     half_diagonal = 0.5 * np.hypot(h / 3, w / 4)  # a token's centre is no farther from a point in it

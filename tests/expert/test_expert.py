@@ -57,6 +57,10 @@ def test_every_frame_follows_the_schema(episodes, name):
             np.testing.assert_array_equal(f["target_uv_norm"], [-1, -1])
         else:
             assert ((f["target_uv_norm"] >= 0) & (f["target_uv_norm"] <= 1)).all()
+            np.testing.assert_array_equal(f["object_uv_norm"][f["focus_object_idx"]], f["target_uv_norm"])
+        shown = f["visible_object_mask"] == 1
+        assert ((f["object_uv_norm"][shown] >= 0) & (f["object_uv_norm"][shown] <= 1)).all()
+        assert (f["object_uv_norm"][~shown] == -1).all()
     disc = np.array([f["discovered_object_mask"] for f in r.frames])
     assert (np.diff(disc, axis=0) >= 0).all(), "discovered objects stay discovered"
     vis = np.array([f["visible_object_mask"] for f in r.frames])

@@ -3,7 +3,10 @@
 Qwen3-VL-2B arrives knowing where things are in an image; a tiny Qwen3-VL made by
 ``activearena-make-tiny-vlm`` knows nothing. This fits the tiny model's vision tower to say where the
 current subtask's focus object is in the head image, from a built dataset's per-frame annotations
-(``focus_object_visible``, ``target_uv_norm``): which merged visual token holds it, or none. The
+(``focus_object_visible``, ``target_uv_norm``): which merged visual token holds it, or none. With a
+``search_weight`` it also says where the task's search targets in view are and how many there are
+(``object_uv_norm``, ``search_target_mask`` and the sidecar's ``search_targets``): a count task's
+counting frames have no focus object, and the blocks to count are what the tower must keep. The
 policy then trains from the grounded backbone as the paper's trains from Qwen3-VL's.
 """
 
@@ -19,6 +22,7 @@ import torch
 from torch import nn
 
 ANNOTATIONS = ("focus_object_visible", "target_uv_norm")
+SEARCH_ANNOTATIONS = ("object_uv_norm", "visible_object_mask", "search_target_mask")
 
 
 @dataclass
@@ -30,6 +34,36 @@ class GroundingFrames:
     uv: np.ndarray  # (N, 2) normalised (u, v); (-1, -1) where not visible
     episodes: np.ndarray  # (N,) episode index
     frames: np.ndarray  # (N,) frame index in the episode
+    # (N, M, 2): each search target in view (searched for now, and one the task needs seen: the
+    # sidecar's ``search_targets``), its (u, v); (-1, -1) for every other slot. None: not loaded.
+    search_uv: np.ndarray | None = None
+
+
+def search_target_points(
+    object_uv: np.ndarray, visible: np.ndarray, searched: np.ndarray, task_targets: list[np.ndarray]
+) -> np.ndarray:
+    """(N, M, 2) image points of the objects each frame shows that it searches for and its task needs
+    seen (``task_targets``: per frame, the sidecar's object indices); (-1, -1) elsewhere. On a count
+    task's counting frames these are the blocks to count (the distractors are searched for too, but
+    the task does not need them); on a press they are the button."""
+    n, m = visible.shape
+    needed = np.zeros((n, m), bool)
+    for i, idx in enumerate(task_targets):
+        needed[i, idx] = True
+    keep = (visible == 1) & (searched == 1) & needed
+    return np.where(keep[..., None], object_uv.reshape(n, m, 2), -1.0).astype(np.float32)
+
+
+def search_token_targets(search_uv: np.ndarray, rows: int, cols: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per frame: which merged tokens hold a search target ((N, rows * cols) 0/1) and how many search
+    targets are in view ((N,))."""
+    shown = search_uv[..., 0] >= 0
+    col = np.clip((search_uv[..., 0] * cols).astype(int), 0, cols - 1)
+    row = np.clip((search_uv[..., 1] * rows).astype(int), 0, rows - 1)
+    occupied = np.zeros((len(search_uv), rows * cols), np.float32)
+    f, k = np.nonzero(shown)
+    occupied[f, row[f, k] * cols + col[f, k]] = 1.0
+    return occupied, shown.sum(1)
 
 
 def token_cells(visible: np.ndarray, uv: np.ndarray, rows: int, cols: int) -> np.ndarray:
@@ -47,8 +81,11 @@ def within_cells(uv: np.ndarray, rows: int, cols: int) -> np.ndarray:
     return np.clip(scaled - np.minimum(np.floor(scaled), [cols - 1, rows - 1]), 0.0, 1.0).astype(np.float32)
 
 
-def load_grounding_frames(root: str | Path, camera: str = "observation.images.head") -> GroundingFrames:
-    """Every frame of the build at ``root``: its decoded head image and its focus annotations."""
+def load_grounding_frames(
+    root: str | Path, camera: str = "observation.images.head", search: bool = False
+) -> GroundingFrames:
+    """Every frame of the build at ``root``: its decoded head image and its focus annotations (and, with
+    ``search``, its search targets' image points)."""
     import pandas as pd
     from lerobot.datasets.video_utils import decode_video_frames
     from tqdm import tqdm
@@ -60,6 +97,11 @@ def load_grounding_frames(root: str | Path, camera: str = "observation.images.he
         raise ValueError(
             f"{root} has no per-frame {', '.join(missing)}: ground on the full build that "
             "activearena-build-dataset wrote, not on its slimmed copy (activearena-slim-dataset drops them)"
+        )
+    if search and (missing := [c for c in SEARCH_ANNOTATIONS if c not in data.columns]):
+        raise ValueError(
+            f"{root} has no per-frame {', '.join(missing)}: grounding on search targets needs a build "
+            "made by this version of activearena-build-dataset (rebuild it), or pass --search-weight 0"
         )
     info = json.loads((root / "meta/info.json").read_text())
     if camera not in info["features"]:
@@ -82,54 +124,83 @@ def load_grounding_frames(root: str | Path, camera: str = "observation.images.he
             decode_video_frames(path, stamps, 1 / (2 * info["fps"]), backend="pyav", return_uint8=True)
         )
     order = pd.concat(parts)
+    search_uv = None
+    if search:
+        sidecars = {
+            int(ep): json.loads((root / f"meta/activearena/sidecars/episode_{int(ep):06d}.json").read_text())
+            for ep in episodes["episode_index"]
+        }
+        search_uv = search_target_points(
+            np.stack(order["object_uv_norm"].to_numpy()),
+            np.stack(order["visible_object_mask"].to_numpy()),
+            np.stack(order["search_target_mask"].to_numpy()),
+            [np.asarray(sidecars[int(ep)]["search_targets"], int) for ep in order["episode_index"]],
+        )
     return GroundingFrames(
         images=torch.cat(images),
         visible=order["focus_object_visible"].to_numpy().astype(bool),
         uv=np.stack(order["target_uv_norm"].to_numpy()).astype(np.float32),
         episodes=order["episode_index"].to_numpy(),
         frames=order["frame_index"].to_numpy(),
+        search_uv=search_uv,
     )
 
 
-class GroundingHead(nn.Module):
-    """A logit per merged token (the object is there) and one for "not in view" from their mean; and, per
-    token, where in it the object would be ((u, v) in [0, 1])."""
+def token_grid(image_processor, images: torch.Tensor, max_pixels: int) -> tuple[int, int]:
+    """The merged-token grid (rows, cols) the processor makes of these images."""
+    from .processor_activearena_vla import image_inputs, one_token_pixels
 
-    def __init__(self, width: int):
+    _, thw = image_inputs(image_processor, images[:1], max_pixels, one_token_pixels(image_processor), "cpu")
+    merge = image_processor.merge_size
+    return int(thw[0, 1]) // merge, int(thw[0, 2]) // merge
+
+
+@dataclass
+class GroundingOutput:
+    logits: torch.Tensor  # (N, T + 1): the focus object's token, or "not in view"
+    points: torch.Tensor  # (N, T, 2): where in each token it would be
+    search: torch.Tensor  # (N, T): a search target is in this token
+    count: torch.Tensor  # (N, C + 1): how many search targets are in view
+
+
+class GroundingHead(nn.Module):
+    """A logit per merged token (the focus object is there) and one for "not in view" from their mean;
+    per token, where in it the object would be ((u, v) in [0, 1]); per token, a logit that a search
+    target is there; and from the mean, logits of how many are in view (0 .. ``max_count``)."""
+
+    def __init__(self, width: int, max_count: int = 0):
         super().__init__()
         self.token = nn.Linear(width, 1)
         self.absent = nn.Linear(width, 1)
         self.point = nn.Linear(width, 2)
+        self.search = nn.Linear(width, 1)
+        self.count = nn.Linear(width, max_count + 1)
 
-    def forward(self, tokens: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        """(N, T, D) -> logits (N, T + 1) and points (N, T, 2)."""
-        logits = torch.cat([self.token(tokens)[..., 0], self.absent(tokens.mean(1))], dim=-1)
-        return logits, torch.sigmoid(self.point(tokens))
+    def forward(self, tokens: torch.Tensor) -> GroundingOutput:
+        """(N, T, D) -> focus logits (N, T + 1), points (N, T, 2), search logits (N, T), count logits."""
+        mean = tokens.mean(1)
+        logits = torch.cat([self.token(tokens)[..., 0], self.absent(mean)], dim=-1)
+        return GroundingOutput(
+            logits, torch.sigmoid(self.point(tokens)), self.search(tokens)[..., 0], self.count(mean)
+        )
 
 
 class GroundedTower(nn.Module):
     """A Qwen3-VL's vision tower with a grounding head on its merged tokens and one on each DeepStack
     feature (the tower's middle layers, which the language model also reads). Returns their outputs."""
 
-    def __init__(self, vlm, image_processor, max_pixels: int):
+    def __init__(self, vlm, image_processor, max_pixels: int, max_count: int = 0):
         super().__init__()
         self.vlm, self.image_processor, self.max_pixels = vlm, image_processor, max_pixels
         taps = len(vlm.config.vision_config.deepstack_visual_indexes)
         self.heads = nn.ModuleList(
-            GroundingHead(vlm.config.vision_config.out_hidden_size) for _ in range(1 + taps)
+            GroundingHead(vlm.config.vision_config.out_hidden_size, max_count) for _ in range(1 + taps)
         )
 
     def grid(self, images: torch.Tensor) -> tuple[int, int]:
-        """The merged-token grid (rows, cols) the processor makes of these images."""
-        from .processor_activearena_vla import image_inputs, one_token_pixels
+        return token_grid(self.image_processor, images, self.max_pixels)
 
-        _, thw = image_inputs(
-            self.image_processor, images[:1], self.max_pixels, one_token_pixels(self.image_processor), "cpu"
-        )
-        merge = self.image_processor.merge_size
-        return int(thw[0, 1]) // merge, int(thw[0, 2]) // merge
-
-    def forward(self, images: torch.Tensor) -> list[tuple[torch.Tensor, torch.Tensor]]:
+    def forward(self, images: torch.Tensor) -> list[GroundingOutput]:
         from .processor_activearena_vla import image_inputs, one_token_pixels
 
         pv, thw = image_inputs(
@@ -145,34 +216,48 @@ class GroundedTower(nn.Module):
 
 
 def grounding_loss(
-    outputs: list[tuple[torch.Tensor, torch.Tensor]],
+    outputs: list[GroundingOutput],
     cells: torch.Tensor,
     within: torch.Tensor,
     point_weight: float,
+    search: tuple[torch.Tensor, torch.Tensor] | None = None,
+    search_weight: float = 0.0,
 ) -> torch.Tensor:
     """Cross-entropy over the tokens and "not in view", plus ``point_weight`` x the L1 error of the point
-    predicted in the token that holds the object (frames that show it), averaged over the heads."""
-    none = outputs[0][0].shape[-1] - 1
+    predicted in the token that holds the object (frames that show it), plus ``search_weight`` x (the
+    per-token binary cross-entropy of "a search target is here" + the cross-entropy of how many are in
+    view; ``search``: ``search_token_targets``' two arrays as tensors), averaged over the heads."""
+    none = outputs[0].logits.shape[-1] - 1
     seen = torch.nonzero(cells != none).flatten()
     total = 0.0
-    for logits, points in outputs:
-        total = total + nn.functional.cross_entropy(logits, cells)
+    for out in outputs:
+        total = total + nn.functional.cross_entropy(out.logits, cells)
         if point_weight and len(seen):
-            guess = points[seen, cells[seen]]
+            guess = out.points[seen, cells[seen]]
             total = total + point_weight * nn.functional.l1_loss(guess, within[seen])
+        if search_weight:
+            occupied, count = search
+            total = total + search_weight * (
+                nn.functional.binary_cross_entropy_with_logits(out.search, occupied)
+                + nn.functional.cross_entropy(out.count, count)
+            )
     return total / len(outputs)
 
 
-def _accuracy(model: GroundedTower, images, cells, uv, grid: tuple[int, int], batch: int) -> dict[str, float]:
+def _accuracy(
+    model: GroundedTower, images, cells, uv, grid: tuple[int, int], batch: int, search=None
+) -> dict[str, float]:
     """Held-out figures. Point errors are in pixels of ``images``, over the frames that show the object and
-    whose token is named right: the predicted point's, and the token centre's for comparison."""
+    whose token is named right: the predicted point's, and the token centre's for comparison. With
+    ``search`` (``search_token_targets``' arrays): how often the number of search targets in view is
+    right (beside always guessing the most common number), and the per-token precision and recall."""
     rows, cols = grid
     model.eval()
     with torch.no_grad():
         outs = [model(images[i : i + batch])[0] for i in range(0, len(images), batch)]
     model.train()
-    pred = torch.cat([logits.argmax(-1) for logits, _ in outs])
-    points = torch.cat([p for _, p in outs])
+    pred = torch.cat([o.logits.argmax(-1) for o in outs])
+    points = torch.cat([o.points for o in outs])
     cells = torch.as_tensor(cells)
     absent = cells == rows * cols
     figures = {
@@ -193,6 +278,16 @@ def _accuracy(model: GroundedTower, images, cells, uv, grid: tuple[int, int], ba
         centre = (corner + 0.5) * scale
         figures["median_point_error_px"] = round(float((point - true).norm(dim=-1).median()), 2)
         figures["median_centre_error_px"] = round(float((centre - true).norm(dim=-1).median()), 2)
+    if search is not None:
+        occupied, count = (torch.as_tensor(a) for a in search)
+        guess = torch.cat([o.count.argmax(-1) for o in outs])
+        there = torch.cat([o.search for o in outs]) > 0
+        figures["search_count_accuracy"] = float((guess == count).float().mean())
+        figures["search_count_majority"] = float((count == count.mode().values).float().mean())
+        figures["search_token_precision"] = float(occupied[there].mean()) if there.any() else float("nan")
+        figures["search_token_recall"] = (
+            float(there[occupied == 1].float().mean()) if (occupied == 1).any() else float("nan")
+        )
     return figures
 
 
@@ -207,24 +302,27 @@ def ground_vision_tower(
     val_every: int = 10,
     seed: int = 0,
     point_weight: float = 0.0,
+    search_weight: float = 0.0,
 ) -> dict:
     """Fit ``vlm_path``'s vision tower to the focus object's place in the build at ``root``'s head frames
     and save the whole model (tokenizer and processor copied) to ``out_dir``. Every ``val_every``-th
     episode is held out and scored. ``point_weight`` > 0 also fits where in its token the object lies (the
-    token alone places it within half a token). Returns the figures also written to ``out_dir/grounding.json``."""
+    token alone places it within half a token). ``search_weight`` > 0 also fits which tokens hold a search
+    target and how many are in view. Returns the figures also written to ``out_dir/grounding.json``."""
     from tqdm import tqdm
     from transformers import AutoProcessor
 
     from .vlm_loading import load_policy_vlm
 
     torch.manual_seed(seed)
-    frames = load_grounding_frames(root)
+    frames = load_grounding_frames(root, search=search_weight > 0)
     # as the policy builds it (linear patch embedding, batched vision attention): the same weights, and
     # PyTorch's CPU Conv3d backward is most of a grounding step otherwise
     vlm = load_policy_vlm(str(vlm_path))
     processor = AutoProcessor.from_pretrained(vlm_path)
-    model = GroundedTower(vlm, processor.image_processor, max_pixels)
-    rows, cols = model.grid(frames.images)
+    rows, cols = token_grid(processor.image_processor, frames.images, max_pixels)
+    search = search_token_targets(frames.search_uv, rows, cols) if search_weight > 0 else None
+    model = GroundedTower(vlm, processor.image_processor, max_pixels, int(search[1].max()) if search else 0)
     cells = token_cells(frames.visible, frames.uv, rows, cols)
     within = torch.as_tensor(within_cells(frames.uv, rows, cols))
     held = frames.episodes % val_every == val_every - 1
@@ -246,7 +344,10 @@ def ground_vision_tower(
             order, losses = rng.permutation(train_idx), []
             for i in range(0, len(order), batch_size):
                 b = order[i : i + batch_size]
-                loss = grounding_loss(model(frames.images[b]), target[b], within[b], point_weight)
+                batch_search = search and (torch.as_tensor(search[0][b]), torch.as_tensor(search[1][b]))
+                loss = grounding_loss(
+                    model(frames.images[b]), target[b], within[b], point_weight, batch_search, search_weight
+                )
                 opt.zero_grad()
                 loss.backward()
                 opt.step()
@@ -254,8 +355,15 @@ def ground_vision_tower(
                 losses.append(loss.item())
                 bar.update()
                 bar.set_postfix(epoch=epoch, loss=f"{loss.item():.3f}")
+            held_search = search and (search[0][held], search[1][held])
             scores = _accuracy(
-                model, frames.images[held], cells[held], frames.uv[held], (rows, cols), 4 * batch_size
+                model,
+                frames.images[held],
+                cells[held],
+                frames.uv[held],
+                (rows, cols),
+                4 * batch_size,
+                held_search,
             )
             history.append({"epoch": epoch + 1, "train_loss": round(float(np.mean(losses)), 4), **scores})
             tqdm.write(json.dumps(history[-1]))
@@ -274,6 +382,7 @@ def ground_vision_tower(
         "batch_size": batch_size,
         "lr": lr,
         "point_weight": point_weight,
+        "search_weight": search_weight,
         "history": history,
     }
     (tmp / "grounding.json").write_text(json.dumps(report, indent=1) + "\n")
