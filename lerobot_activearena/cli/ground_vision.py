@@ -43,6 +43,14 @@ def main(argv: list[str] | None = None) -> None:
         help="weight of also fitting which tokens hold the task's search targets in view and how many "
         "there are (a count task's blocks to count; 0: the focus object only)",
     )
+    p.add_argument(
+        "--identity-weight",
+        type=float,
+        default=0.0,
+        help="weight of also fitting which objects each token holds by their look (the sidecar's names "
+        "without instance numbers: 'button 2', 'green block'); a frozen tower needs it to tell the count "
+        "task's buttons apart (0: off)",
+    )
     p.add_argument("--overwrite", action="store_true")
     args = p.parse_args(argv)
     if not (args.vlm_dir / "config.json").exists():
@@ -57,11 +65,9 @@ def main(argv: list[str] | None = None) -> None:
         args.epochs < 1
         or args.batch_size < 1
         or args.val_every < 2
-        or min(args.point_weight, args.search_weight) < 0
+        or min(args.point_weight, args.search_weight, args.identity_weight) < 0
     ):
-        p.error(
-            "--epochs and --batch-size must be >= 1, --val-every >= 2, --point-weight and --search-weight >= 0"
-        )
+        p.error("--epochs and --batch-size must be >= 1, --val-every >= 2, and the --*-weight options >= 0")
     from ..policies.activearena_vla.vision_grounding import ground_vision_tower
 
     try:
@@ -77,6 +83,7 @@ def main(argv: list[str] | None = None) -> None:
             seed=args.seed,
             point_weight=args.point_weight,
             search_weight=args.search_weight,
+            identity_weight=args.identity_weight,
         )
     except ValueError as e:  # a build without the annotations
         p.error(str(e))
@@ -94,9 +101,15 @@ def main(argv: list[str] | None = None) -> None:
         if "search_count_accuracy" in last
         else ""
     )
+    identity = (
+        f"; objects named right in {last['identity_accuracy']:.1%} of the tokens holding one kind (the most "
+        f"common kind {last['identity_majority']:.1%})"
+        if "identity_accuracy" in last
+        else ""
+    )
     print(
         f"{args.out}: held-out episodes, in view or not {last['in_view_accuracy']:.1%}, token "
-        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames){point}{search}; "
+        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames){point}{search}{identity}; "
         f"use --policy.vlm_path={args.out}"
     )
 

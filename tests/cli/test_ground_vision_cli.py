@@ -14,7 +14,9 @@ from lerobot_activearena.cli.ground_vision import main as ground_main
 from lerobot_activearena.cli.slim_dataset import main as slim_main
 from lerobot_activearena.policies.activearena_vla.vision_grounding import (
     GroundingOutput,
+    appearance_class,
     grounding_loss,
+    identity_token_targets,
     load_grounding_frames,
     search_target_points,
     search_token_targets,
@@ -23,11 +25,12 @@ from lerobot_activearena.policies.activearena_vla.vision_grounding import (
 )
 
 
-def outputs(logits, points, search=None, count=None):
+def outputs(logits, points, search=None, count=None, identity=None):
     n, t = points.shape[:2]
     search = torch.zeros(n, t) if search is None else search
     count = torch.zeros(n, 2) if count is None else count
-    return [GroundingOutput(logits, points, search, count)]
+    identity = torch.zeros(n, t, 1) if identity is None else identity
+    return [GroundingOutput(logits, points, search, count, identity)]
 
 
 def test_token_cells_name_the_merged_token_under_the_object_or_none():
@@ -101,6 +104,36 @@ def test_grounding_loss_adds_the_search_terms_with_their_weight():
     assert wrong > both  # the count is read
 
 
+def test_appearance_classes_drop_instance_numbers_and_keep_shown_ones():
+    assert appearance_class("green_block_1", "green block 2") == "green block"
+    assert appearance_class("green_block_0", "green block 1") == "green block"
+    assert appearance_class("button_2", "button 2") == "button 2"  # the number is on the button
+    assert appearance_class("red_block_0", "red block") == "red block"
+    assert appearance_class("bell", "bell") == "bell"
+
+
+def test_identity_token_targets_mark_each_class_in_its_token():
+    uv = np.array([[[0.1, 0.1], [0.15, 0.2], [0.9, 0.9]]], np.float32)
+    classes = np.array([[0, 0, 1]])  # two of class 0 in token 0 (a 2 x 2 grid), one of class 1 in token 3
+    out = identity_token_targets(uv, classes, 3, 2, 2)
+    np.testing.assert_array_equal(out[0], [[1, 0, 0], [0, 0, 0], [0, 0, 0], [0, 1, 0]])
+    hidden = identity_token_targets(uv, np.array([[-1, -1, 2]]), 3, 2, 2)
+    np.testing.assert_array_equal(hidden[0].sum(0), [0, 0, 1])
+
+
+def test_grounding_loss_adds_the_identity_term_with_its_weight():
+    cells = torch.tensor([2])
+    logits, points = torch.tensor([[0.0, 0.0, 3.0]]), torch.full((1, 2, 2), 0.5)
+    guess = torch.tensor([[[2.0, -2.0], [-1.0, 0.5]]])
+    truth = torch.tensor([[[1.0, 0.0], [0.0, 1.0]]])
+    out = outputs(logits, points, identity=guess)
+    base = grounding_loss(out, cells, None, 0.0)
+    both = grounding_loss(out, cells, None, 0.0, identity=truth, identity_weight=2.0)
+    bce = torch.nn.functional.binary_cross_entropy_with_logits(guess, truth)
+    assert torch.isclose(both - base, 2.0 * bce)
+    assert grounding_loss(out, cells, None, 0.0, identity=1 - truth, identity_weight=2.0) > both
+
+
 def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dataset):
     frames = load_grounding_frames(bell_count_dataset)
     ds = LeRobotDataset(DATASET_REPO, root=bell_count_dataset)
@@ -122,6 +155,11 @@ def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dat
     # (no focus object) still show some
     assert (searched[..., 0] >= 0).any(1)[frames.visible].mean() > 0.5
     assert (searched[..., 0] >= 0).any(1)[~frames.visible].any()
+    named = load_grounding_frames(bell_count_dataset, identity=True)
+    assert "bell" in named.classes and "button 1" in named.classes and "green block" in named.classes
+    assert not any(c[-1].isdigit() for c in named.classes if "block" in c)
+    # a class wherever the object is visible, nowhere else
+    assert ((named.object_class >= 0) == (named.object_uv[..., 0] >= 0)).all()
 
 
 def test_ground_vision_fits_the_tower_and_keeps_the_language_model(
@@ -140,14 +178,19 @@ def test_ground_vision_fits_the_tower_and_keeps_the_language_model(
         "1",
         "--search-weight",
         "1",
+        "--identity-weight",
+        "1",
     ]
     ground_main([*args, *fit])
-    assert "search targets in view counted right" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "search targets in view counted right" in printed and "objects named right" in printed
     report = json.loads((out / "grounding.json").read_text())
     assert report["grid"] == [3, 4] and report["held_out_episodes"] == [1]
     assert report["point_weight"] == 1.0 and report["search_weight"] == 1.0
+    assert report["identity_weight"] == 1.0 and "bell" in report["classes"]
     for epoch in report["history"]:
         assert 0 <= epoch["search_count_accuracy"] <= 1 and 0 < epoch["search_count_majority"] <= 1
+        assert 0 <= epoch["identity_accuracy"] <= 1 and 0 < epoch["identity_majority"] <= 1
     info = json.loads((bell_count_dataset / "meta/info.json").read_text())
     h, w = info["features"]["observation.images.head"]["shape"][:2]
     half_diagonal = 0.5 * np.hypot(h / 3, w / 4)  # a token's centre is no farther from a point in it

@@ -169,22 +169,23 @@ def test_the_one_arm_count_pair_is_the_frozen_pair_on_its_own_build():
     assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
 
 
-def test_the_search_grounded_pair_is_the_one_arm_pair_on_its_own_tower():
-    """The _count_left_search_frozen pair: the one-arm pair read through a tower grounded also on the
-    blocks to count (``activearena-ground-vision --search-weight``) and that tower's table; nothing else
-    changed, and the two still differ only in the memory."""
+def test_the_object_grounded_pair_is_the_one_arm_pair_on_its_own_tower():
+    """The _count_left_objects_frozen pair: the one-arm pair read through a tower grounded also on the
+    blocks to count and on which object each token holds (``activearena-ground-vision --search-weight
+    --identity-weight``) and that tower's table; nothing else changed, and the two still differ only
+    in the memory."""
     small = CONFIGS / "small"
     pair = {}
     for memory in ("action_12", "no_0"):
-        search = pair[memory] = json.loads(
-            (small / f"oft_subtask_{memory}_ws_grounded_count_left_search_frozen.json").read_text()
+        objects = pair[memory] = json.loads(
+            (small / f"oft_subtask_{memory}_ws_grounded_count_left_objects_frozen.json").read_text()
         )
         left = json.loads((small / f"oft_subtask_{memory}_ws_grounded_count_left_frozen.json").read_text())
-        assert {k for k in search if search[k] != left[k]} == {"policy", "job_name"}
-        assert differing_policy_keys(search, left) == {"vlm_path"} | (
+        assert {k for k in objects if objects[k] != left[k]} == {"policy", "job_name"}
+        assert differing_policy_keys(objects, left) == {"vlm_path"} | (
             {"vision_cache"} if memory == "action_12" else set()
         )
-        assert search["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_p32_grounded_count_left_search"
+        assert objects["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_p32_grounded_count_left_objects"
     chunk, free = pair["action_12"], pair["no_0"]
     assert differing_policy_keys(chunk, free) == MEMORY_KEYS
-    assert chunk["policy"]["vision_cache"].endswith("_grounded_search.safetensors")
+    assert chunk["policy"]["vision_cache"].endswith("_grounded_objects.safetensors")

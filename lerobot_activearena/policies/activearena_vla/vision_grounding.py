@@ -6,7 +6,10 @@ current subtask's focus object is in the head image, from a built dataset's per-
 (``focus_object_visible``, ``target_uv_norm``): which merged visual token holds it, or none. With a
 ``search_weight`` it also says where the task's search targets in view are and how many there are
 (``object_uv_norm``, ``search_target_mask`` and the sidecar's ``search_targets``): a count task's
-counting frames have no focus object, and the blocks to count are what the tower must keep. The
+counting frames have no focus object, and the blocks to count are what the tower must keep. With an
+``identity_weight`` it also says which objects are in each token by what they look like (the sidecar's
+object names without instance numbers: "button 2", "green block"): a frozen tower must tell the
+buttons apart for a policy to press the one of the count. The
 policy then trains from the grounded backbone as the paper's trains from Qwen3-VL's.
 """
 
@@ -37,6 +40,34 @@ class GroundingFrames:
     # (N, M, 2): each search target in view (searched for now, and one the task needs seen: the
     # sidecar's ``search_targets``), its (u, v); (-1, -1) for every other slot. None: not loaded.
     search_uv: np.ndarray | None = None
+    # (N, M): each object in view, its appearance class (an index into ``classes``); -1 elsewhere
+    object_class: np.ndarray | None = None
+    object_uv: np.ndarray | None = None  # (N, M, 2) every object's (u, v)
+    classes: list[str] | None = None
+
+
+def appearance_class(key: str, name: str) -> str:
+    """An object's name without its instance number: the tasks name the k-th of several alike objects
+    ``<kind>_<k>`` / "<kind> <k + 1>" ("green block 2"), which look the same; a number that is part of
+    what the object shows stays ("button 2", key ``button_2``)."""
+    stem, _, index = key.rpartition("_")
+    words = name.rsplit(" ", 1)
+    if stem and index.isdigit() and len(words) == 2 and words[1] == str(int(index) + 1):
+        return words[0]
+    return name
+
+
+def identity_token_targets(
+    object_uv: np.ndarray, object_class: np.ndarray, n_classes: int, rows: int, cols: int
+) -> np.ndarray:
+    """(N, rows * cols, n_classes) 0/1: which appearance classes each merged token holds."""
+    n = len(object_uv)
+    f, k = np.nonzero(object_class >= 0)
+    u, v = object_uv[f, k, 0], object_uv[f, k, 1]
+    cell = np.clip((v * rows).astype(int), 0, rows - 1) * cols + np.clip((u * cols).astype(int), 0, cols - 1)
+    out = np.zeros((n, rows * cols, n_classes), np.float32)
+    out[f, cell, object_class[f, k]] = 1.0
+    return out
 
 
 def search_target_points(
@@ -82,10 +113,11 @@ def within_cells(uv: np.ndarray, rows: int, cols: int) -> np.ndarray:
 
 
 def load_grounding_frames(
-    root: str | Path, camera: str = "observation.images.head", search: bool = False
+    root: str | Path, camera: str = "observation.images.head", search: bool = False, identity: bool = False
 ) -> GroundingFrames:
     """Every frame of the build at ``root``: its decoded head image and its focus annotations (and, with
-    ``search``, its search targets' image points)."""
+    ``search``, its search targets' image points; with ``identity``, every object's point and
+    appearance class)."""
     import pandas as pd
     from lerobot.datasets.video_utils import decode_video_frames
     from tqdm import tqdm
@@ -98,10 +130,11 @@ def load_grounding_frames(
             f"{root} has no per-frame {', '.join(missing)}: ground on the full build that "
             "activearena-build-dataset wrote, not on its slimmed copy (activearena-slim-dataset drops them)"
         )
-    if search and (missing := [c for c in SEARCH_ANNOTATIONS if c not in data.columns]):
+    if (search or identity) and (missing := [c for c in SEARCH_ANNOTATIONS if c not in data.columns]):
         raise ValueError(
-            f"{root} has no per-frame {', '.join(missing)}: grounding on search targets needs a build "
-            "made by this version of activearena-build-dataset (rebuild it), or pass --search-weight 0"
+            f"{root} has no per-frame {', '.join(missing)}: grounding on search targets or object identities "
+            "needs a build made by this version of activearena-build-dataset (rebuild it), or pass "
+            "--search-weight 0 --identity-weight 0"
         )
     info = json.loads((root / "meta/info.json").read_text())
     if camera not in info["features"]:
@@ -124,18 +157,33 @@ def load_grounding_frames(
             decode_video_frames(path, stamps, 1 / (2 * info["fps"]), backend="pyav", return_uint8=True)
         )
     order = pd.concat(parts)
-    search_uv = None
-    if search:
+    search_uv = object_class = object_uv = classes = None
+    if search or identity:
         sidecars = {
             int(ep): json.loads((root / f"meta/activearena/sidecars/episode_{int(ep):06d}.json").read_text())
             for ep in episodes["episode_index"]
         }
+        object_uv = np.stack(order["object_uv_norm"].to_numpy()).reshape(len(order), -1, 2)
+        visible = np.stack(order["visible_object_mask"].to_numpy())
+    if search:
         search_uv = search_target_points(
-            np.stack(order["object_uv_norm"].to_numpy()),
-            np.stack(order["visible_object_mask"].to_numpy()),
+            object_uv,
+            visible,
             np.stack(order["search_target_mask"].to_numpy()),
             [np.asarray(sidecars[int(ep)]["search_targets"], int) for ep in order["episode_index"]],
         )
+    if identity:
+        named = {
+            ep: {o["index"]: appearance_class(o["key"], o["name"]) for o in side["objects"]}
+            for ep, side in sidecars.items()
+        }
+        classes = sorted({c for slots in named.values() for c in slots.values()})
+        slot_class = {
+            ep: np.array([classes.index(slots.get(k, classes[0])) for k in range(visible.shape[1])])
+            for ep, slots in named.items()
+        }
+        per_frame = np.stack([slot_class[int(ep)] for ep in order["episode_index"]])
+        object_class = np.where(visible == 1, per_frame, -1)
     return GroundingFrames(
         images=torch.cat(images),
         visible=order["focus_object_visible"].to_numpy().astype(bool),
@@ -143,6 +191,9 @@ def load_grounding_frames(
         episodes=order["episode_index"].to_numpy(),
         frames=order["frame_index"].to_numpy(),
         search_uv=search_uv,
+        object_class=object_class,
+        object_uv=object_uv if identity else None,
+        classes=classes,
     )
 
 
@@ -161,27 +212,34 @@ class GroundingOutput:
     points: torch.Tensor  # (N, T, 2): where in each token it would be
     search: torch.Tensor  # (N, T): a search target is in this token
     count: torch.Tensor  # (N, C + 1): how many search targets are in view
+    identity: torch.Tensor  # (N, T, K): each appearance class is in this token
 
 
 class GroundingHead(nn.Module):
     """A logit per merged token (the focus object is there) and one for "not in view" from their mean;
     per token, where in it the object would be ((u, v) in [0, 1]); per token, a logit that a search
-    target is there; and from the mean, logits of how many are in view (0 .. ``max_count``)."""
+    target is there; from the mean, logits of how many are in view (0 .. ``max_count``); per token, a
+    logit per appearance class that an object of it is there."""
 
-    def __init__(self, width: int, max_count: int = 0):
+    def __init__(self, width: int, max_count: int = 0, n_classes: int = 0):
         super().__init__()
         self.token = nn.Linear(width, 1)
         self.absent = nn.Linear(width, 1)
         self.point = nn.Linear(width, 2)
         self.search = nn.Linear(width, 1)
         self.count = nn.Linear(width, max_count + 1)
+        self.identity = nn.Linear(width, max(n_classes, 1))
 
     def forward(self, tokens: torch.Tensor) -> GroundingOutput:
         """(N, T, D) -> focus logits (N, T + 1), points (N, T, 2), search logits (N, T), count logits."""
         mean = tokens.mean(1)
         logits = torch.cat([self.token(tokens)[..., 0], self.absent(mean)], dim=-1)
         return GroundingOutput(
-            logits, torch.sigmoid(self.point(tokens)), self.search(tokens)[..., 0], self.count(mean)
+            logits,
+            torch.sigmoid(self.point(tokens)),
+            self.search(tokens)[..., 0],
+            self.count(mean),
+            self.identity(tokens),
         )
 
 
@@ -189,12 +247,13 @@ class GroundedTower(nn.Module):
     """A Qwen3-VL's vision tower with a grounding head on its merged tokens and one on each DeepStack
     feature (the tower's middle layers, which the language model also reads). Returns their outputs."""
 
-    def __init__(self, vlm, image_processor, max_pixels: int, max_count: int = 0):
+    def __init__(self, vlm, image_processor, max_pixels: int, max_count: int = 0, n_classes: int = 0):
         super().__init__()
         self.vlm, self.image_processor, self.max_pixels = vlm, image_processor, max_pixels
         taps = len(vlm.config.vision_config.deepstack_visual_indexes)
         self.heads = nn.ModuleList(
-            GroundingHead(vlm.config.vision_config.out_hidden_size, max_count) for _ in range(1 + taps)
+            GroundingHead(vlm.config.vision_config.out_hidden_size, max_count, n_classes)
+            for _ in range(1 + taps)
         )
 
     def grid(self, images: torch.Tensor) -> tuple[int, int]:
@@ -222,11 +281,15 @@ def grounding_loss(
     point_weight: float,
     search: tuple[torch.Tensor, torch.Tensor] | None = None,
     search_weight: float = 0.0,
+    identity: torch.Tensor | None = None,
+    identity_weight: float = 0.0,
 ) -> torch.Tensor:
     """Cross-entropy over the tokens and "not in view", plus ``point_weight`` x the L1 error of the point
     predicted in the token that holds the object (frames that show it), plus ``search_weight`` x (the
     per-token binary cross-entropy of "a search target is here" + the cross-entropy of how many are in
-    view; ``search``: ``search_token_targets``' two arrays as tensors), averaged over the heads."""
+    view; ``search``: ``search_token_targets``' two arrays as tensors), plus ``identity_weight`` x the
+    per-token, per-class binary cross-entropy of ``identity`` (``identity_token_targets``), averaged over
+    the heads."""
     none = outputs[0].logits.shape[-1] - 1
     seen = torch.nonzero(cells != none).flatten()
     total = 0.0
@@ -241,16 +304,22 @@ def grounding_loss(
                 nn.functional.binary_cross_entropy_with_logits(out.search, occupied)
                 + nn.functional.cross_entropy(out.count, count)
             )
+        if identity_weight:
+            total = total + identity_weight * nn.functional.binary_cross_entropy_with_logits(
+                out.identity, identity
+            )
     return total / len(outputs)
 
 
 def _accuracy(
-    model: GroundedTower, images, cells, uv, grid: tuple[int, int], batch: int, search=None
+    model: GroundedTower, images, cells, uv, grid: tuple[int, int], batch: int, search=None, identity=None
 ) -> dict[str, float]:
     """Held-out figures. Point errors are in pixels of ``images``, over the frames that show the object and
     whose token is named right: the predicted point's, and the token centre's for comparison. With
     ``search`` (``search_token_targets``' arrays): how often the number of search targets in view is
-    right (beside always guessing the most common number), and the per-token precision and recall."""
+    right (beside always guessing the most common number), and the per-token precision and recall. With
+    ``identity`` (``identity_token_targets``): in the tokens that hold objects of one class, how often
+    that class has the highest logit (beside always guessing the most common class)."""
     rows, cols = grid
     model.eval()
     with torch.no_grad():
@@ -288,6 +357,13 @@ def _accuracy(
         figures["search_token_recall"] = (
             float(there[occupied == 1].float().mean()) if (occupied == 1).any() else float("nan")
         )
+    if identity is not None:
+        identity = torch.as_tensor(identity)
+        single = identity.sum(-1) == 1
+        truth = identity[single].argmax(-1)
+        guess = torch.cat([o.identity for o in outs])[single].argmax(-1)
+        figures["identity_accuracy"] = float((guess == truth).float().mean())
+        figures["identity_majority"] = float((truth == truth.mode().values).float().mean())
     return figures
 
 
@@ -303,26 +379,39 @@ def ground_vision_tower(
     seed: int = 0,
     point_weight: float = 0.0,
     search_weight: float = 0.0,
+    identity_weight: float = 0.0,
 ) -> dict:
     """Fit ``vlm_path``'s vision tower to the focus object's place in the build at ``root``'s head frames
     and save the whole model (tokenizer and processor copied) to ``out_dir``. Every ``val_every``-th
     episode is held out and scored. ``point_weight`` > 0 also fits where in its token the object lies (the
     token alone places it within half a token). ``search_weight`` > 0 also fits which tokens hold a search
-    target and how many are in view. Returns the figures also written to ``out_dir/grounding.json``."""
+    target and how many are in view; ``identity_weight`` > 0 which appearance classes each token holds.
+    Returns the figures also written to ``out_dir/grounding.json``."""
     from tqdm import tqdm
     from transformers import AutoProcessor
 
     from .vlm_loading import load_policy_vlm
 
     torch.manual_seed(seed)
-    frames = load_grounding_frames(root, search=search_weight > 0)
+    frames = load_grounding_frames(root, search=search_weight > 0, identity=identity_weight > 0)
     # as the policy builds it (linear patch embedding, batched vision attention): the same weights, and
     # PyTorch's CPU Conv3d backward is most of a grounding step otherwise
     vlm = load_policy_vlm(str(vlm_path))
     processor = AutoProcessor.from_pretrained(vlm_path)
     rows, cols = token_grid(processor.image_processor, frames.images, max_pixels)
     search = search_token_targets(frames.search_uv, rows, cols) if search_weight > 0 else None
-    model = GroundedTower(vlm, processor.image_processor, max_pixels, int(search[1].max()) if search else 0)
+    identity = (
+        identity_token_targets(frames.object_uv, frames.object_class, len(frames.classes), rows, cols)
+        if identity_weight > 0
+        else None
+    )
+    model = GroundedTower(
+        vlm,
+        processor.image_processor,
+        max_pixels,
+        int(search[1].max()) if search else 0,
+        len(frames.classes) if identity is not None else 0,
+    )
     cells = token_cells(frames.visible, frames.uv, rows, cols)
     within = torch.as_tensor(within_cells(frames.uv, rows, cols))
     held = frames.episodes % val_every == val_every - 1
@@ -346,7 +435,14 @@ def ground_vision_tower(
                 b = order[i : i + batch_size]
                 batch_search = search and (torch.as_tensor(search[0][b]), torch.as_tensor(search[1][b]))
                 loss = grounding_loss(
-                    model(frames.images[b]), target[b], within[b], point_weight, batch_search, search_weight
+                    model(frames.images[b]),
+                    target[b],
+                    within[b],
+                    point_weight,
+                    batch_search,
+                    search_weight,
+                    None if identity is None else torch.as_tensor(identity[b]),
+                    identity_weight,
                 )
                 opt.zero_grad()
                 loss.backward()
@@ -364,6 +460,7 @@ def ground_vision_tower(
                 (rows, cols),
                 4 * batch_size,
                 held_search,
+                None if identity is None else identity[held],
             )
             history.append({"epoch": epoch + 1, "train_loss": round(float(np.mean(losses)), 4), **scores})
             tqdm.write(json.dumps(history[-1]))
@@ -383,6 +480,8 @@ def ground_vision_tower(
         "lr": lr,
         "point_weight": point_weight,
         "search_weight": search_weight,
+        "identity_weight": identity_weight,
+        "classes": frames.classes,
         "history": history,
     }
     (tmp / "grounding.json").write_text(json.dumps(report, indent=1) + "\n")
