@@ -121,17 +121,19 @@ def test_identity_token_targets_mark_each_class_in_its_token():
     np.testing.assert_array_equal(hidden[0].sum(0), [0, 0, 1])
 
 
-def test_grounding_loss_adds_the_identity_term_with_its_weight():
+def test_grounding_loss_names_the_class_of_tokens_that_hold_one():
     cells = torch.tensor([2])
-    logits, points = torch.tensor([[0.0, 0.0, 3.0]]), torch.full((1, 2, 2), 0.5)
-    guess = torch.tensor([[[2.0, -2.0], [-1.0, 0.5]]])
-    truth = torch.tensor([[[1.0, 0.0], [0.0, 1.0]]])
+    logits, points = torch.tensor([[0.0, 0.0, 3.0]]), torch.full((1, 3, 2), 0.5)
+    guess = torch.tensor([[[2.0, -2.0], [-1.0, 0.5], [5.0, -5.0]]])
+    # token 0 holds class 0, token 1 class 1, token 2 both (not scored)
+    truth = torch.tensor([[[1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]])
     out = outputs(logits, points, identity=guess)
     base = grounding_loss(out, cells, None, 0.0)
     both = grounding_loss(out, cells, None, 0.0, identity=truth, identity_weight=2.0)
-    bce = torch.nn.functional.binary_cross_entropy_with_logits(guess, truth)
-    assert torch.isclose(both - base, 2.0 * bce)
-    assert grounding_loss(out, cells, None, 0.0, identity=1 - truth, identity_weight=2.0) > both
+    ce = torch.nn.functional.cross_entropy(guess[0, :2], torch.tensor([0, 1]))
+    assert torch.isclose(both - base, 2.0 * ce)
+    swapped = truth[..., [1, 0]]
+    assert grounding_loss(out, cells, None, 0.0, identity=swapped, identity_weight=2.0) > both
 
 
 def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dataset):

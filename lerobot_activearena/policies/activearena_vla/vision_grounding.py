@@ -219,7 +219,7 @@ class GroundingHead(nn.Module):
     """A logit per merged token (the focus object is there) and one for "not in view" from their mean;
     per token, where in it the object would be ((u, v) in [0, 1]); per token, a logit that a search
     target is there; from the mean, logits of how many are in view (0 .. ``max_count``); per token, a
-    logit per appearance class that an object of it is there."""
+    logit per appearance class (which kind of object is there)."""
 
     def __init__(self, width: int, max_count: int = 0, n_classes: int = 0):
         super().__init__()
@@ -288,10 +288,13 @@ def grounding_loss(
     predicted in the token that holds the object (frames that show it), plus ``search_weight`` x (the
     per-token binary cross-entropy of "a search target is here" + the cross-entropy of how many are in
     view; ``search``: ``search_token_targets``' two arrays as tensors), plus ``identity_weight`` x the
-    per-token, per-class binary cross-entropy of ``identity`` (``identity_token_targets``), averaged over
-    the heads."""
+    cross-entropy over the appearance classes in the tokens that hold objects of one class (``identity``:
+    ``identity_token_targets``), averaged over the heads."""
     none = outputs[0].logits.shape[-1] - 1
     seen = torch.nonzero(cells != none).flatten()
+    if identity_weight:
+        single = identity.sum(-1) == 1  # tokens that hold objects of one class
+        named = identity[single].argmax(-1)
     total = 0.0
     for out in outputs:
         total = total + nn.functional.cross_entropy(out.logits, cells)
@@ -304,10 +307,8 @@ def grounding_loss(
                 nn.functional.binary_cross_entropy_with_logits(out.search, occupied)
                 + nn.functional.cross_entropy(out.count, count)
             )
-        if identity_weight:
-            total = total + identity_weight * nn.functional.binary_cross_entropy_with_logits(
-                out.identity, identity
-            )
+        if identity_weight and len(single):
+            total = total + identity_weight * nn.functional.cross_entropy(out.identity[single], named)
     return total / len(outputs)
 
 
