@@ -3,8 +3,9 @@
 summed over the frame's tokens) learns the number of counted objects in view (green blocks by
 default) from the frame's visual tokens, on the counting subtask's frames of episodes 0-159; it
 prints train and held-out (episodes 160+) accuracy beside the majority class. On the one-arm count
-build no cache beats the majority class held out, and neither does the green-pixel share of each
-64 px cell: the label (`visible_object_mask`) or the probe does not yet measure what counting needs.
+build the focus-grounded tower's cache does not beat the majority class held out (46.3 % against
+48.2 %); the tower grounded also on the blocks (`activearena-ground-vision --search-weight 1`) does
+(75.7 %).
 
     python analysis/policies/vision_feature_probe.py --root outputs/datasets/cpu_count_left_200_p16_192 \\
         outputs/vision_cache/cpu_count_left_200_p16_192_grounded.safetensors CACHE...
