@@ -32,6 +32,11 @@ def differing_policy_keys(a: dict, b: dict) -> set[str]:
     return {k for k in set(a["policy"]) | set(b["policy"]) if a["policy"].get(k) != b["policy"].get(k)}
 
 
+def small_preset(memory: str, name: str) -> dict:
+    """``configs/policy/small/oft_subtask_<memory>_ws_grounded_<name>.json``."""
+    return json.loads((CONFIGS / "small" / f"oft_subtask_{memory}_ws_grounded_{name}.json").read_text())
+
+
 PIXELS_96 = 96 * 128
 
 
@@ -149,10 +154,8 @@ def test_the_one_arm_count_pair_is_the_frozen_pair_on_its_own_build():
     small = CONFIGS / "small"
     pair = {}
     for memory in ("action_12", "no_0"):
-        left = pair[memory] = json.loads(
-            (small / f"oft_subtask_{memory}_ws_grounded_count_left_frozen.json").read_text()
-        )
-        frozen = json.loads((small / f"oft_subtask_{memory}_ws_grounded_count_frozen.json").read_text())
+        left = pair[memory] = small_preset(memory, "count_left_frozen")
+        frozen = small_preset(memory, "count_frozen")
         assert left["dataset"] == {**frozen["dataset"], "repo_id": "local/cpu_count_left_200_p16_192"}
         changed = {k for k in left["policy"] if left["policy"][k] != frozen["policy"].get(k)}
         assert changed == {"vlm_path", "scheduler_decay_steps"} | (
@@ -174,13 +177,10 @@ def test_the_object_grounded_pair_is_the_one_arm_pair_on_its_own_tower():
     blocks to count and on which object each token holds (``activearena-ground-vision --search-weight
     --identity-weight``) and that tower's table; nothing else changed, and the two still differ only
     in the memory."""
-    small = CONFIGS / "small"
     pair = {}
     for memory in ("action_12", "no_0"):
-        objects = pair[memory] = json.loads(
-            (small / f"oft_subtask_{memory}_ws_grounded_count_left_objects_frozen.json").read_text()
-        )
-        left = json.loads((small / f"oft_subtask_{memory}_ws_grounded_count_left_frozen.json").read_text())
+        objects = pair[memory] = small_preset(memory, "count_left_objects_frozen")
+        left = small_preset(memory, "count_left_frozen")
         assert {k for k in objects if objects[k] != left[k]} == {"policy", "job_name"}
         assert differing_policy_keys(objects, left) == {"vlm_path"} | (
             {"vision_cache"} if memory == "action_12" else set()

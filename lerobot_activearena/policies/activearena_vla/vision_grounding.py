@@ -256,9 +256,6 @@ class GroundedTower(nn.Module):
             for _ in range(1 + taps)
         )
 
-    def grid(self, images: torch.Tensor) -> tuple[int, int]:
-        return token_grid(self.image_processor, images, self.max_pixels)
-
     def forward(self, images: torch.Tensor) -> list[GroundingOutput]:
         from .processor_activearena_vla import image_inputs, one_token_pixels
 
