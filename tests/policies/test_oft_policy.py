@@ -342,7 +342,7 @@ def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
     seen = []
     vision = policy.vision_features
     monkeypatch.setattr(
-        policy, "vision_features", lambda pv, grid: seen.append(len(grid)) or vision(pv, grid)
+        policy, "vision_features", lambda pv, grid, *a: seen.append(len(grid)) or vision(pv, grid, *a)
     )
     for t, obs, _ in _scripted_observations(33):
         batch = pre(obs)
@@ -432,6 +432,14 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(memory_ablation="noise", device="cpu")
     with pytest.raises(ValueError, match="memory_ablation=blank .* this policy has no memory"):
         ActiveArenaOFTConfig(memory="none", memory_ablation="blank", device="cpu")
+    with pytest.raises(ValueError, match="memory_vision must be one of"):
+        ActiveArenaOFTConfig(memory_vision="copy", device="cpu")
+    with pytest.raises(ValueError, match="memory_vision=frozen .* needs a memory"):
+        ActiveArenaOFTConfig(memory="none", memory_vision="frozen", device="cpu")
+    with pytest.raises(ValueError, match="memory_vision=frozen .*freeze_vision=false .*freeze_vision=True"):
+        ActiveArenaOFTConfig(memory_vision="frozen", freeze_vision=True, device="cpu")
+    with pytest.raises(ValueError, match="vision_lr is .*freeze_vision=false"):
+        ActiveArenaOFTConfig(vision_lr=1e-4, freeze_vision=True, device="cpu")
 
 
 def test_local_vlm_and_dataset_paths_are_stored_absolute(vlm, tmp_path, monkeypatch):
@@ -886,6 +894,44 @@ def test_images_are_processed_on_the_policy_device(vlm, root):
         step.processor.image_processor = real
     expected = torch.device("cuda") if torch.cuda.is_available() else torch.device("cpu")
     assert calls == [(expected, {expected})]
+
+
+def test_a_frozen_memory_tower_reads_the_memory_bank_as_loaded(vlm, root):
+    """memory_vision=frozen: once the policy's own tower has moved away from the one loaded, the
+    memory bank's features are still the frozen copy's (what a vision cache made from the loaded
+    tower holds), the current frame goes through the trained tower, and the chunk is the one of
+    encoding the same frames afresh that way."""
+    _, policy, pre, _, _ = _setup(vlm, root, memory="chunk", history=2, think="none", memory_vision="frozen")
+    with torch.no_grad():
+        for p in policy.vlm.model.visual.parameters():
+            p.add_(0.05 * torch.randn_like(p))  # the trained tower, no longer the loaded one
+    policy.eval()
+    for t, obs, _ in _scripted_observations(33):
+        batch = pre(obs)
+        if t == 32:
+            pixels, grid, valid, state, _ = policy.history_batch(batch)
+            with torch.no_grad():
+                fresh, _ = policy.encode(
+                    pixels,
+                    grid,
+                    valid,
+                    state,
+                    batch["observation.vlm.prefix_ids"],
+                    batch["observation.vlm.prompt_ids"],
+                    batch["observation.vlm.prompt_mask"],
+                )
+        action = policy.select_action(batch)
+    assert torch.allclose(action, fresh[:, 0], atol=1e-5)
+    bank = policy.memory(0)
+    assert [e["t"] for e in bank] == [16, 32]
+    # frame 32 is encoded by the copy at its first use as memory; frame 16 was at step 32
+    assert bank[1]["vision"] is None
+    for entry in bank[:1]:
+        with torch.no_grad():
+            frozen = policy.vision_features(entry["pixels"], entry["grid"][None], memory=True)[0][0]
+            trained = policy.vision_features(entry["pixels"], entry["grid"][None])[0][0]
+        assert torch.allclose(entry["vision"][0], frozen, atol=1e-6)
+        assert not torch.allclose(entry["vision"][0], trained, atol=1e-3)
 
 
 def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root):

@@ -18,6 +18,7 @@ from lerobot_activearena.policies.activearena_vla.processor_activearena_vla impo
     MEMORY_INDEX,
     PIXELS,
 )
+from lerobot_activearena.policies.activearena_vla.vlm_loading import load_policy_vlm
 
 CONFIGS = Path(__file__).resolve().parents[2] / "configs" / "policy"
 MEMORY_KEYS = {
@@ -90,6 +91,44 @@ def test_cached_memory_gives_the_loss_and_gradients_of_decoding_it(tiny_vlm, bel
     assert not any(id(p) in optimised for p in frozen)
 
 
+def test_a_frozen_memory_tower_lets_the_current_frames_tower_train_beside_the_cache(
+    tiny_vlm, bell_count_dataset, table
+):
+    """memory_vision=frozen: the memory frames go through a frozen copy of the tower as loaded, so the
+    table made from that tower still holds their features once the policy's own tower (which reads the
+    current frame) has trained away from it; the cached batch gives the loss and gradients of decoding
+    the memory, the copy gets none, and vision_lr sets the trained tower's own rate."""
+    tuned = {"freeze_vision": False, "memory_vision": "frozen", "vision_lr": 1e-5}
+    live_cfg, cached_cfg = _config(tiny_vlm, **tuned), _config(tiny_vlm, vision_cache=str(table), **tuned)
+    live, live_pre, _, live_ds = build_policy(live_cfg, bell_count_dataset)
+    cached, cached_pre, _, cached_ds = build_policy(cached_cfg, bell_count_dataset)
+    shared, shared_pre, _, _ = build_policy(_config(tiny_vlm, freeze_vision=False), bell_count_dataset)
+    for policy in (live, cached, shared):
+        with torch.no_grad():  # as after training steps: the policy's tower moved, the copy did not
+            torch.manual_seed(1)
+            for p in policy.vlm.model.visual.parameters():
+                p.add_(0.05 * torch.randn_like(p))
+    indices = [70, len(live_ds) - 40]
+    a, b = collate(live_ds, live_pre, indices), collate(cached_ds, cached_pre, indices)
+    loss_a, _ = live.forward(a)
+    loss_b, _ = cached.forward(b)
+    assert torch.allclose(loss_a, loss_b, atol=1e-5)
+    # the shared tower reads the memory through the moved weights: another loss
+    assert not torch.allclose(shared.forward(collate(live_ds, shared_pre, indices))[0], loss_a, atol=1e-4)
+    loss_a.backward()
+    loss_b.backward()
+    params_a, params_b = dict(live.named_parameters()), dict(cached.named_parameters())
+    for name in ("vlm.model.visual.blocks.0.mlp.linear_fc1.weight", "action_queries"):
+        assert params_a[name].grad is not None and params_a[name].grad.abs().sum() > 0, name
+        assert torch.allclose(params_a[name].grad, params_b[name].grad, atol=1e-5, rtol=1e-4), name
+    copy = [p for n, p in cached.named_parameters() if n.startswith("memory_tower.")]
+    assert copy and all(p.grad is None and not p.requires_grad for p in copy)
+    groups = cached.get_optim_params()
+    assert [g["lr"] for g in groups] == [cached_cfg.optimizer_lr, 1e-5, cached_cfg.head_lr]
+    assert {id(p) for p in groups[1]["params"]} == {id(p) for p in cached.vlm.model.visual.parameters()}
+    assert not {id(p) for g in groups for p in g["params"]} & {id(p) for p in copy}
+
+
 def test_a_cache_of_another_tower_or_image_size_is_refused(tiny_vlm, bell_count_dataset, table):
     policy, pre, _, ds = build_policy(_config(tiny_vlm, vision_cache=str(table)), bell_count_dataset)
     batch = collate(ds, pre, [70])
@@ -105,7 +144,7 @@ def test_a_cache_of_another_tower_or_image_size_is_refused(tiny_vlm, bell_count_
 
 
 def test_vision_cache_settings_that_cannot_work_are_named(tiny_vlm, table, tmp_path):
-    with pytest.raises(ValueError, match="freeze_vision=true"):
+    with pytest.raises(ValueError, match="freeze_vision=true or --policy.memory_vision=frozen"):
         _config(tiny_vlm, vision_cache=str(table), freeze_vision=False)
     with pytest.raises(ValueError, match="memory=chunk"):
         _config(tiny_vlm, vision_cache=str(table), memory="none")
@@ -189,3 +228,45 @@ def test_the_object_grounded_pair_is_the_one_arm_pair_on_its_own_tower():
     chunk, free = pair["action_12"], pair["no_0"]
     assert differing_policy_keys(chunk, free) == MEMORY_KEYS
     assert chunk["policy"]["vision_cache"].endswith("_grounded_objects.safetensors")
+
+
+def test_the_tuned_pair_trains_the_current_frames_tower_and_keeps_the_memorys(
+    tiny_vlm, bell_count_dataset, table, tmp_path
+):
+    """The _count_left_objects_tuned pair: the object-grounded pair with the vision tower trained (at
+    vision_lr) on the current frame; the chunk-12 one reads its memory through a frozen copy of the
+    grounded tower (and that tower's table). The two still differ only in the memory; the chunk-12
+    one trains through lerobot-train and its checkpoint keeps the copy as loaded."""
+    from safetensors.torch import load_file
+
+    pair = {}
+    for memory in ("action_12", "no_0"):
+        tuned = pair[memory] = small_preset(memory, "count_left_objects_tuned")
+        frozen = small_preset(memory, "count_left_objects_frozen")
+        assert {k for k in tuned if tuned[k] != frozen[k]} == {"policy", "job_name"}
+        assert differing_policy_keys(tuned, frozen) == {"freeze_vision", "vision_lr"} | (
+            {"memory_vision"} if memory == "action_12" else set()
+        )
+        assert tuned["policy"]["freeze_vision"] is False and tuned["policy"]["vision_lr"] == 1e-4
+    chunk, free = pair["action_12"], pair["no_0"]
+    assert differing_policy_keys(chunk, free) == MEMORY_KEYS | {"memory_vision"}
+    name = "oft_subtask_action_12_ws_grounded_count_left_objects_tuned"
+    ckpt = train_preset(
+        CONFIGS / "small" / f"{name}.json",
+        bell_count_dataset,
+        tiny_vlm,
+        tmp_path / name,
+        f"--policy.image_max_pixels={PIXELS_96}",
+        f"--policy.vision_cache={table}",
+    )
+    weights = load_file(str(ckpt / "model.safetensors"))
+    original = load_policy_vlm(str(tiny_vlm), torch.float32, "sdpa").model.visual.state_dict()
+    copies = {k.removeprefix("memory_tower."): v for k, v in weights.items() if k.startswith("memory_tower.")}
+    assert copies and copies.keys() == original.keys()
+    assert all(torch.equal(copies[k], original[k]) for k in copies)
+    trained = {
+        k.removeprefix("vlm.model.visual."): v
+        for k, v in weights.items()
+        if k.startswith("vlm.model.visual.")
+    }
+    assert any(not torch.equal(trained[k], original[k]) for k in original)

@@ -22,6 +22,7 @@ from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 IMAGE_KEY = "observation.images.head"
 THINK_TARGETS = ("none", "instruction", "subtask")
 MEMORY_ABLATIONS = ("none", "blank")
+MEMORY_VISION = ("shared", "frozen")
 DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
 CHECKPOINT_LAYERS = ("all", "vision", "language")
@@ -46,6 +47,13 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # the current frame and the tower reads only that (evaluation computes every frame live, the same).
     freeze_vision: bool = False
     vision_cache: str | None = None
+    # Which tower reads the memory frames: shared (the policy's own, as the paper's) | frozen (a frozen
+    # copy of the tower as loaded, while the policy's own tower trains on the current frame). With
+    # frozen, a grounded tower's memory features stay fixed, so ``vision_cache`` serves them at training
+    # time while the current frame's tower is fine-tuned (evaluation reads memory through the same copy).
+    memory_vision: str = "shared"
+    # The vision tower's learning rate when it trains (None: optimizer_lr, the backbone's).
+    vision_lr: float | None = None
     # Evaluation-only ablation: "blank" replaces every memory image with a uniform gray one (the memory's
     # state tokens and frame slots stay), so a trained checkpoint can be scored without what it saw.
     memory_ablation: str = "none"
@@ -146,6 +154,7 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             ("weights_dtype", WEIGHT_DTYPES),
             ("attn_implementation", ATTENTION),
             ("memory_ablation", MEMORY_ABLATIONS),
+            ("memory_vision", MEMORY_VISION),
             ("gradient_checkpointing_layers", CHECKPOINT_LAYERS),
             ("gradient_checkpointing_mode", CHECKPOINT_MODES),
             ("residual_dtype", RESIDUAL_DTYPES),
@@ -191,11 +200,25 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
                 f"chunk memory writes every {STRIDE}th frame and was trained to act on that grid: "
                 f"--policy.n_action_steps must be {STRIDE}, got {self.n_action_steps}"
             )
-        if self.vision_cache and not (self.freeze_vision and self.memory == "chunk" and self.history > 0):
+        if self.memory_vision == "frozen" and (self.freeze_vision or not self.uses_history):
+            raise ValueError(
+                "--policy.memory_vision=frozen reads the memory frames through a frozen copy of the tower while "
+                "the policy's own tower trains: it needs a memory (history > 0, memory not none) and "
+                f"--policy.freeze_vision=false (got history={self.history}, memory={self.memory}, "
+                f"freeze_vision={self.freeze_vision}; with a frozen tower the memory is read frozen already)"
+            )
+        memory_frozen = self.freeze_vision or self.memory_vision == "frozen"
+        if self.vision_cache and not (memory_frozen and self.memory == "chunk" and self.history > 0):
             raise ValueError(
                 "--policy.vision_cache holds a frozen tower's features of the chunk memory's frames: it needs "
-                "--policy.freeze_vision=true and memory=chunk with history > 0 "
-                f"(got freeze_vision={self.freeze_vision}, memory={self.memory}, history={self.history})"
+                "--policy.freeze_vision=true or --policy.memory_vision=frozen, and memory=chunk with history "
+                f"> 0 (got freeze_vision={self.freeze_vision}, memory_vision={self.memory_vision}, "
+                f"memory={self.memory}, history={self.history})"
+            )
+        if self.vision_lr is not None and (self.vision_lr <= 0 or self.freeze_vision):
+            raise ValueError(
+                f"--policy.vision_lr is the training vision tower's learning rate: a number > 0 with "
+                f"--policy.freeze_vision=false (got vision_lr={self.vision_lr}, freeze_vision={self.freeze_vision})"
             )
         # A local folder is stored absolute, so a checkpoint reloads from any working directory.
         for name in ("vlm_path", "dataset_root", "vision_cache"):

@@ -10,6 +10,7 @@ policy's memory bank, written causally and reset per episode), so both see ident
 
 from __future__ import annotations
 
+import copy
 from collections import deque
 
 import numpy as np
@@ -65,6 +66,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         self.vlm = load_policy_vlm(config.vlm_path, weights_dtype(config), config.attn_implementation)
         if config.freeze_vision:
             self.vlm.model.visual.requires_grad_(False)
+        # memory_vision=frozen: the memory frames' tower, a frozen copy of the one loaded
+        self.memory_tower = (
+            copy.deepcopy(self.vlm.model.visual).requires_grad_(False)
+            if config.memory_vision == "frozen"
+            else None
+        )
         if config.vision_cache and type(self).forward is not ActiveArenaVLAPolicy.forward:
             raise ValueError(
                 f"{self.name} trains with its own forward pass, which reads no vision cache: "
@@ -123,10 +130,17 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
 
     # ----- optimisation -----
     def get_optim_params(self) -> list[dict]:
-        backbone = [p for p in self.vlm.parameters() if p.requires_grad]
+        vision = {id(p) for p in self.vlm.model.visual.parameters()}
+        trained = [p for p in self.vlm.parameters() if p.requires_grad]
         heads = [p for n, p in self.named_parameters() if not n.startswith("vlm.") and p.requires_grad]
+        if self.config.vision_lr is None:
+            return [
+                {"params": trained, "lr": self.config.optimizer_lr},
+                {"params": heads, "lr": self.config.head_lr},
+            ]
         return [
-            {"params": backbone, "lr": self.config.optimizer_lr},
+            {"params": [p for p in trained if id(p) not in vision], "lr": self.config.optimizer_lr},
+            {"params": [p for p in trained if id(p) in vision], "lr": self.config.vision_lr},
             {"params": heads, "lr": self.config.head_lr},
         ]
 
@@ -227,18 +241,31 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             "mm_token_type_ids": mm,
             "images": images,
             "pixel_frames": pixel_frames,
+            "n_frames": n_frames,
         }
 
-    def vision_features(self, pixel_values: Tensor, grid: Tensor) -> list[tuple[Tensor, list[Tensor]]]:
+    def vision_features(
+        self, pixel_values: Tensor, grid: Tensor, memory: bool = False
+    ) -> list[tuple[Tensor, list[Tensor]]]:
         """Vision tower per image (each image attends only to itself): its merged tokens and DeepStack
-        features, so a memory frame's can be kept and reused at later chunks."""
+        features, so a memory frame's can be kept and reused at later chunks. ``memory``: the images
+        are memory frames (read by ``memory_tower`` where there is one)."""
         # the grid is on the host (``assemble``), so the tower's cu_seqlens are too; flash-attn's
         # variable-length kernel needs them on the GPU
         flash = self.config.attn_implementation == "flash_attention_2"
-        out = self.vlm.model.get_image_features(pixel_values, grid.to(self.device) if flash else grid)
+        grid = grid.to(self.device) if flash else grid
         sizes = (grid.prod(-1) // self.vlm.config.vision_config.spatial_merge_size**2).tolist()
+        if memory and self.memory_tower is not None:
+            with torch.no_grad():
+                out = self.memory_tower(
+                    pixel_values.type(self.memory_tower.dtype), grid_thw=grid, return_dict=True
+                )
+            embeds = torch.split(out.pooler_output, sizes)
+        else:
+            out = self.vlm.model.get_image_features(pixel_values, grid)
+            embeds = out.pooler_output
         deep = [torch.split(d, sizes) for d in out.deepstack_features]
-        return [(e, [d[i] for d in deep]) for i, e in enumerate(out.pooler_output)]
+        return [(e, [d[i] for d in deep]) for i, e in enumerate(embeds)]
 
     def run_backbone(self, seq: dict, use_cache: bool = False, vision_cache: dict | None = None):
         """The language model over the assembled sequence, image tokens from the vision tower. Memory
@@ -252,10 +279,19 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         todo = [i for i, f in enumerate(feats) if f is None]
         if any(i not in rows for i in todo):
             raise ValueError("a frame without pixel values has no features in the vision cache either")
-        if todo:
-            for i, f in zip(
-                todo, self.vision_features(torch.cat([rows[i] for i in todo]), grid[todo]), strict=True
-            ):
+        # a frame is a memory frame unless it is its sample's last slot (the current frame)
+        current = seq["n_frames"] - 1
+        groups = (
+            [[i for i in todo if images[i][1] != current], [i for i in todo if images[i][1] == current]]
+            if self.memory_tower is not None
+            else [todo]
+        )
+        for group in groups:
+            if not group:
+                continue
+            memory = self.memory_tower is not None and images[group[0]][1] != current
+            computed = self.vision_features(torch.cat([rows[i] for i in group]), grid[group], memory)
+            for i, f in zip(group, computed, strict=True):
                 feats[i] = f
                 if images[i] in vision_cache:
                     vision_cache[images[i]]["vision"] = f
@@ -356,7 +392,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             from .vision_cache import VisionCache
 
             self._vision_table = VisionCache(
-                self.config.vision_cache, self.vlm.model.visual, self.config.image_max_pixels
+                self.config.vision_cache,
+                self.memory_tower if self.memory_tower is not None else self.vlm.model.visual,
+                self.config.image_max_pixels,
             )
         table, grid = self._vision_table, batch[GRID][:, -1].cpu()
         if not bool((grid == table.grid).all()):
@@ -462,7 +500,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         pred = self.encode(*args)[0] if cache is None else self.predict_chunk(args, vision_cache=cache)
         if self.config.fixed_view:  # placeholders: the postprocessor sets torso and head to home
             pred = nn.functional.pad(pred, (0, self.config.action_dim - pred.shape[-1]))
-        if cache is not None:  # the current frames' features, for a memory write at this step
+        # the current frames' features, for a memory write at this step (none where a memory tower
+        # of its own reads the memory: that tower encodes the frame at its first use as memory)
+        if cache is not None and self.memory_tower is None:
             self._current_vision = {
                 b: entry.get("vision") for (b, slot), entry in cache.items() if slot == valid.shape[1] - 1
             }
