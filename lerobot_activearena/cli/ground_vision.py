@@ -51,12 +51,27 @@ def main(argv: list[str] | None = None) -> None:
         "without instance numbers: 'button 2', 'green block'); a frozen tower needs it to tell the count "
         "task's buttons apart (0: off)",
     )
+    p.add_argument(
+        "--jitter",
+        action="store_true",
+        help="colour-jitter the training frames (act_cpu_jitter's brightness, contrast, saturation and hue)",
+    )
+    p.add_argument(
+        "--eval-root",
+        type=Path,
+        default=None,
+        help="another full build (an OOD one: activearena-build-dataset --split ood) scored whole after each epoch",
+    )
     p.add_argument("--overwrite", action="store_true")
     args = p.parse_args(argv)
     if not (args.vlm_dir / "config.json").exists():
         p.error(f"{args.vlm_dir} holds no model; make one with `activearena-make-tiny-vlm {args.vlm_dir}`")
     if not (args.root / "meta/info.json").exists():
         p.error(f"{args.root} is not a LeRobot dataset; build one with activearena-build-dataset")
+    if args.eval_root is not None and not (args.eval_root / "meta/info.json").exists():
+        p.error(
+            f"--eval-root {args.eval_root} is not a LeRobot dataset; build one with activearena-build-dataset"
+        )
     if args.out.resolve() == args.vlm_dir.resolve():
         p.error("--out must differ from VLM_DIR: the ungrounded model is kept")
     if (args.out / "config.json").exists() and not args.overwrite:
@@ -84,6 +99,8 @@ def main(argv: list[str] | None = None) -> None:
             point_weight=args.point_weight,
             search_weight=args.search_weight,
             identity_weight=args.identity_weight,
+            jitter=args.jitter,
+            eval_root=args.eval_root,
         )
     except ValueError as e:  # a build without the annotations
         p.error(str(e))
@@ -107,9 +124,15 @@ def main(argv: list[str] | None = None) -> None:
         if "identity_accuracy" in last
         else ""
     )
+    elsewhere = (
+        f"; {args.eval_root}: in view or not {last['eval_in_view_accuracy']:.1%}, token "
+        f"{last['eval_token_accuracy_where_visible']:.1%} where visible ({last['eval_frames']} frames)"
+        if args.eval_root is not None
+        else ""
+    )
     print(
         f"{args.out}: held-out episodes, in view or not {last['in_view_accuracy']:.1%}, token "
-        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames){point}{search}{identity}; "
+        f"{last['token_accuracy_where_visible']:.1%} where visible ({last['frames']} frames){point}{search}{identity}{elsewhere}; "
         f"use --policy.vlm_path={args.out}"
     )
 

@@ -15,6 +15,7 @@ from lerobot_activearena.cli.slim_dataset import main as slim_main
 from lerobot_activearena.policies.activearena_vla.vision_grounding import (
     GroundingOutput,
     appearance_class,
+    color_jitter,
     grounding_loss,
     identity_token_targets,
     load_grounding_frames,
@@ -222,3 +223,34 @@ def test_ground_vision_refuses_a_build_without_annotations(bell_count_dataset, t
         ground_main([str(tiny_vlm), "--root", str(slim), "--out", str(tmp_path / "g")])
     assert "full build" in capsys.readouterr().err
     assert not (tmp_path / "g").exists()
+
+
+def test_color_jitter_changes_each_frames_colours_and_nothing_else():
+    torch.manual_seed(0)
+    frame = torch.zeros(3, 24, 32, dtype=torch.uint8)
+    frame[:, 8:16, 10:20] = torch.tensor([200, 40, 40], dtype=torch.uint8)[:, None, None]  # a red patch
+    images = torch.stack([frame, frame, frame])
+    out = color_jitter(images)
+    assert out.shape == images.shape and out.dtype == torch.uint8
+    assert not torch.equal(out[0], out[1])  # each frame its own jitter
+    for image in out:  # the patch stays where it was: the annotations still hold
+        inside = image[:, 8:16, 10:20].float().mean()
+        assert inside > image[:, :8].float().mean() + 20
+
+
+def test_ground_vision_jitters_and_scores_another_build(bell_count_dataset, tiny_vlm, tmp_path, capsys):
+    out = tmp_path / "grounded"
+    args = [str(tiny_vlm), "--root", str(bell_count_dataset), "--out", str(out), "--val-every", "2"]
+    ground_main(
+        [*args, "--epochs", "1", "--batch-size", "32", "--jitter", "--eval-root", str(bell_count_dataset)]
+    )
+    assert f"{bell_count_dataset}: in view or not" in capsys.readouterr().out
+    report = json.loads((out / "grounding.json").read_text())
+    assert report["jitter"]["hue"] == [-0.1, 0.1] and report["eval_root"] == str(bell_count_dataset)
+    last = report["history"][-1]
+    everything = LeRobotDataset(DATASET_REPO, root=bell_count_dataset).num_frames
+    assert last["eval_frames"] == everything > last["frames"]  # the whole other build, not its held-out part
+    assert 0 <= last["eval_in_view_accuracy"] <= 1
+    with pytest.raises(SystemExit):
+        ground_main([*args, "--overwrite", "--eval-root", str(tmp_path / "nothing")])
+    assert "is not a LeRobot dataset" in capsys.readouterr().err

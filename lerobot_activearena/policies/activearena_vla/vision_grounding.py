@@ -197,6 +197,20 @@ def load_grounding_frames(
     )
 
 
+# act_cpu_jitter's colour ranges (configs/policy/baselines); no shift: it would move the labels
+JITTER = {"brightness": (0.6, 1.4), "contrast": (0.7, 1.3), "saturation": (0.5, 1.5), "hue": (-0.1, 0.1)}
+
+
+def color_jitter(images: torch.Tensor) -> torch.Tensor:
+    """(N, 3, H, W) uint8 -> the same images, each with its own random brightness, contrast, saturation and
+    hue (``JITTER``'s ranges, in a random order; torch's global random stream). Nothing moves, so the
+    frames' annotations still hold."""
+    from torchvision.transforms import v2
+
+    jitter = v2.ColorJitter(**JITTER)
+    return torch.stack([jitter(image) for image in images])
+
+
 def token_grid(image_processor, images: torch.Tensor, max_pixels: int) -> tuple[int, int]:
     """The merged-token grid (rows, cols) the processor makes of these images."""
     from .processor_activearena_vla import image_inputs, one_token_pixels
@@ -378,12 +392,16 @@ def ground_vision_tower(
     point_weight: float = 0.0,
     search_weight: float = 0.0,
     identity_weight: float = 0.0,
+    jitter: bool = False,
+    eval_root: str | Path | None = None,
 ) -> dict:
     """Fit ``vlm_path``'s vision tower to the focus object's place in the build at ``root``'s head frames
     and save the whole model (tokenizer and processor copied) to ``out_dir``. Every ``val_every``-th
     episode is held out and scored. ``point_weight`` > 0 also fits where in its token the object lies (the
     token alone places it within half a token). ``search_weight`` > 0 also fits which tokens hold a search
     target and how many are in view; ``identity_weight`` > 0 which appearance classes each token holds.
+    ``jitter`` colour-jitters every training batch (``color_jitter``). ``eval_root`` (another build, an OOD
+    one say) is scored whole after each epoch too, the focus figures with an ``eval_`` prefix.
     Returns the figures also written to ``out_dir/grounding.json``."""
     from tqdm import tqdm
     from transformers import AutoProcessor
@@ -392,6 +410,7 @@ def ground_vision_tower(
 
     torch.manual_seed(seed)
     frames = load_grounding_frames(root, search=search_weight > 0, identity=identity_weight > 0)
+    extra = load_grounding_frames(eval_root) if eval_root is not None else None
     # as the policy builds it (linear patch embedding, batched vision attention): the same weights, and
     # PyTorch's CPU Conv3d backward is most of a grounding step otherwise
     vlm = load_policy_vlm(str(vlm_path))
@@ -432,8 +451,9 @@ def ground_vision_tower(
             for i in range(0, len(order), batch_size):
                 b = order[i : i + batch_size]
                 batch_search = search and (torch.as_tensor(search[0][b]), torch.as_tensor(search[1][b]))
+                images = color_jitter(frames.images[b]) if jitter else frames.images[b]
                 loss = grounding_loss(
-                    model(frames.images[b]),
+                    model(images),
                     target[b],
                     within[b],
                     point_weight,
@@ -460,6 +480,16 @@ def ground_vision_tower(
                 held_search,
                 None if identity is None else identity[held],
             )
+            if extra is not None:
+                elsewhere = _accuracy(
+                    model,
+                    extra.images,
+                    token_cells(extra.visible, extra.uv, rows, cols),
+                    extra.uv,
+                    (rows, cols),
+                    4 * batch_size,
+                )
+                scores.update({f"eval_{k}": v for k, v in elsewhere.items()})
             history.append({"epoch": epoch + 1, "train_loss": round(float(np.mean(losses)), 4), **scores})
             tqdm.write(json.dumps(history[-1]))
     out = Path(out_dir)
@@ -479,6 +509,8 @@ def ground_vision_tower(
         "point_weight": point_weight,
         "search_weight": search_weight,
         "identity_weight": identity_weight,
+        "jitter": JITTER if jitter else None,
+        "eval_root": None if eval_root is None else str(eval_root),
         "classes": frames.classes,
         "history": history,
     }
