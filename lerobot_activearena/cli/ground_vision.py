@@ -57,6 +57,12 @@ def main(argv: list[str] | None = None) -> None:
         help="colour-jitter the training frames (act_cpu_jitter's brightness, contrast, saturation and hue)",
     )
     p.add_argument(
+        "--random-conv",
+        action="store_true",
+        help="pass half the training frames through a random convolution (RandConv: new colours and "
+        "textures, the same shapes), after --jitter if both",
+    )
+    p.add_argument(
         "--eval-root",
         type=Path,
         default=None,
@@ -100,6 +106,7 @@ def main(argv: list[str] | None = None) -> None:
             search_weight=args.search_weight,
             identity_weight=args.identity_weight,
             jitter=args.jitter,
+            random_conv=args.random_conv,
             eval_root=args.eval_root,
         )
     except ValueError as e:  # a build without the annotations

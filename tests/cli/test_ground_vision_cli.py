@@ -19,6 +19,7 @@ from lerobot_activearena.policies.activearena_vla.vision_grounding import (
     grounding_loss,
     identity_token_targets,
     load_grounding_frames,
+    random_convolution,
     search_target_points,
     search_token_targets,
     token_cells,
@@ -238,15 +239,47 @@ def test_color_jitter_changes_each_frames_colours_and_nothing_else():
         assert inside > image[:, :8].float().mean() + 20
 
 
-def test_ground_vision_jitters_and_scores_another_build(bell_count_dataset, tiny_vlm, tmp_path, capsys):
+def test_random_convolution_retextures_some_frames_and_keeps_their_shapes():
+    torch.manual_seed(0)
+    frame = torch.full((3, 24, 32), 60, dtype=torch.uint8)
+    frame[:, 8:16, 10:20] = torch.tensor([200, 40, 40], dtype=torch.uint8)[:, None, None]  # a red patch
+    images = frame.expand(8, -1, -1, -1).contiguous()
+    assert torch.equal(random_convolution(images, p=0.0), images)
+    out = random_convolution(images, p=1.0)
+    assert out.shape == images.shape and out.dtype == torch.uint8
+    assert all(not torch.equal(o, frame) for o in out) and not torch.equal(out[0], out[1])
+    for image in out:  # the patch is still one colour, another than the table's, where it was
+        patch, table = image[:, 11:13, 13:17].flatten(1), image[:, 19:21, 3:8].flatten(1)
+        assert (patch == patch[:, :1]).all() and (table == table[:, :1]).all()
+        assert not torch.equal(patch[:, 0], table[:, 0])
+    mixed = random_convolution(images, p=0.5)
+    kept = sum(torch.equal(m, frame) for m in mixed)
+    assert 0 < kept < len(images)
+
+
+def test_ground_vision_augments_and_scores_another_build(bell_count_dataset, tiny_vlm, tmp_path, capsys):
     out = tmp_path / "grounded"
     args = [str(tiny_vlm), "--root", str(bell_count_dataset), "--out", str(out), "--val-every", "2"]
     ground_main(
-        [*args, "--epochs", "1", "--batch-size", "32", "--jitter", "--eval-root", str(bell_count_dataset)]
+        [
+            *args,
+            "--epochs",
+            "1",
+            "--batch-size",
+            "32",
+            "--jitter",
+            "--random-conv",
+            "--eval-root",
+            str(bell_count_dataset),
+        ]
     )
     assert f"{bell_count_dataset}: in view or not" in capsys.readouterr().out
     report = json.loads((out / "grounding.json").read_text())
-    assert report["jitter"]["hue"] == [-0.1, 0.1] and report["eval_root"] == str(bell_count_dataset)
+    assert (
+        report["jitter"]["hue"] == [-0.1, 0.1]
+        and report["random_conv"]
+        and report["eval_root"] == str(bell_count_dataset)
+    )
     last = report["history"][-1]
     everything = LeRobotDataset(DATASET_REPO, root=bell_count_dataset).num_frames
     assert last["eval_frames"] == everything > last["frames"]  # the whole other build, not its held-out part

@@ -211,6 +211,28 @@ def color_jitter(images: torch.Tensor) -> torch.Tensor:
     return torch.stack([jitter(image) for image in images])
 
 
+def random_convolution(images: torch.Tensor, p: float = 0.5, kernel_sizes=(1, 3, 5, 7)) -> torch.Tensor:
+    """(N, 3, H, W) uint8 -> each frame, with probability ``p``, mixed with itself filtered by a random
+    convolution (RandConv, Xu et al. 2021): a k x k kernel (k from ``kernel_sizes``) of Gaussian weights
+    recolours and retextures the frame while edges and shapes stay in place; the result is brought
+    back to the frame's per-channel mean and spread and blended with it at a random weight. Torch's
+    global random stream."""
+    out = []
+    for image in images:
+        if float(torch.rand(())) >= p:
+            out.append(image)
+            continue
+        k = kernel_sizes[int(torch.randint(len(kernel_sizes), ()))]
+        x = image.float()[None] / 255
+        weight = torch.randn(3, 3, k, k) / (3 * k * k) ** 0.5
+        y = nn.functional.conv2d(x, weight, padding=k // 2)
+        mean, spread = x.mean((2, 3), keepdim=True), x.std((2, 3), keepdim=True)
+        y = (y - y.mean((2, 3), keepdim=True)) / (y.std((2, 3), keepdim=True) + 1e-6) * spread + mean
+        mix = float(torch.rand(()))
+        out.append(((mix * x + (1 - mix) * y).clamp(0, 1) * 255).round().to(torch.uint8)[0])
+    return torch.stack(out)
+
+
 def token_grid(image_processor, images: torch.Tensor, max_pixels: int) -> tuple[int, int]:
     """The merged-token grid (rows, cols) the processor makes of these images."""
     from .processor_activearena_vla import image_inputs, one_token_pixels
@@ -393,6 +415,7 @@ def ground_vision_tower(
     search_weight: float = 0.0,
     identity_weight: float = 0.0,
     jitter: bool = False,
+    random_conv: bool = False,
     eval_root: str | Path | None = None,
 ) -> dict:
     """Fit ``vlm_path``'s vision tower to the focus object's place in the build at ``root``'s head frames
@@ -400,7 +423,8 @@ def ground_vision_tower(
     episode is held out and scored. ``point_weight`` > 0 also fits where in its token the object lies (the
     token alone places it within half a token). ``search_weight`` > 0 also fits which tokens hold a search
     target and how many are in view; ``identity_weight`` > 0 which appearance classes each token holds.
-    ``jitter`` colour-jitters every training batch (``color_jitter``). ``eval_root`` (another build, an OOD
+    ``jitter`` colour-jitters every training batch (``color_jitter``), ``random_conv`` passes half its
+    frames through a random convolution (``random_convolution``). ``eval_root`` (another build, an OOD
     one say) is scored whole after each epoch too, the focus figures with an ``eval_`` prefix.
     Returns the figures also written to ``out_dir/grounding.json``."""
     from tqdm import tqdm
@@ -452,6 +476,7 @@ def ground_vision_tower(
                 b = order[i : i + batch_size]
                 batch_search = search and (torch.as_tensor(search[0][b]), torch.as_tensor(search[1][b]))
                 images = color_jitter(frames.images[b]) if jitter else frames.images[b]
+                images = random_convolution(images) if random_conv else images
                 loss = grounding_loss(
                     model(images),
                     target[b],
@@ -510,6 +535,7 @@ def ground_vision_tower(
         "search_weight": search_weight,
         "identity_weight": identity_weight,
         "jitter": JITTER if jitter else None,
+        "random_conv": random_conv,
         "eval_root": None if eval_root is None else str(eval_root),
         "classes": frames.classes,
         "history": history,
