@@ -272,16 +272,20 @@ def test_the_tuned_pair_trains_the_current_frames_tower_and_keeps_the_memorys(
     assert any(not torch.equal(trained[k], original[k]) for k in original)
 
 
-def test_the_jitter_frozen_bell_pair_reads_a_tower_grounded_with_jitter():
-    """The _bell_jitter_frozen pair: the grounded bell pair with act_cpu_jitter's augmentation (the
-    _bell_jitter preset's), read through a tower grounded with colour jitter (``activearena-ground-vision
-    --jitter``) and kept frozen (the chunk-12 one's memory from that tower's table), at the frozen count
-    runs' lr 3e-4 and 2,000 steps; the two still differ only in the memory, and LeRobot parses both."""
+@pytest.mark.parametrize(
+    ("name", "tower"), [("bell_jitter_frozen", "bell_jitter"), ("bell_randconv_frozen", "bell_randconv")]
+)
+def test_the_augmented_frozen_bell_pairs_read_a_tower_grounded_with_their_augmentation(name, tower):
+    """The _bell_jitter_frozen and _bell_randconv_frozen pairs: the grounded bell pair with act_cpu_jitter's
+    augmentation (the _bell_jitter preset's), read through a tower grounded with colour jitter
+    (``activearena-ground-vision --jitter``; ``--random-conv`` too for the second) and kept frozen (the
+    chunk-12 one's memory from that tower's table), at the frozen count runs' lr 3e-4 and 2,000 steps;
+    the two of a pair still differ only in the memory, and LeRobot parses both."""
     from lerobot.configs.train import TrainPipelineConfig
 
     pair = {}
     for memory in ("action_12", "no_0"):
-        frozen = pair[memory] = small_preset(memory, "bell_jitter_frozen")
+        frozen = pair[memory] = small_preset(memory, name)
         grounded = small_preset(memory, "bell")
         assert frozen["dataset"] == small_preset("action_12", "bell_jitter")["dataset"]
         assert {k for k in frozen if frozen[k] != grounded[k]} == {"dataset", "policy", "steps", "job_name"}
@@ -293,12 +297,13 @@ def test_the_jitter_frozen_bell_pair_reads_a_tower_grounded_with_jitter():
             "scheduler_warmup_steps",
             "scheduler_decay_steps",
         } | ({"vision_cache"} if memory == "action_12" else set())
-        assert frozen["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_grounded_bell_jitter"
+        assert frozen["policy"]["vlm_path"] == f"outputs/small_vlm_v256d4_grounded_{tower}"
         assert frozen["steps"] == frozen["policy"]["scheduler_decay_steps"] == 2000
         cfg = TrainPipelineConfig.from_pretrained(
-            CONFIGS / "small" / f"oft_subtask_{memory}_ws_grounded_bell_jitter_frozen.json"
+            CONFIGS / "small" / f"oft_subtask_{memory}_ws_grounded_{name}.json"
         )
         assert cfg.policy.freeze_vision and cfg.dataset.image_transforms.enable
     chunk, free = pair["action_12"], pair["no_0"]
     assert differing_policy_keys(chunk, free) == MEMORY_KEYS
     assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
+    assert chunk["policy"]["vision_cache"].endswith(f"_grounded_{tower.removeprefix('bell_')}.safetensors")
