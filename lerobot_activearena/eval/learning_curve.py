@@ -54,6 +54,20 @@ def policy_inputs(batch: dict, cfg) -> dict:
     return obs
 
 
+def read_annotations_from(pre, repo_id: str, root: Path) -> None:
+    """Point an ActiveArena-VLA preprocessor's annotation step (subtask text, keyframe memories) at the
+    dataset being scored: as saved, it reads the training build's, whose frames the indices of
+    another build do not name. A vision cache's frame indices likewise: the history comes as images."""
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+        ActiveArenaAnnotationStep,
+    )
+
+    for step in pre.steps:
+        if isinstance(step, ActiveArenaAnnotationStep):
+            step.dataset_root, step.repo_id, step._ann = str(root), repo_id, None
+            step.cached_memory = False
+
+
 def chunk_errors(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32):
     """Per dataset batch (in order): the batch and the absolute error between the predicted and the
     recorded action chunk, (B, steps, ACTION_DIM) in joint units, zero on padded steps past an
@@ -67,10 +81,13 @@ def chunk_errors(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 3
 
     cfg = PreTrainedConfig.from_pretrained(policy_dir)
     cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
+    if getattr(cfg, "vision_cache", None):  # the cache indexes the training build's frames, not these
+        cfg.vision_cache = None
     meta = LeRobotDatasetMetadata(repo_id, root=root)
     policy = make_policy(cfg, ds_meta=meta)
     policy.eval()
     pre, post = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
+    read_annotations_from(pre, repo_id, root)
     ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
     loader = torch.utils.data.DataLoader(ds, batch_size=batch_size, shuffle=False, num_workers=0)
     with torch.no_grad():

@@ -26,3 +26,38 @@ def test_a_checkpoints_image_size_is_read_in_a_fresh_process(tmp_path):
     )
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.split()[-2:] == ["(96,", "128)"]
+
+
+def test_open_loop_scoring_reads_the_scored_builds_annotations_not_the_training_builds(bell_count_dataset):
+    """A checkpoint's preprocessor names its training build; scored on another build (held-out
+    episodes), the annotation step must read that build's, and send the history as images, since a
+    vision cache's frame indices name the training build's frames."""
+    from types import SimpleNamespace
+
+    from helpers.params import DATASET_REPO
+    from lerobot.lerobot_types import TransitionKey
+
+    from lerobot_activearena.eval.learning_curve import read_annotations_from
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+        MEMORY_INDEX,
+        ActiveArenaAnnotationStep,
+    )
+
+    step = ActiveArenaAnnotationStep(
+        dataset_root="/nonexistent/training_build",
+        repo_id="local/training_build",
+        memory="chunk",
+        history=4,
+        think="subtask",
+        cached_memory=True,
+    )
+    read_annotations_from(SimpleNamespace(steps=[step]), DATASET_REPO, bell_count_dataset)
+    assert (step.dataset_root, step.repo_id, step.cached_memory) == (
+        str(bell_count_dataset),
+        DATASET_REPO,
+        False,
+    )
+    out = step({TransitionKey.OBSERVATION: {}, TransitionKey.COMPLEMENTARY_DATA: {"index": [0]}})
+    comp = out[TransitionKey.COMPLEMENTARY_DATA]
+    assert MEMORY_INDEX not in comp
+    assert isinstance(comp["subtask"][0], str) and comp["subtask"][0]
