@@ -37,6 +37,7 @@ def _recording(evaluate):
         r = STEPS.setdefault(scene.seed, {"lowest": None, "count": scene.params["count"], "points": points})
         if r["lowest"] is None or tcp[2] < r["lowest"][2]:
             r["lowest"] = tcp
+            r["torso"] = float(np.degrees(sim.data.joint(predicates.embodiment.TORSO_YAW_JOINT).qpos[0]))
         return checks
 
     return wrapped
@@ -92,19 +93,23 @@ def main() -> None:
             f"count {STEPS[rec['scene_seed']]['count']}  lowest {100 * o['height']:5.1f} cm above, "
             f"nearest button {o['nearest']} at {100 * o['to_nearest']:.1f} cm, matching at "
             f"{100 * o['to_matching']:.1f} cm, centroid at {100 * o['to_centroid']:.1f} cm; from the matching one "
-            f"{o['azimuth']:+.1f} deg about the base (it lies {o['target_bearing']:+.0f} deg from straight ahead), {100 * o['radial']:+.1f} cm radially"
+            f"{o['azimuth']:+.1f} deg about the base (it lies {o['target_bearing']:+.0f} deg from straight ahead; "
+            f"the torso then at {STEPS[rec['scene_seed']].get('torso', float('nan')):+.0f} deg), {100 * o['radial']:+.1f} cm radially"
         )
     all_o = [offsets(STEPS[r["scene_seed"]]) for r in records]
     target = np.array([o["target_bearing"] for o in all_o])
     reached = target + np.array([o["azimuth"] for o in all_o])
     slope = np.polyfit(target, reached, 1)[0] if len(records) > 1 else float("nan")
+    torso = np.array([STEPS[r["scene_seed"]].get("torso", np.nan) for r in records])
+    torso_slope = np.polyfit(target, torso, 1)[0] if len(records) > 1 else float("nan")
     print(
         f"{len(records)} episodes: lowest point nearer the buttons' centroid than any button in {between}; "
         f"median {100 * np.median([o['to_nearest'] for o in all_o]):.1f} cm from the nearest button, "
         f"{100 * np.median([o['height'] for o in all_o]):.1f} cm above it; nearest is the matching one in "
         f"{sum(o['nearest'] == STEPS[r['scene_seed']]['count'] for o, r in zip(all_o, records, strict=True))}; "
         f"its bearing against the matching button's: slope {slope:.2f} (1: the turn follows the button, "
-        f"0: it comes down straight ahead whatever the button)"
+        f"0: it comes down straight ahead whatever the button); "
+        f"the torso's yaw there against it: slope {torso_slope:.2f}"
     )
 
 
