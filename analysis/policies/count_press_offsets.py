@@ -84,10 +84,10 @@ def main() -> None:
             + [f"--episode-indices={args.episode_indices}", "--label=count_press_offsets", f"--out={out}"]
         )
         records = [json.loads(x) for x in (Path(out) / args.split / "episodes" / "records.jsonl").open()]
-    between = 0
-    for rec in sorted(records, key=lambda r: r["episode"]):
-        o = offsets(STEPS[rec["scene_seed"]])
-        between += o["to_centroid"] < o["to_nearest"]
+    records = sorted(records, key=lambda r: r["episode"])
+    all_o = [offsets(STEPS[r["scene_seed"]]) for r in records]
+    between = sum(o["to_centroid"] < o["to_nearest"] for o in all_o)
+    for rec, o in zip(records, all_o, strict=True):
         print(
             f"episode {rec['episode']:3d}  {'success' if rec['success'] else rec['failure_state'] or '-':8s} "
             f"count {STEPS[rec['scene_seed']]['count']}  lowest {100 * o['height']:5.1f} cm above, "
@@ -96,7 +96,6 @@ def main() -> None:
             f"{o['azimuth']:+.1f} deg about the base (it lies {o['target_bearing']:+.0f} deg from straight ahead; "
             f"the torso then at {STEPS[rec['scene_seed']].get('torso', float('nan')):+.0f} deg), {100 * o['radial']:+.1f} cm radially"
         )
-    all_o = [offsets(STEPS[r["scene_seed"]]) for r in records]
     target = np.array([o["target_bearing"] for o in all_o])
     reached = target + np.array([o["azimuth"] for o in all_o])
     slope = np.polyfit(target, reached, 1)[0] if len(records) > 1 else float("nan")
