@@ -272,6 +272,28 @@ def test_the_tuned_pair_trains_the_current_frames_tower_and_keeps_the_memorys(
     assert any(not torch.equal(trained[k], original[k]) for k in original)
 
 
+def test_the_wos_pair_is_the_tuned_pair_without_state_tokens_at_batch_64():
+    """The paper's `wos` variant of the _count_left_objects_tuned pair: no state tokens and batch 64,
+    nothing else changed; the two of the pair still differ only in the memory, and LeRobot parses both
+    with the state off."""
+    from lerobot.configs.train import TrainPipelineConfig
+
+    pair = {}
+    for memory in ("action_12", "no_0"):
+        path = CONFIGS / "small" / f"oft_subtask_{memory}_wos_grounded_count_left_objects_tuned.json"
+        wos = pair[memory] = json.loads(path.read_text())
+        ws = small_preset(memory, "count_left_objects_tuned")
+        assert {k for k in wos if wos[k] != ws[k]} == {"policy", "batch_size", "job_name"}
+        assert differing_policy_keys(wos, ws) == {"use_state"}
+        assert wos["batch_size"] == 64 and ws["batch_size"] == 32
+        assert "_wos_" in wos["job_name"]
+        cfg = TrainPipelineConfig.from_pretrained(path)
+        assert cfg.policy.use_state is False and cfg.batch_size == 64
+    chunk, free = pair["action_12"], pair["no_0"]
+    assert differing_policy_keys(chunk, free) == MEMORY_KEYS | {"memory_vision"}
+    assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
+
+
 @pytest.mark.parametrize(
     ("name", "tower"), [("bell_jitter_frozen", "bell_jitter"), ("bell_randconv_frozen", "bell_randconv")]
 )
