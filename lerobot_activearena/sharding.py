@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import sys
 import threading
+import time
 from pathlib import Path
 
 from datatrove.executor import LocalPipelineExecutor, SlurmPipelineExecutor
@@ -57,18 +58,54 @@ def _console(level: str = "WARNING", logfile: Path | None = None) -> None:
         logger.add(logfile, level="INFO")
 
 
+_watched: set[int] = set()
+
+
+def exit_with(main_pid: int, every_s: float = 0.5) -> None:
+    """In a worker process: end it soon after the job's main process ``main_pid`` is gone. Killing
+    the main process does not stop a process pool's workers; left running, they go on writing
+    episodes into the job's folder, under a resumed or restarted run of it."""
+    if main_pid in _watched:
+        return
+    _watched.add(main_pid)
+
+    def watch():
+        while _alive(main_pid):
+            time.sleep(every_s)
+        os._exit(1)  # a record is one append of a whole line; the resumed job replays the episode cut short
+
+    threading.Thread(target=watch, name="exit-with-main", daemon=True).start()
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    try:  # a killed process its parent has not reaped yet is a zombie: gone all the same
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except (OSError, IndexError):
+        return True
+
+
 class QuietLocalExecutor(LocalPipelineExecutor):
     """datatrove's local executor with its logs in the run folder only (``logs/task_*.log``,
     ``executor.log``): by default it echoes one worker's task logs and every task's stats block to
     the terminal, where our progress bars and summary are. Errors still reach the terminal."""
 
     def _run_for_rank(self, rank: int, local_rank: int = 0, node_rank: int = -1):
+        main_pid = getattr(self, "main_pid", os.getpid())
+        if os.getpid() != main_pid:  # a pool worker
+            exit_with(main_pid)
         # local_rank only picks which worker echoes its task log (rank 0 does): none of them
         stats = super()._run_for_rank(rank, local_rank + 1, node_rank)
         _console()  # datatrove re-adds a verbose terminal logger after each task
         return stats
 
     def run(self):
+        self.main_pid = os.getpid()  # pickled into the workers with the executor
         _console(logfile=Path(self.logging_dir.path) / "executor.log")
         try:
             return super().run()

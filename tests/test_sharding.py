@@ -1,0 +1,70 @@
+"""The sharded jobs' local executor: a killed job leaves no worker running."""
+
+import contextlib
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+from lerobot_activearena.sharding import _alive
+
+JOB = textwrap.dedent(
+    """
+    import os, sys, time
+    from pathlib import Path
+    from datatrove.pipeline.base import PipelineStep
+    from lerobot_activearena.sharding import run_local
+
+    class Sleep(PipelineStep):
+        name, type = "sleep", "TEST"
+
+        def run(self, data=None, rank=0, world_size=1):
+            Path(sys.argv[1], f"worker{rank}.pid").write_text(str(os.getpid()))
+            time.sleep(120)
+            return iter(())
+
+    if __name__ == "__main__":
+        run_local(Sleep(), 2, 2, Path(sys.argv[1]) / "logs")
+    """
+)
+
+
+def _wait(condition, timeout_s: float) -> bool:
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        if condition():
+            return True
+        time.sleep(0.2)
+    return condition()
+
+
+def test_killing_a_job_ends_its_workers(tmp_path):
+    """Killing the main process of a two-worker job (as a user stops a build or an evaluation) ends
+    the pool's workers too; left running, they would go on writing into the job's folder."""
+    script = tmp_path / "job.py"
+    script.write_text(JOB)
+    main = subprocess.Popen(
+        [sys.executable, str(script), str(tmp_path)], stderr=subprocess.DEVNULL, start_new_session=True
+    )
+    try:
+        assert _wait(lambda: len(list(tmp_path.glob("worker*.pid"))) == 2, 120), "the workers never started"
+        pids = [int(p.read_text()) for p in tmp_path.glob("worker*.pid")]
+        assert all(_alive(p) and p != main.pid for p in pids)
+        main.send_signal(signal.SIGTERM)
+        main.wait(30)
+        assert _wait(lambda: not any(_alive(p) for p in pids), 10), "workers outlived the killed job"
+    finally:  # whatever is left of the job's process group (datatrove's idle queue manager outlives it)
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(main.pid, signal.SIGKILL)
+
+
+def test_a_zombie_counts_as_gone():
+    """A killed main process that its parent has not reaped yet is gone for the workers."""
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    assert _wait(lambda: Path(f"/proc/{child.pid}/stat").read_text().rsplit(")", 1)[1].split()[0] == "Z", 30)
+    assert not _alive(child.pid)
+    child.wait()
+    assert not _alive(child.pid) and _alive(os.getpid())
