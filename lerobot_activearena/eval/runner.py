@@ -14,7 +14,7 @@ from tqdm import tqdm
 from ..sharding import ProgressBars, one_core, run_local, submit_slurm
 from .merge import merge_run
 from .protocol import RUN_FILE, EvalPlan
-from .shard import forget_loaded_policy, records_dir, run_shard
+from .shard import forget_loaded_policy, read_records, records_dir, run_shard
 
 
 class EvalShardStep(PipelineStep):
@@ -142,6 +142,18 @@ def prepare_run(plan: EvalPlan, run_dir: Path, policy_config: dict, overwrite: b
     return False
 
 
+def reopen_unfinished_shards(plan: EvalPlan, run_dir: Path) -> None:
+    """datatrove skips a shard it marked complete; one whose records lack episodes (deleted, or
+    skipped as another process's records) is marked open again, so re-running the command plays them."""
+    completions = Path(run_dir) / "logs" / "completions"
+    for rank, shard in enumerate(plan.shards):
+        marker = completions / f"{rank:05d}"
+        if marker.is_file():
+            done = read_records(records_dir(run_dir, shard))
+            if any((shard.task, shard.split, k) not in done for k in shard.episodes):
+                marker.unlink()
+
+
 def run_eval(
     plan: EvalPlan,
     run_dir: Path,
@@ -159,6 +171,7 @@ def run_eval(
     when the jobs were submitted to Slurm (the merge job writes the results)."""
     run_dir = Path(run_dir).resolve()
     prepare_run(plan, run_dir, policy_config, overwrite)
+    reopen_unfinished_shards(plan, run_dir)
     workers = max(1, min(workers, len(plan.shards)))
     step = EvalShardStep(plan, str(run_dir), batch_size, use_async_envs, videos, one_thread=workers > 1)
     if executor == "slurm":

@@ -177,6 +177,27 @@ def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
     assert info["per_task"][0]["metrics"]["successes"] == [True] * 6
 
 
+def test_a_finished_shard_missing_records_plays_them_again(protocol_run, tmp_path):
+    """A shard datatrove marked complete whose records lack an episode (its line deleted, or skipped
+    as another process's record) plays that episode again when the command is re-run, and only it."""
+    out = tmp_path / "run"
+    shutil.copytree(protocol_run, out)
+    (shard_file,) = (out / "records").glob(f"*{COUNT}-ood/*.jsonl")
+    lines = shard_file.read_text().splitlines()
+    shard_file.write_text(lines[0] + "\n")
+    lost = json.loads(lines[1])["episode"]
+    eval_main(
+        [*EXPERT, "--tasks", f"{BELL},{COUNT}", "--splits", "id,ood", "--episodes", "2", "--out", str(out)]
+    )
+    records = [json.loads(x) for f in (out / "records").rglob("*.jsonl") for x in f.read_text().splitlines()]
+    keys = [(r["task"], r["split"], r["episode"]) for r in records]
+    assert len(keys) == len(set(keys)) == 8  # the lost one played again, nothing else re-ran
+    again = read_records(out / "records")[(COUNT, "ood", lost)]
+    assert again == read_records(protocol_run / "records")[(COUNT, "ood", lost)]
+    info = json.loads((out / "ood" / "eval_info.json").read_text())
+    assert sum(len(t["metrics"]["successes"]) for t in info["per_task"]) == 4
+
+
 def test_slurm_runs_shards_as_array_jobs_then_a_dependent_merge(tmp_path, monkeypatch):
     install_fake_slurm(tmp_path, monkeypatch)
     cfg = ActiveArenaExpertConfig(device="cpu")
