@@ -24,6 +24,7 @@ from lerobot_activearena.episodes.rollout import run_expert_episode
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
 from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
+from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import STATE
 from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
     PIXELS,
     THINK_IDS,
@@ -144,6 +145,33 @@ def test_actions_cannot_see_the_think_text(vlm, root):
         )
     assert torch.allclose(a_none, a_think, atol=1e-5) and torch.allclose(a_none, a_other, atol=1e-5)
     assert not torch.isclose(lm, lm_other)  # the think span is really there and read by the LM loss
+
+
+def test_memory_state_frames_give_the_memory_its_poses_and_the_current_frame_none(vlm, root):
+    """``state_frames=memory``: a state token after every memory frame and none after the current one,
+    so the chunk follows a memory frame's state and not the current state."""
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, state_frames="memory")
+    _, every, _, _, _ = _setup(vlm, root, memory="chunk", history=4)
+    every.load_state_dict(policy.state_dict())
+    batch = collate(ds, pre, [len(ds) - 10])
+    policy.eval(), every.eval()
+    n_memory = int(batch["observation.vlm.frame_valid"][0, :-1].sum())
+    assert n_memory >= 2
+    seq = policy.assemble(*_encode_args(batch))
+    assert int((seq["kind"] == STATE).sum()) == n_memory  # none after the current frame
+    assert int((every.assemble(*_encode_args(batch))["kind"] == STATE).sum()) == n_memory + 1
+
+    def chunk(model, state):
+        with torch.no_grad():
+            return model.encode(*_encode_args({**batch, "observation.state": state}))[0]
+
+    state = batch["observation.state"]
+    moved_now, moved_memory = state.clone(), state.clone()
+    moved_now[:, -1] += 0.5
+    moved_memory[:, -2] += 0.5
+    assert torch.equal(chunk(policy, moved_now), chunk(policy, state))
+    assert not torch.allclose(chunk(policy, moved_memory), chunk(policy, state))
+    assert not torch.allclose(chunk(every, moved_now), chunk(every, state))
 
 
 def _encode_args(batch):
@@ -438,6 +466,12 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(memory="none", memory_vision="frozen", device="cpu")
     with pytest.raises(ValueError, match="memory_vision=frozen .*freeze_vision=false .*freeze_vision=True"):
         ActiveArenaOFTConfig(memory_vision="frozen", freeze_vision=True, device="cpu")
+    with pytest.raises(ValueError, match="state_frames must be all or memory"):
+        ActiveArenaOFTConfig(state_frames="current", device="cpu")
+    with pytest.raises(ValueError, match="state_frames=memory .* needs use_state=true and a memory"):
+        ActiveArenaOFTConfig(memory="none", state_frames="memory", device="cpu")
+    with pytest.raises(ValueError, match="state_frames=memory .*use_state=False"):
+        ActiveArenaOFTConfig(use_state=False, state_frames="memory", device="cpu")
     with pytest.raises(ValueError, match="vision_lr is .*freeze_vision=false"):
         ActiveArenaOFTConfig(vision_lr=1e-4, freeze_vision=True, device="cpu")
 

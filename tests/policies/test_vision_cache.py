@@ -294,6 +294,23 @@ def test_the_wos_pair_is_the_tuned_pair_without_state_tokens_at_batch_64():
     assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
 
 
+def test_the_wms_preset_is_the_wos_chunk_12_one_with_state_tokens_on_its_memory_frames():
+    """``_wms_``: the wos chunk-12 preset with the memory frames' state tokens back and none on the
+    current frame (``state_frames=memory``); without a memory that is no state at all, so its
+    memory-free partner is the wos one."""
+    from lerobot.configs.train import TrainPipelineConfig
+
+    name = "oft_subtask_{}_grounded_count_left_objects_tuned.json"
+    wms = json.loads((CONFIGS / "small" / name.format("action_12_wms")).read_text())
+    wos = json.loads((CONFIGS / "small" / name.format("action_12_wos")).read_text())
+    assert {k for k in wms if wms[k] != wos[k]} == {"policy", "job_name"}
+    assert differing_policy_keys(wms, wos) == {"use_state", "state_frames"}
+    cfg = TrainPipelineConfig.from_pretrained(CONFIGS / "small" / name.format("action_12_wms"))
+    assert cfg.policy.use_state and cfg.policy.state_frames == "memory" and cfg.batch_size == 64
+    free = json.loads((CONFIGS / "small" / name.format("no_0_wos")).read_text())
+    assert differing_policy_keys(wms, free) == MEMORY_KEYS | {"memory_vision", "use_state", "state_frames"}
+
+
 @pytest.mark.parametrize(
     ("name", "tower"), [("bell_jitter_frozen", "bell_jitter"), ("bell_randconv_frozen", "bell_randconv")]
 )

@@ -41,6 +41,9 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     memory: str = "chunk"
     history: int = 12
     use_state: bool = True
+    # Which images get a state token: all | memory (the memory frames' poses only, none for the current
+    # frame: the policy can recall where it saw a thing without copying where it is now).
+    state_frames: str = "all"
     # Keep the vision tower as it was loaded (no gradient, not optimised): a grounded tower as a fixed
     # feature extractor. With it, ``vision_cache`` (a table from activearena-cache-vision) gives the chunk
     # memory's history frames their features at training time by frame index: LeRobot then decodes only
@@ -199,6 +202,14 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 f"chunk memory writes every {STRIDE}th frame and was trained to act on that grid: "
                 f"--policy.n_action_steps must be {STRIDE}, got {self.n_action_steps}"
+            )
+        if self.state_frames not in ("all", "memory"):
+            raise ValueError(f"--policy.state_frames must be all or memory, got {self.state_frames!r}")
+        if self.state_frames == "memory" and not (self.use_state and self.uses_history):
+            raise ValueError(
+                "--policy.state_frames=memory gives the memory frames their state tokens and the current frame "
+                f"none: it needs use_state=true and a memory (got use_state={self.use_state}, "
+                f"memory={self.memory}, history={self.history}); without a memory, use --policy.use_state=false"
             )
         if self.memory_vision == "frozen" and (self.freeze_vision or not self.uses_history):
             raise ValueError(

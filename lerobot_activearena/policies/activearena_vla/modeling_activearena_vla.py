@@ -183,7 +183,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 ids += [self.vision_start_id] + [self.image_token_id] * n + [self.vision_end_id]
                 kind += [TEXT] + [IMAGE] * n + [TEXT]
                 images.append((b, j))
-                if self.state_encoder is not None:
+                if self.state_encoder is not None and (
+                    self.config.state_frames == "all" or j < n_frames - 1  # the current frame is the last
+                ):
                     ids.append(self.pad_id)
                     kind.append(STATE)
                     states.append(
