@@ -134,6 +134,7 @@ def test_env_processes_play_the_same_episodes_as_one_process(protocol_run, tmp_p
 
 
 def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
+    n = 10
     out = tmp_path / "run"
     cmd = [
         _exe("activearena-eval"),
@@ -143,7 +144,7 @@ def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
         "--splits",
         "id",
         "--episodes",
-        "6",
+        str(n),
         "--batch-size",
         "2",
         "--videos",
@@ -153,28 +154,29 @@ def test_killed_run_resumes_without_losing_or_repeating_episodes(tmp_path):
     ]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     deadline = time.time() + 300
-    while time.time() < deadline and len(read_records(out / "records")) < 3:
+    # killed after 2 finished episodes; 10 in all, so that a busy machine's late poll still finds it half way
+    while time.time() < deadline and len(read_records(out / "records")) < 2:
         time.sleep(0.2)
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
     before = read_records(out / "records")
-    assert 3 <= len(before) < 6, "the run should be killed half way"
+    assert 2 <= len(before) < n, "the run should be killed half way"
     assert not (out / "id" / "eval_info.json").exists()
     resumed = subprocess.run(cmd, check=True, capture_output=True, text=True, timeout=600)
     # a clean terminal: progress bars and a summary; datatrove's logs and stats go to the run folder,
     # and no warning about normalisation statistics for the expert, which normalises nothing
     console = resumed.stdout + resumed.stderr
-    assert "success over 6 episodes" in console
+    assert f"success over {n} episodes" in console
     assert "Stats" not in console and "PIPELINE" not in console and "infinite values" not in console
     assert (out / "logs" / "executor.log").is_file() and list((out / "logs" / "logs").glob("task_*.log"))
     lines = [
         json.loads(line) for f in (out / "records").rglob("*.jsonl") for line in f.read_text().splitlines()
     ]
-    assert sorted(r["episode"] for r in lines) == list(range(6))  # every episode once: none lost, none re-run
+    assert sorted(r["episode"] for r in lines) == list(range(n))  # each once: none lost, none re-run
     after = read_records(out / "records")
     assert all(after[k] == v for k, v in before.items())  # the finished episodes were kept as they were
     info = json.loads((out / "id" / "eval_info.json").read_text())
-    assert info["per_task"][0]["metrics"]["successes"] == [True] * 6
+    assert info["per_task"][0]["metrics"]["successes"] == [True] * n
 
 
 def test_a_finished_shard_missing_records_plays_them_again(protocol_run, tmp_path):
