@@ -26,10 +26,12 @@ def read_episodes(run: Path, split: str) -> list[dict]:
         if path.exists():
             with (gzip.open if path.suffix == ".gz" else open)(path, "rt") as f:
                 return [json.loads(line) for line in f if line.strip()]
-    raw = sorted((run / "records").glob(f"*-{split}/*.jsonl"))
+    from lerobot_activearena.eval.shard import read_records
+
+    raw = [r for (_, s, _), r in read_records(run / "records").items() if s == split]
     if not raw:
         raise SystemExit(f"{run}: no {split} records; is it an activearena-eval run folder?")
-    return [json.loads(line) for f in raw for line in f.read_text().splitlines() if line.strip()]
+    return raw
 
 
 def tabulate(episodes: list[dict], value_of) -> dict:
