@@ -52,6 +52,14 @@ def main(argv: list[str] | None = None) -> None:
         "task's buttons apart (0: off)",
     )
     p.add_argument(
+        "--reading-window",
+        type=int,
+        default=0,
+        help="with --identity-weight: within this many frames of each expert reading (an inspection task's "
+        "hidden face shown to the camera) the inspected object's class is what it shows ('gray block "
+        "showing green'), so a frozen tower keeps the reading for the memory (0: off)",
+    )
+    p.add_argument(
         "--jitter",
         action="store_true",
         help="colour-jitter the training frames (act_cpu_jitter's brightness, contrast, saturation and hue)",
@@ -87,8 +95,12 @@ def main(argv: list[str] | None = None) -> None:
         or args.batch_size < 1
         or args.val_every < 2
         or min(args.point_weight, args.search_weight, args.identity_weight) < 0
+        or args.reading_window < 0
     ):
-        p.error("--epochs and --batch-size must be >= 1, --val-every >= 2, and the --*-weight options >= 0")
+        p.error(
+            "--epochs and --batch-size must be >= 1, --val-every >= 2, and the --*-weight options and "
+            "--reading-window >= 0"
+        )
     from ..policies.activearena_vla.vision_grounding import ground_vision_tower
 
     try:
@@ -105,6 +117,7 @@ def main(argv: list[str] | None = None) -> None:
             point_weight=args.point_weight,
             search_weight=args.search_weight,
             identity_weight=args.identity_weight,
+            reading_window=args.reading_window,
             jitter=args.jitter,
             random_conv=args.random_conv,
             eval_root=args.eval_root,
@@ -131,6 +144,11 @@ def main(argv: list[str] | None = None) -> None:
         if "identity_accuracy" in last
         else ""
     )
+    if "reading_accuracy" in last:
+        identity += (
+            f"; readings named right in {last['reading_accuracy']:.1%} of the tokens showing one (the most "
+            f"common {last['reading_majority']:.1%})"
+        )
     elsewhere = (
         f"; {args.eval_root}: in view or not {last['eval_in_view_accuracy']:.1%}, token "
         f"{last['eval_token_accuracy_where_visible']:.1%} where visible ({last['eval_frames']} frames)"

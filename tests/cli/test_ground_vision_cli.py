@@ -13,6 +13,7 @@ from safetensors.torch import load_file
 from lerobot_activearena.cli.ground_vision import main as ground_main
 from lerobot_activearena.cli.slim_dataset import main as slim_main
 from lerobot_activearena.policies.activearena_vla.vision_grounding import (
+    READING,
     GroundingOutput,
     appearance_class,
     color_jitter,
@@ -20,6 +21,7 @@ from lerobot_activearena.policies.activearena_vla.vision_grounding import (
     identity_token_targets,
     load_grounding_frames,
     random_convolution,
+    reading_rows,
     search_target_points,
     search_token_targets,
     token_cells,
@@ -166,6 +168,64 @@ def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dat
     assert ((named.object_class >= 0) == (named.object_uv[..., 0] >= 0)).all()
 
 
+def test_reading_rows_are_the_frames_near_each_reading_in_its_episode():
+    episodes = np.array([0, 0, 0, 0, 0, 1, 1, 1])
+    frames = np.array([0, 1, 2, 3, 4, 0, 1, 2])
+    inspections = {
+        0: [{"object": "gray_block", "frame": 2, "reading": "green"}],
+        1: [
+            {"object": "cola_can", "frame": 0, "reading": {"label_color": "red"}},
+            {"object": "x", "frame": 1},
+        ],
+    }
+    rows = reading_rows(episodes, frames, inspections, window=1)
+    assert len(rows) == 2  # an inspection without a reading names nothing
+    np.testing.assert_array_equal(rows[0][0], [1, 2, 3])
+    assert rows[0][1:] == ("gray_block", "green")
+    np.testing.assert_array_equal(rows[1][0], [5, 6])  # the window stops at its episode's frames
+    assert rows[1][1:] == ("cola_can", "red")
+
+
+def test_a_reading_window_names_the_inspected_object_by_what_it_shows(bell_count_dataset, tmp_path):
+    """On a copy of the build whose bell episode says the expert read the bell at a frame that shows it,
+    the bell is "bell showing gold" where visible within the window and "bell" elsewhere; nothing else
+    is renamed; a build without readings is refused."""
+    import shutil
+
+    with pytest.raises(ValueError, match="no expert readings"):
+        load_grounding_frames(bell_count_dataset, identity=True, reading_window=3)
+    root = tmp_path / "read"
+    shutil.copytree(bell_count_dataset, root)
+    plain = load_grounding_frames(root, identity=True)
+    for path in sorted((root / "meta/activearena/sidecars").glob("episode_*.json")):
+        side = json.loads(path.read_text())
+        bells = [o for o in side["objects"] if o["key"] == "bell"]
+        if bells:
+            episode, slot = int(path.stem.split("_")[1]), bells[0]["index"]
+            shows = np.flatnonzero((plain.episodes == episode) & (plain.object_class[:, slot] >= 0))
+            read_at = int(plain.frames[shows[len(shows) // 2]])
+            side.setdefault("expert_notes", {})["inspections"] = [
+                {"object": "bell", "frame": read_at, "reading": "gold"}
+            ]
+            path.write_text(json.dumps(side))
+    named = load_grounding_frames(root, identity=True, reading_window=3)
+    shown = named.classes.index(f"bell{READING}gold")
+    near = (named.episodes == episode) & (np.abs(named.frames - read_at) <= 3)
+    seen = named.object_class[:, slot] >= 0
+    assert (seen & near).any()
+    assert (named.object_class[near & seen, slot] == shown).all()
+    assert (named.object_class[~near, slot] != shown).all()
+    bell = named.classes.index("bell")
+    assert (named.object_class[~near & seen & (named.episodes == episode), slot] == bell).all()
+    others = [k for k in range(named.object_class.shape[1]) if k != slot]  # nothing else renamed
+    rename = {plain.classes.index(c): named.classes.index(c) for c in plain.classes}
+    before = plain.object_class[:, others]
+    assert (
+        np.where(before >= 0, np.vectorize(lambda c: rename.get(c, -1))(before), -1)
+        == named.object_class[:, others]
+    ).all()
+
+
 def test_ground_vision_fits_the_tower_and_keeps_the_language_model(
     bell_count_dataset, tiny_vlm, tmp_path, capsys
 ):
@@ -223,6 +283,20 @@ def test_ground_vision_refuses_a_build_without_annotations(bell_count_dataset, t
     with pytest.raises(SystemExit):
         ground_main([str(tiny_vlm), "--root", str(slim), "--out", str(tmp_path / "g")])
     assert "full build" in capsys.readouterr().err
+    assert not (tmp_path / "g").exists()
+    with pytest.raises(SystemExit):
+        ground_main(
+            [
+                str(tiny_vlm),
+                "--root",
+                str(bell_count_dataset),
+                "--out",
+                str(tmp_path / "g"),
+                "--reading-window",
+                "4",
+            ]
+        )
+    assert "needs --identity-weight" in capsys.readouterr().err
     assert not (tmp_path / "g").exists()
 
 

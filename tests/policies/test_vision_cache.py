@@ -295,14 +295,15 @@ def test_the_wos_pair_is_the_tuned_pair_without_state_tokens_at_batch_64():
 
 
 def test_the_block_pair_is_the_tuned_count_pair_on_the_block_build_at_batch_64():
-    """The _block_objects_tuned pair (check_block_color, IA): the tuned count pair moved to the block
-    build, its own object-grounded tower and that tower's table, at batch 64; nothing else changed, and
-    the two still differ only in the memory."""
+    """The _block_readings_tuned pair (check_block_color, IA): the tuned count pair moved to the block
+    build, a tower grounded on its objects and on the block's back colour where the expert reads it
+    (``activearena-ground-vision --reading-window``) and that tower's table, at batch 64; nothing else
+    changed, and the two still differ only in the memory."""
     from lerobot.configs.train import TrainPipelineConfig
 
     pair = {}
     for memory in ("action_12", "no_0"):
-        path = CONFIGS / "small" / f"oft_subtask_{memory}_ws_grounded_block_objects_tuned.json"
+        path = CONFIGS / "small" / f"oft_subtask_{memory}_ws_grounded_block_readings_tuned.json"
         block = pair[memory] = json.loads(path.read_text())
         count = small_preset(memory, "count_left_objects_tuned")
         assert {k for k in block if block[k] != count[k]} == {"dataset", "policy", "batch_size", "job_name"}
@@ -310,13 +311,13 @@ def test_the_block_pair_is_the_tuned_count_pair_on_the_block_build_at_batch_64()
         assert differing_policy_keys(block, count) == {"vlm_path"} | (
             {"vision_cache"} if memory == "action_12" else set()
         )
-        assert block["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_p32_grounded_block_objects"
+        assert block["policy"]["vlm_path"] == "outputs/small_vlm_v256d4_p32_grounded_block_readings"
         cfg = TrainPipelineConfig.from_pretrained(path)
         assert cfg.batch_size == 64 and cfg.policy.use_state
     chunk, free = pair["action_12"], pair["no_0"]
     assert differing_policy_keys(chunk, free) == MEMORY_KEYS | {"memory_vision"}
     assert chunk["policy"]["vision_cache"] == (
-        "outputs/vision_cache/cpu_block_200_p16_192_grounded_objects.safetensors"
+        "outputs/vision_cache/cpu_block_200_p16_192_grounded_readings.safetensors"
     )
     assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
 

@@ -9,7 +9,9 @@ current subtask's focus object is in the head image, from a built dataset's per-
 counting frames have no focus object, and the blocks to count are what the tower must keep. With an
 ``identity_weight`` it also says which objects are in each token by what they look like (the sidecar's
 object names without instance numbers: "button 2", "green block"): a frozen tower must tell the
-buttons apart for a policy to press the one of the count. The
+buttons apart for a policy to press the one of the count. With a ``reading_window`` the inspected object
+of an inspection task is named with what its hidden face shows while it is shown (the expert's reading:
+"gray block showing green"), so a frozen tower keeps what a memory frame must carry. The
 policy then trains from the grounded backbone as the paper's trains from Qwen3-VL's.
 """
 
@@ -55,6 +57,30 @@ def appearance_class(key: str, name: str) -> str:
     if stem and index.isdigit() and len(words) == 2 and words[1] == str(int(index) + 1):
         return words[0]
     return name
+
+
+READING = " showing "  # an appearance class that names a reading: "<object> showing <what it shows>"
+
+
+def reading_text(value) -> str:
+    """An expert reading as words: a colour as it is, a can's label by its values ("red", "2024-05-01")."""
+    return " ".join(str(v) for v in value.values()) if isinstance(value, dict) else str(value)
+
+
+def reading_rows(
+    episodes: np.ndarray, frames: np.ndarray, inspections: dict[int, list[dict]], window: int
+) -> list[tuple[np.ndarray, str, str]]:
+    """Per expert reading (``inspections``: per episode, the sidecar's ``expert_notes.inspections``):
+    the rows of (``episodes``, ``frames``) within ``window`` frames of it, the inspected object's key and
+    the reading's words."""
+    out = []
+    for ep, entries in inspections.items():
+        for entry in entries:
+            if "reading" not in entry:
+                continue
+            near = (episodes == ep) & (np.abs(frames - int(entry["frame"])) <= window)
+            out.append((np.flatnonzero(near), entry["object"], reading_text(entry["reading"])))
+    return out
 
 
 def identity_token_targets(
@@ -113,11 +139,16 @@ def within_cells(uv: np.ndarray, rows: int, cols: int) -> np.ndarray:
 
 
 def load_grounding_frames(
-    root: str | Path, camera: str = "observation.images.head", search: bool = False, identity: bool = False
+    root: str | Path,
+    camera: str = "observation.images.head",
+    search: bool = False,
+    identity: bool = False,
+    reading_window: int = 0,
 ) -> GroundingFrames:
     """Every frame of the build at ``root``: its decoded head image and its focus annotations (and, with
     ``search``, its search targets' image points; with ``identity``, every object's point and
-    appearance class)."""
+    appearance class, and with ``reading_window`` > 0 an inspected object's class within that many
+    frames of the expert's reading is "<class> showing <reading>")."""
     import pandas as pd
     from lerobot.datasets.video_utils import decode_video_frames
     from tqdm import tqdm
@@ -177,12 +208,37 @@ def load_grounding_frames(
             ep: {o["index"]: appearance_class(o["key"], o["name"]) for o in side["objects"]}
             for ep, side in sidecars.items()
         }
-        classes = sorted({c for slots in named.values() for c in slots.values()})
+        readings = []
+        if reading_window > 0:
+            inspections = {
+                ep: side.get("expert_notes", {}).get("inspections", []) for ep, side in sidecars.items()
+            }
+            readings = reading_rows(
+                order["episode_index"].to_numpy(),
+                order["frame_index"].to_numpy(),
+                inspections,
+                reading_window,
+            )
+            if not readings:
+                raise ValueError(
+                    f"{root} holds no expert readings (expert_notes.inspections): --reading-window needs a "
+                    "build of an inspection task (check_block_color, check_cola_color...)"
+                )
+        slot = {ep: {o["key"]: o["index"] for o in side["objects"]} for ep, side in sidecars.items()}
+        shown = []  # (rows, object slot, class name) of each reading
+        for rows, key, words in readings:
+            if len(rows):
+                ep = int(order["episode_index"].to_numpy()[rows[0]])
+                k = slot[ep][key]
+                shown.append((rows, k, f"{named[ep][k]}{READING}{words}"))
+        classes = sorted({c for slots in named.values() for c in slots.values()} | {c for _, _, c in shown})
         slot_class = {
             ep: np.array([classes.index(slots.get(k, classes[0])) for k in range(visible.shape[1])])
             for ep, slots in named.items()
         }
         per_frame = np.stack([slot_class[int(ep)] for ep in order["episode_index"]])
+        for rows, k, name in shown:
+            per_frame[rows, k] = classes.index(name)
         object_class = np.where(visible == 1, per_frame, -1)
     return GroundingFrames(
         images=torch.cat(images),
@@ -346,14 +402,23 @@ def grounding_loss(
 
 
 def _accuracy(
-    model: GroundedTower, images, cells, uv, grid: tuple[int, int], batch: int, search=None, identity=None
+    model: GroundedTower,
+    images,
+    cells,
+    uv,
+    grid: tuple[int, int],
+    batch: int,
+    search=None,
+    identity=None,
+    classes: list[str] | None = None,
 ) -> dict[str, float]:
     """Held-out figures. Point errors are in pixels of ``images``, over the frames that show the object and
     whose token is named right: the predicted point's, and the token centre's for comparison. With
     ``search`` (``search_token_targets``' arrays): how often the number of search targets in view is
     right (beside always guessing the most common number), and the per-token precision and recall. With
     ``identity`` (``identity_token_targets``): in the tokens that hold objects of one class, how often
-    that class has the highest logit (beside always guessing the most common class)."""
+    that class has the highest logit (beside always guessing the most common class), and the same over
+    the tokens whose class names a reading (``classes``: the class names)."""
     rows, cols = grid
     model.eval()
     with torch.no_grad():
@@ -398,6 +463,9 @@ def _accuracy(
         guess = torch.cat([o.identity for o in outs])[single].argmax(-1)
         figures["identity_accuracy"] = float((guess == truth).float().mean())
         figures["identity_majority"] = float((truth == truth.mode().values).float().mean())
+        if classes is not None and (reads := torch.tensor([READING in c for c in classes])[truth]).any():
+            figures["reading_accuracy"] = float((guess[reads] == truth[reads]).float().mean())
+            figures["reading_majority"] = float((truth[reads] == truth[reads].mode().values).float().mean())
     return figures
 
 
@@ -414,6 +482,7 @@ def ground_vision_tower(
     point_weight: float = 0.0,
     search_weight: float = 0.0,
     identity_weight: float = 0.0,
+    reading_window: int = 0,
     jitter: bool = False,
     random_conv: bool = False,
     eval_root: str | Path | None = None,
@@ -422,7 +491,8 @@ def ground_vision_tower(
     and save the whole model (tokenizer and processor copied) to ``out_dir``. Every ``val_every``-th
     episode is held out and scored. ``point_weight`` > 0 also fits where in its token the object lies (the
     token alone places it within half a token). ``search_weight`` > 0 also fits which tokens hold a search
-    target and how many are in view; ``identity_weight`` > 0 which appearance classes each token holds.
+    target and how many are in view; ``identity_weight`` > 0 which appearance classes each token holds
+    (with ``reading_window`` > 0, an inspected object near the expert's reading as what it shows).
     ``jitter`` colour-jitters every training batch (``color_jitter``), ``random_conv`` passes half its
     frames through a random convolution (``random_convolution``). ``eval_root`` (another build, an OOD
     one say) is scored whole after each epoch too, the focus figures with an ``eval_`` prefix.
@@ -433,7 +503,13 @@ def ground_vision_tower(
     from .vlm_loading import load_policy_vlm
 
     torch.manual_seed(seed)
-    frames = load_grounding_frames(root, search=search_weight > 0, identity=identity_weight > 0)
+    if reading_window > 0 and identity_weight <= 0:
+        raise ValueError(
+            "--reading-window names the readings among the identity classes: it needs --identity-weight > 0"
+        )
+    frames = load_grounding_frames(
+        root, search=search_weight > 0, identity=identity_weight > 0, reading_window=reading_window
+    )
     extra = load_grounding_frames(eval_root) if eval_root is not None else None
     # as the policy builds it (linear patch embedding, batched vision attention): the same weights, and
     # PyTorch's CPU Conv3d backward is most of a grounding step otherwise
@@ -504,6 +580,7 @@ def ground_vision_tower(
                 4 * batch_size,
                 held_search,
                 None if identity is None else identity[held],
+                frames.classes,
             )
             if extra is not None:
                 elsewhere = _accuracy(
@@ -534,6 +611,7 @@ def ground_vision_tower(
         "point_weight": point_weight,
         "search_weight": search_weight,
         "identity_weight": identity_weight,
+        "reading_window": reading_window,
         "jitter": JITTER if jitter else None,
         "random_conv": random_conv,
         "eval_root": None if eval_root is None else str(eval_root),
