@@ -22,7 +22,7 @@ import numpy as np
 import torch
 
 sys.path.insert(0, str(Path(__file__).parent))
-from vision_feature_probe import probe  # noqa: E402
+from vision_feature_probe import cache_tokens, probe  # noqa: E402
 
 
 def reading_frames(root: Path, window: int, place_subtask: int):
@@ -58,8 +58,6 @@ def reading_frames(root: Path, window: int, place_subtask: int):
 
 
 def main(argv: list[str] | None = None) -> None:
-    from safetensors import safe_open
-
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("caches", nargs="+", type=Path, help="vision caches of the build")
     p.add_argument("--root", type=Path, required=True, help="the full build (with its annotations)")
@@ -76,11 +74,7 @@ def main(argv: list[str] | None = None) -> None:
     print("| vision cache | frames | train accuracy | held-out accuracy | majority class, held out |")
     print("|---|---|---|---|---|")
     for cache in args.caches:
-        tokens = safe_open(str(cache), "pt").get_tensor("embeds").float()
-        if len(tokens) != len(labels):
-            raise SystemExit(
-                f"{cache} holds {len(tokens)} frames, the build {len(labels)}: a cache of another build"
-            )
+        tokens = cache_tokens(cache, len(labels))
         for name, rows in (("at the reading", near), ("placing starts", after)):
             train, test = torch.tensor(rows & ~held), torch.tensor(rows & held)
             pred = probe(tokens, y, train)

@@ -62,8 +62,17 @@ def probe(tokens: torch.Tensor, labels: torch.Tensor, train: torch.Tensor, steps
         return head(x).sum(1).argmax(1)
 
 
-def main(argv: list[str] | None = None) -> None:
+def cache_tokens(cache: Path, frames: int) -> torch.Tensor:
+    """A vision cache's (N, T, D) tokens as float; refuses a cache of another build (not ``frames`` long)."""
     from safetensors import safe_open
+
+    tokens = safe_open(str(cache), "pt").get_tensor("embeds").float()
+    if len(tokens) != frames:
+        raise SystemExit(f"{cache} holds {len(tokens)} frames, the build {frames}: a cache of another build")
+    return tokens
+
+
+def main(argv: list[str] | None = None) -> None:
 
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument(
@@ -86,11 +95,7 @@ def main(argv: list[str] | None = None) -> None:
     print("| vision cache | train accuracy | held-out accuracy | majority class, held out |")
     print("|---|---|---|---|")
     for cache in args.caches:
-        tokens = safe_open(str(cache), "pt").get_tensor("embeds").float()
-        if len(tokens) != len(n):
-            raise SystemExit(
-                f"{cache} holds {len(tokens)} frames, the build {len(n)}: a cache of another build"
-            )
+        tokens = cache_tokens(cache, len(n))
         pred = probe(tokens, labels, train)
         acc = [(pred[m] == labels[m]).float().mean().item() for m in (train, test)]
         print(
