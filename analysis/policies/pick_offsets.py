@@ -1,0 +1,116 @@
+"""Where a policy's pick goes on an inspection task (check_block_color and the other
+inspect-and-place tasks): per episode, the arm the expert would pick with (the one on the object's
+half of the fan), the arm that came nearest the object and how near (tool centre to object centre,
+3-D), whether either gripper held it with both pads, how high it was lifted, and the episode's end.
+Tells a policy that reaches with the wrong arm or to the wrong spot from one that picks and then
+fails the turn or the place.
+
+    python analysis/policies/pick_offsets.py --task check_block_color \\
+        --policy.path=outputs/train/.../pretrained_model \\
+        --env.observation_height=192 --env.observation_width=256 --episode-indices 50-59
+
+Runs ``activearena-eval`` in this process (``--workers 1``, validation ID episodes by default) with
+the task's ``evaluate`` wrapped to record each step, then prints one line per episode
+and the counts.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import tempfile
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+
+from lerobot_activearena.sim.embodiment import ARMS, TCP_SITES
+from lerobot_activearena.tasks import predicates
+from lerobot_activearena.tasks.shapes import inspection
+
+STEPS: dict[int, dict] = {}  # scene seed -> what its episode did
+LIFT = 0.03  # m above its spawn height: picked up
+
+
+def expert_arm(xy) -> str:
+    """The benchmark expert's picking arm: left for an object on the robot's left half of the fan
+    (heading >= 90 deg, 90 = straight ahead), right otherwise (``expert.skills.arm_for``)."""
+    return "left" if np.degrees(np.arctan2(xy[1], xy[0])) >= 90.0 else "right"
+
+
+def new_record(start_xy) -> dict:
+    return {"expert_arm": expert_arm(start_xy), "nearest": {a: 9.0 for a in ARMS}, "grasped": set(), "lift": 0.0}
+
+
+def update(r: dict, tcp: dict, centre, grasped: dict, lift: float) -> None:
+    """One step: each arm's tool centre (``tcp``) against the object's centre, the arms holding it."""
+    for arm in ARMS:
+        r["nearest"][arm] = min(r["nearest"][arm], float(np.linalg.norm(np.asarray(tcp[arm]) - centre)))
+        if grasped[arm]:
+            r["grasped"].add(arm)
+    r["lift"] = max(r["lift"], lift)
+
+
+def summary(r: dict) -> dict:
+    """What the pick did: the arm that came nearest and how near, whether that is the expert's arm,
+    and the furthest it got (``reach`` < ``grasp`` < ``lift``)."""
+    arm = min(ARMS, key=lambda a: r["nearest"][a])
+    stage = "lift" if r["lift"] >= LIFT else ("grasp" if r["grasped"] else "reach")
+    return {"arm": arm, "expert_arm": r["expert_arm"], "nearest": r["nearest"][arm], "stage": stage}
+
+
+def _recording(evaluate):
+    def wrapped(self, sim, scene, monitor):
+        checks = evaluate(self, sim, scene, monitor)
+        obj = scene.obj(self.inspected[0])
+        centre = predicates.centre_point(sim, obj)
+        if scene.seed not in STEPS:
+            STEPS[scene.seed] = new_record(centre[:2])
+        update(
+            STEPS[scene.seed],
+            {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS},
+            centre,
+            {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
+            float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
+        )
+        return checks
+
+    return wrapped
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--task", default="check_block_color")
+    p.add_argument("--episode-indices", default="50-59", help="manifest indices (default: validation)")
+    p.add_argument("--split", default="id")
+    args, eval_args = p.parse_known_args()
+    from lerobot_activearena.cli.eval import main as activearena_eval
+    from lerobot_activearena.tasks import get_task
+
+    task = type(get_task(args.task))
+    if not issubclass(task, inspection.InspectAndPlaceTask):
+        p.error(f"{args.task} is not an inspect-and-place task (tasks/shapes/inspection.py)")
+    task.evaluate = _recording(task.evaluate)  # the task's own checks, recorded step by step
+    with tempfile.TemporaryDirectory() as out:
+        activearena_eval(
+            [*eval_args, f"--tasks={args.task}", f"--splits={args.split}", "--workers=1", "--videos=0"]
+            + [f"--episode-indices={args.episode_indices}", "--label=pick_offsets", f"--out={out}"]
+        )
+        records = [json.loads(x) for x in (Path(out) / args.split / "episodes" / "records.jsonl").open()]
+    stages, arms = Counter(), Counter()
+    for rec in sorted(records, key=lambda r: r["episode"]):
+        s = summary(STEPS[rec["scene_seed"]])
+        stages[s["stage"]] += 1
+        arms["expert's arm" if s["arm"] == s["expert_arm"] else "the other arm"] += 1
+        end = "success" if rec["success"] else f"{rec['failure_state']}: {rec['failure_reason']}"
+        print(
+            f"episode {rec['episode']:3d}  expert arm {s['expert_arm']:5s}  nearest {s['arm']:5s} "
+            f"{100 * s['nearest']:5.1f} cm  furthest stage {s['stage']:5s}  {end}"
+        )
+    print(f"nearest arm: {dict(arms)}; furthest stage: {dict(stages)} of {len(records)} episodes")
+
+
+if __name__ == "__main__":
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    main()

@@ -1,0 +1,38 @@
+"""analysis/policies/pick_offsets.py: which arm a pick went with, how near and how far it got."""
+
+import numpy as np
+import pytest
+from helpers.analysis_scripts import load
+
+
+def _step(script, r, left, right, centre, grasped=(), lift=0.0):
+    script.update(r, {"left": left, "right": right}, np.asarray(centre), {a: a in grasped for a in ("left", "right")}, lift)
+
+
+def test_the_expert_arm_is_the_one_on_the_objects_half_of_the_fan():
+    script = load("analysis/policies/pick_offsets.py")
+    assert script.expert_arm([-0.1, 0.4]) == "left"  # heading about 104 deg: the robot's left
+    assert script.expert_arm([0.1, 0.4]) == "right"
+
+
+def test_a_reach_with_the_other_arm_that_never_closes_on_the_object_is_a_reach():
+    script = load("analysis/policies/pick_offsets.py")
+    centre = [-0.1, 0.38, 0.05]
+    r = script.new_record(centre[:2])
+    _step(script, r, left=[-0.3, 0.2, 0.3], right=[-0.05, 0.35, 0.12], centre=centre)
+    _step(script, r, left=[-0.3, 0.2, 0.3], right=[-0.08, 0.37, 0.09], centre=centre)
+    s = script.summary(r)
+    assert (s["arm"], s["expert_arm"], s["stage"]) == ("right", "left", "reach")
+    assert s["nearest"] == pytest.approx(np.linalg.norm([0.02, 0.01, 0.04]))
+
+
+def test_a_grasp_counts_as_a_pick_only_once_the_object_is_lifted():
+    script = load("analysis/policies/pick_offsets.py")
+    centre = [0.1, 0.38, 0.05]
+    r = script.new_record(centre[:2])
+    _step(script, r, left=[0.3, 0.2, 0.3], right=centre, centre=centre, grasped={"right"}, lift=0.01)
+    assert script.summary(r)["stage"] == "grasp"
+    _step(script, r, left=[0.3, 0.2, 0.3], right=centre, centre=centre, grasped={"right"}, lift=0.05)
+    s = script.summary(r)
+    assert (s["arm"], s["expert_arm"], s["stage"]) == ("right", "right", "lift")
+    assert s["nearest"] == pytest.approx(0.0)
