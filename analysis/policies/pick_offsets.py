@@ -40,7 +40,12 @@ def expert_arm(xy) -> str:
 
 
 def new_record(start_xy) -> dict:
-    return {"expert_arm": expert_arm(start_xy), "nearest": {a: 9.0 for a in ARMS}, "grasped": set(), "lift": 0.0}
+    return {
+        "expert_arm": expert_arm(start_xy),
+        "nearest": dict.fromkeys(ARMS, 9.0),
+        "grasped": set(),
+        "lift": 0.0,
+    }
 
 
 def update(r: dict, tcp: dict, centre, grasped: dict, lift: float) -> None:

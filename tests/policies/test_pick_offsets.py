@@ -6,7 +6,13 @@ from helpers.analysis_scripts import load
 
 
 def _step(script, r, left, right, centre, grasped=(), lift=0.0):
-    script.update(r, {"left": left, "right": right}, np.asarray(centre), {a: a in grasped for a in ("left", "right")}, lift)
+    script.update(
+        r,
+        {"left": left, "right": right},
+        np.asarray(centre),
+        {a: a in grasped for a in ("left", "right")},
+        lift,
+    )
 
 
 def test_the_expert_arm_is_the_one_on_the_objects_half_of_the_fan():
