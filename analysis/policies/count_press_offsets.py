@@ -15,10 +15,7 @@ the counts.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import tempfile
-from pathlib import Path
 
 import numpy as np
 
@@ -29,18 +26,13 @@ STEPS: dict[int, dict] = {}  # scene seed -> where its episode's arm came lowest
 ARM = {"value": "left"}
 
 
-def _recording(evaluate):
-    def wrapped(self, sim, scene, monitor):
-        checks = evaluate(self, sim, scene, monitor)
-        points = {n: predicates.press_point(sim, scene.obj(f"button_{n}")) for n in counting.BUTTONS}
-        tcp = sim.data.site(predicates.embodiment.TCP_SITES[ARM["value"]]).xpos.copy()
-        r = STEPS.setdefault(scene.seed, {"lowest": None, "count": scene.params["count"], "points": points})
-        if r["lowest"] is None or tcp[2] < r["lowest"][2]:
-            r["lowest"] = tcp
-            r["torso"] = float(np.degrees(sim.data.joint(predicates.embodiment.TORSO_YAW_JOINT).qpos[0]))
-        return checks
-
-    return wrapped
+def record_step(self, sim, scene) -> None:
+    points = {n: predicates.press_point(sim, scene.obj(f"button_{n}")) for n in counting.BUTTONS}
+    tcp = sim.data.site(predicates.embodiment.TCP_SITES[ARM["value"]]).xpos.copy()
+    r = STEPS.setdefault(scene.seed, {"lowest": None, "count": scene.params["count"], "points": points})
+    if r["lowest"] is None or tcp[2] < r["lowest"][2]:
+        r["lowest"] = tcp
+        r["torso"] = float(np.degrees(sim.data.joint(predicates.embodiment.TORSO_YAW_JOINT).qpos[0]))
 
 
 def offsets(r: dict) -> dict:
@@ -71,20 +63,21 @@ def main() -> None:
     p.add_argument("--episode-indices", default="50-69", help="manifest indices (default: validation)")
     p.add_argument("--split", default="id")
     args, eval_args = p.parse_known_args()
-    from lerobot_activearena.cli.eval import main as activearena_eval
+    from lerobot_activearena.eval.recorded import run_recorded
     from lerobot_activearena.tasks import get_task
 
     if not isinstance(get_task(args.task), counting.CountAndPressTask):
         p.error(f"{args.task} is not a count-and-press task (tasks/shapes/counting.py)")
     ARM["value"] = args.arm
-    counting.CountAndPressTask.evaluate = _recording(counting.CountAndPressTask.evaluate)
-    with tempfile.TemporaryDirectory() as out:
-        activearena_eval(
-            [*eval_args, f"--tasks={args.task}", f"--splits={args.split}", "--workers=1", "--videos=0"]
-            + [f"--episode-indices={args.episode_indices}", "--label=count_press_offsets", f"--out={out}"]
-        )
-        records = [json.loads(x) for x in (Path(out) / args.split / "episodes" / "records.jsonl").open()]
-    records = sorted(records, key=lambda r: r["episode"])
+    records = run_recorded(
+        counting.CountAndPressTask,
+        record_step,
+        eval_args,
+        args.task,
+        args.split,
+        args.episode_indices,
+        "count_press_offsets",
+    )
     all_o = [offsets(STEPS[r["scene_seed"]]) for r in records]
     between = sum(o["to_centroid"] < o["to_nearest"] for o in all_o)
     for rec, o in zip(records, all_o, strict=True):

@@ -17,11 +17,8 @@ and the counts.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import tempfile
 from collections import Counter
-from pathlib import Path
 
 import numpy as np
 
@@ -65,23 +62,18 @@ def summary(r: dict) -> dict:
     return {"arm": arm, "expert_arm": r["expert_arm"], "nearest": r["nearest"][arm], "stage": stage}
 
 
-def _recording(evaluate):
-    def wrapped(self, sim, scene, monitor):
-        checks = evaluate(self, sim, scene, monitor)
-        obj = scene.obj(self.inspected[0])
-        centre = predicates.centre_point(sim, obj)
-        if scene.seed not in STEPS:
-            STEPS[scene.seed] = new_record(centre[:2])
-        update(
-            STEPS[scene.seed],
-            {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS},
-            centre,
-            {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
-            float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
-        )
-        return checks
-
-    return wrapped
+def record_step(self, sim, scene) -> None:
+    obj = scene.obj(self.inspected[0])
+    centre = predicates.centre_point(sim, obj)
+    if scene.seed not in STEPS:
+        STEPS[scene.seed] = new_record(centre[:2])
+    update(
+        STEPS[scene.seed],
+        {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS},
+        centre,
+        {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
+        float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
+    )
 
 
 def main() -> None:
@@ -90,21 +82,17 @@ def main() -> None:
     p.add_argument("--episode-indices", default="50-59", help="manifest indices (default: validation)")
     p.add_argument("--split", default="id")
     args, eval_args = p.parse_known_args()
-    from lerobot_activearena.cli.eval import main as activearena_eval
+    from lerobot_activearena.eval.recorded import run_recorded
     from lerobot_activearena.tasks import get_task
 
     task = type(get_task(args.task))
     if not issubclass(task, inspection.InspectAndPlaceTask):
         p.error(f"{args.task} is not an inspect-and-place task (tasks/shapes/inspection.py)")
-    task.evaluate = _recording(task.evaluate)  # the task's own checks, recorded step by step
-    with tempfile.TemporaryDirectory() as out:
-        activearena_eval(
-            [*eval_args, f"--tasks={args.task}", f"--splits={args.split}", "--workers=1", "--videos=0"]
-            + [f"--episode-indices={args.episode_indices}", "--label=pick_offsets", f"--out={out}"]
-        )
-        records = [json.loads(x) for x in (Path(out) / args.split / "episodes" / "records.jsonl").open()]
+    records = run_recorded(
+        task, record_step, eval_args, args.task, args.split, args.episode_indices, "pick_offsets"
+    )
     stages, arms = Counter(), Counter()
-    for rec in sorted(records, key=lambda r: r["episode"]):
+    for rec in records:
         s = summary(STEPS[rec["scene_seed"]])
         stages[s["stage"]] += 1
         arms["expert's arm" if s["arm"] == s["expert_arm"] else "the other arm"] += 1

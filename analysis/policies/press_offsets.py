@@ -17,10 +17,7 @@ the counts.
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import tempfile
-from pathlib import Path
 
 import numpy as np
 
@@ -30,27 +27,22 @@ from lerobot_activearena.tasks.shapes import pressing
 STEPS: dict[int, dict] = {}  # scene seed -> what its episode did
 
 
-def _recording(evaluate):
-    def wrapped(self, sim, scene, monitor):
-        checks = evaluate(self, sim, scene, monitor)
-        device = scene.obj(self.device)
-        point = predicates.press_point(sim, device)
-        r = STEPS.setdefault(
-            scene.seed, {"pressed_offsets": [], "min_offset": 9.0, "lowest": (9.0, 9.0), "contact": False}
+def record_step(self, sim, scene) -> None:
+    device = scene.obj(self.device)
+    point = predicates.press_point(sim, device)
+    r = STEPS.setdefault(
+        scene.seed, {"pressed_offsets": [], "min_offset": 9.0, "lowest": (9.0, 9.0), "contact": False}
+    )
+    arm = self.arms[0]
+    tcp = sim.data.site(predicates.embodiment.TCP_SITES[arm]).xpos
+    offset = float(np.hypot(*(tcp[:2] - point[:2])))
+    r["min_offset"] = min(r["min_offset"], offset)
+    r["lowest"] = min(r["lowest"], (float(tcp[2] - point[2]), offset))  # (height, offset) where lowest
+    if predicates.press_moved(sim, device):
+        r["pressed_offsets"].append(offset)
+        r["contact"] |= predicates.gripper_closed(sim, arm) and predicates.gripper_contact_near(
+            sim, arm, self.device, point, 0.025, 0.03
         )
-        arm = self.arms[0]
-        tcp = sim.data.site(predicates.embodiment.TCP_SITES[arm]).xpos
-        offset = float(np.hypot(*(tcp[:2] - point[:2])))
-        r["min_offset"] = min(r["min_offset"], offset)
-        r["lowest"] = min(r["lowest"], (float(tcp[2] - point[2]), offset))  # (height, offset) where lowest
-        if predicates.press_moved(sim, device):
-            r["pressed_offsets"].append(offset)
-            r["contact"] |= predicates.gripper_closed(sim, arm) and predicates.gripper_contact_near(
-                sim, arm, self.device, point, 0.025, 0.03
-            )
-        return checks
-
-    return wrapped
 
 
 def main() -> None:
@@ -59,21 +51,23 @@ def main() -> None:
     p.add_argument("--episode-indices", default="50-69", help="manifest indices (default: validation)")
     p.add_argument("--split", default="id")
     args, eval_args = p.parse_known_args()
-    from lerobot_activearena.cli.eval import main as activearena_eval
+    from lerobot_activearena.eval.recorded import run_recorded
     from lerobot_activearena.tasks import get_task
 
     task = get_task(args.task)
     if not isinstance(task, pressing.PressDeviceTask):
         p.error(f"{args.task} is not a press-device task (tasks/shapes/pressing.py)")
-    pressing.PressDeviceTask.evaluate = _recording(pressing.PressDeviceTask.evaluate)
-    with tempfile.TemporaryDirectory() as out:
-        activearena_eval(
-            [*eval_args, f"--tasks={args.task}", f"--splits={args.split}", "--workers=1", "--videos=0"]
-            + [f"--episode-indices={args.episode_indices}", "--label=press_offsets", f"--out={out}"]
-        )
-        records = [json.loads(x) for x in (Path(out) / args.split / "episodes" / "records.jsonl").open()]
+    records = run_recorded(
+        pressing.PressDeviceTask,
+        record_step,
+        eval_args,
+        args.task,
+        args.split,
+        args.episode_indices,
+        "press_offsets",
+    )
     counts = {"success": 0, "pressed, off centre": 0, "never pressed": 0}
-    for rec in sorted(records, key=lambda r: r["episode"]):
+    for rec in records:
         nan = float("nan")
         r = STEPS.get(
             rec["scene_seed"],
