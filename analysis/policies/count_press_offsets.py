@@ -26,7 +26,7 @@ STEPS: dict[int, dict] = {}  # scene seed -> where its episode's arm came lowest
 ARM = {"value": "left"}
 
 
-def record_step(self, sim, scene) -> None:
+def record_step(task, sim, scene) -> None:
     points = {n: predicates.press_point(sim, scene.obj(f"button_{n}")) for n in counting.BUTTONS}
     tcp = sim.data.site(predicates.embodiment.TCP_SITES[ARM["value"]]).xpos.copy()
     r = STEPS.setdefault(scene.seed, {"lowest": None, "count": scene.params["count"], "points": points})

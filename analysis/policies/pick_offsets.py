@@ -62,8 +62,8 @@ def summary(r: dict) -> dict:
     return {"arm": arm, "expert_arm": r["expert_arm"], "nearest": r["nearest"][arm], "stage": stage}
 
 
-def record_step(self, sim, scene) -> None:
-    obj = scene.obj(self.inspected[0])
+def record_step(task, sim, scene) -> None:
+    obj = scene.obj(task.inspected[0])
     centre = predicates.centre_point(sim, obj)
     if scene.seed not in STEPS:
         STEPS[scene.seed] = new_record(centre[:2])

@@ -27,13 +27,13 @@ from lerobot_activearena.tasks.shapes import pressing
 STEPS: dict[int, dict] = {}  # scene seed -> what its episode did
 
 
-def record_step(self, sim, scene) -> None:
-    device = scene.obj(self.device)
+def record_step(task, sim, scene) -> None:
+    device = scene.obj(task.device)
     point = predicates.press_point(sim, device)
     r = STEPS.setdefault(
         scene.seed, {"pressed_offsets": [], "min_offset": 9.0, "lowest": (9.0, 9.0), "contact": False}
     )
-    arm = self.arms[0]
+    arm = task.arms[0]
     tcp = sim.data.site(predicates.embodiment.TCP_SITES[arm]).xpos
     offset = float(np.hypot(*(tcp[:2] - point[:2])))
     r["min_offset"] = min(r["min_offset"], offset)
@@ -41,7 +41,7 @@ def record_step(self, sim, scene) -> None:
     if predicates.press_moved(sim, device):
         r["pressed_offsets"].append(offset)
         r["contact"] |= predicates.gripper_closed(sim, arm) and predicates.gripper_contact_near(
-            sim, arm, self.device, point, 0.025, 0.03
+            sim, arm, task.device, point, 0.025, 0.03
         )
 
 
