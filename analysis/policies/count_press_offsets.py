@@ -63,7 +63,7 @@ def main() -> None:
     p.add_argument("--episode-indices", default="50-69", help="manifest indices (default: validation)")
     p.add_argument("--split", default="id")
     args, eval_args = p.parse_known_args()
-    from lerobot_activearena.eval.recorded import run_recorded
+    from lerobot_activearena.cli.recorded import run_recorded
     from lerobot_activearena.tasks import get_task
 
     if not isinstance(get_task(args.task), counting.CountAndPressTask):

@@ -24,7 +24,7 @@ def run_recorded(
     ``episode_indices`` with ``eval_args`` (the policy's options), calling ``on_step(task, sim, scene)``
     after each step's ``task_class.evaluate``. Returns the episode records, sorted by episode.
     ``task_class.evaluate`` is restored afterwards, also when the evaluation fails."""
-    from ..cli.eval import main as activearena_eval
+    from .eval import main as activearena_eval
 
     evaluate = task_class.__dict__.get("evaluate")
     inherited = task_class.evaluate

@@ -1,8 +1,8 @@
-"""lerobot_activearena/eval/recorded.py: protocol episodes with a hook after each step's checks."""
+"""lerobot_activearena/cli/recorded.py: protocol episodes with a hook after each step's checks."""
 
 import pytest
 
-from lerobot_activearena.eval.recorded import run_recorded
+from lerobot_activearena.cli.recorded import run_recorded
 from lerobot_activearena.tasks.shapes import pressing
 
 BELL = "click_bell_rotate_view"
