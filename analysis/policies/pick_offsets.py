@@ -1,9 +1,10 @@
 """Where a policy's pick goes on an inspection task (check_block_color and the other
 inspect-and-place tasks): per episode, the arm the expert would pick with (the one on the object's
 half of the fan), the arm that came nearest the object and how near (tool centre to object centre,
-3-D), whether either gripper held it with both pads, how high it was lifted, and the episode's end.
-Tells a policy that reaches with the wrong arm or to the wrong spot from one that picks and then
-fails the turn or the place.
+3-D), whether either gripper held it with both pads, how high it was lifted, what it rests on at
+the end (against the destination its reading names) and the episode's end. Tells a policy that
+reaches with the wrong arm or to the wrong spot from one that picks and then fails the turn or the
+place, and a wrong destination from a missed one.
 
     python analysis/policies/pick_offsets.py --task check_block_color \\
         --policy.path=outputs/train/.../pretrained_model \\
@@ -42,6 +43,7 @@ def new_record(start_xy) -> dict:
         "nearest": dict.fromkeys(ARMS, 9.0),
         "grasped": set(),
         "lift": 0.0,
+        "rests_on": None,
     }
 
 
@@ -59,7 +61,26 @@ def summary(r: dict) -> dict:
     and the furthest it got (``reach`` < ``grasp`` < ``lift``)."""
     arm = min(ARMS, key=lambda a: r["nearest"][a])
     stage = "lift" if r["lift"] >= LIFT else ("grasp" if r["grasped"] else "reach")
-    return {"arm": arm, "expert_arm": r["expert_arm"], "nearest": r["nearest"][arm], "stage": stage}
+    return {
+        "arm": arm,
+        "expert_arm": r["expert_arm"],
+        "nearest": r["nearest"][arm],
+        "stage": stage,
+        "rests_on": r["rests_on"],
+    }
+
+
+def resting_support(sim, scene, obj) -> str | None:
+    """The registered object with a support surface that ``obj`` rests on now, or None."""
+    for name in scene.objects:
+        other = scene.obj(name)
+        if (
+            name != obj.name
+            and other.functional.support is not None
+            and predicates.resting_on(sim, obj, other)
+        ):
+            return name
+    return None
 
 
 def record_step(task, sim, scene) -> None:
@@ -74,6 +95,9 @@ def record_step(task, sim, scene) -> None:
         {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
         float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
     )
+    record = STEPS[scene.seed]
+    record["rests_on"] = resting_support(sim, scene, obj)
+    record["destination"] = task.read(scene, obj.attributes).destination
 
 
 def main() -> None:
@@ -91,17 +115,22 @@ def main() -> None:
     records = run_recorded(
         task, record_step, eval_args, args.task, args.split, args.episode_indices, "pick_offsets"
     )
-    stages, arms = Counter(), Counter()
+    stages, arms, ends = Counter(), Counter(), Counter()
     for rec in records:
         s = summary(STEPS[rec["scene_seed"]])
         stages[s["stage"]] += 1
         arms["expert's arm" if s["arm"] == s["expert_arm"] else "the other arm"] += 1
+        wanted = STEPS[rec["scene_seed"]]["destination"]
+        rests = s["rests_on"] or "no support"
+        ends["the named one" if rests == wanted else "another support" if s["rests_on"] else rests] += 1
         end = "success" if rec["success"] else f"{rec['failure_state']}: {rec['failure_reason']}"
         print(
             f"episode {rec['episode']:3d}  expert arm {s['expert_arm']:5s}  nearest {s['arm']:5s} "
-            f"{100 * s['nearest']:5.1f} cm  furthest stage {s['stage']:5s}  {end}"
+            f"{100 * s['nearest']:5.1f} cm  furthest stage {s['stage']:5s}  "
+            f"rests on {rests} (wanted {wanted})  {end}"
         )
     print(f"nearest arm: {dict(arms)}; furthest stage: {dict(stages)} of {len(records)} episodes")
+    print(f"object rests at the end on: {dict(ends)}")
 
 
 if __name__ == "__main__":

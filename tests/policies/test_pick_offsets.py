@@ -42,3 +42,29 @@ def test_a_grasp_counts_as_a_pick_only_once_the_object_is_lifted():
     s = script.summary(r)
     assert (s["arm"], s["expert_arm"], s["stage"]) == ("right", "right", "lift")
     assert s["nearest"] == pytest.approx(0.0)
+
+
+def test_the_object_rests_on_the_pad_it_was_set_on_and_on_no_support_on_the_table():
+    import mujoco
+
+    from lerobot_activearena.sim.simulator import ActiveArenaSim
+    from lerobot_activearena.tasks import get_task
+    from lerobot_activearena.tasks.sampling import sample_scene
+
+    script = load("analysis/policies/pick_offsets.py")
+    task = get_task("check_block_color")
+    scene = sample_scene(task, 0, "id")
+    sim = ActiveArenaSim(scene.model, scene.info)
+    block = scene.obj("gray_block")
+    assert script.resting_support(sim, scene, block) is None  # spawned on the table
+
+    wrong = next(
+        n for n in ("red_pad", "green_pad", "blue_pad") if n != task.read(scene, block.attributes).destination
+    )
+    pad = sim.data.body(wrong)
+    top = pad.xpos + pad.xmat.reshape(3, 3)[:, 2] * scene.obj(wrong).functional.support.top
+    joint = sim.model.body(block.body).jntadr[0]
+    adr = sim.model.jnt_qposadr[joint]
+    sim.data.qpos[adr : adr + 3] = top
+    mujoco.mj_forward(sim.model, sim.data)
+    assert script.resting_support(sim, scene, block) == wrong
