@@ -2,9 +2,12 @@
 inspect-and-place tasks): per episode, the arm the expert would pick with (the one on the object's
 half of the fan), the arm that came nearest the object and how near (tool centre to object centre,
 3-D), whether either gripper held it with both pads, how high it was lifted, what it rests on at
-the end (against the destination its reading names) and the episode's end. Tells a policy that
+the end (against the destination its reading names), how far its centre ends from the named
+destination's centre and from the nearest other support's, whether a gripper still holds it, and the
+episode's end. Tells a policy that
 reaches with the wrong arm or to the wrong spot from one that picks and then fails the turn or the
-place, and a wrong destination from a missed one.
+place, a wrong destination from a missed one, and a place that misses the named pad by a little from
+one that stops between pads or never lets go.
 
     python analysis/policies/pick_offsets.py --task check_block_color \\
         --policy.path=outputs/train/.../pretrained_model \\
@@ -70,6 +73,20 @@ def summary(r: dict) -> dict:
     }
 
 
+def placement(r: dict) -> str:
+    """Where the object's centre ends against the named destination and the nearest other support
+    (xy, cm), and whether a gripper still holds it."""
+    offsets = r.get("offsets") or {}
+    if r["destination"] not in offsets:
+        return "no destination offset"
+    others = {k: v for k, v in offsets.items() if k != r["destination"]}
+    other = min(others, key=others.get) if others else None
+    text = f"{100 * offsets[r['destination']]:5.1f} cm from it"
+    if other:
+        text += f", {100 * others[other]:5.1f} cm from {other}"
+    return text + (", held" if r["held"] else "")
+
+
 def resting_support(sim, scene, obj) -> str | None:
     """The registered object with a support surface that ``obj`` rests on now, or None."""
     for name in scene.objects:
@@ -98,6 +115,12 @@ def record_step(task, sim, scene) -> None:
     record = STEPS[scene.seed]
     record["rests_on"] = resting_support(sim, scene, obj)
     record["destination"] = task.read(scene, obj.attributes).destination
+    record["held"] = any(predicates.grasped_by(sim, obj.body, arm) for arm in ARMS)
+    record["offsets"] = {  # xy distance from the object's centre to each support's centre, now
+        name: float(np.linalg.norm(predicates.centre_point(sim, scene.obj(name))[:2] - centre[:2]))
+        for name in scene.objects
+        if name != obj.name and scene.obj(name).functional.support is not None
+    }
 
 
 def main() -> None:
@@ -116,6 +139,7 @@ def main() -> None:
         task, record_step, eval_args, args.task, args.split, args.episode_indices, "pick_offsets"
     )
     stages, arms, ends = Counter(), Counter(), Counter()
+    holds = 0
     for rec in records:
         s = summary(STEPS[rec["scene_seed"]])
         stages[s["stage"]] += 1
@@ -123,14 +147,16 @@ def main() -> None:
         wanted = STEPS[rec["scene_seed"]]["destination"]
         rests = s["rests_on"] or "no support"
         ends["the named one" if rests == wanted else "another support" if s["rests_on"] else rests] += 1
+        if STEPS[rec["scene_seed"]]["held"]:
+            holds += 1
         end = "success" if rec["success"] else f"{rec['failure_state']}: {rec['failure_reason']}"
         print(
             f"episode {rec['episode']:3d}  expert arm {s['expert_arm']:5s}  nearest {s['arm']:5s} "
             f"{100 * s['nearest']:5.1f} cm  furthest stage {s['stage']:5s}  "
-            f"rests on {rests} (wanted {wanted})  {end}"
+            f"rests on {rests} (wanted {wanted})  {placement(STEPS[rec['scene_seed']])}  {end}"
         )
     print(f"nearest arm: {dict(arms)}; furthest stage: {dict(stages)} of {len(records)} episodes")
-    print(f"object rests at the end on: {dict(ends)}")
+    print(f"object rests at the end on: {dict(ends)}; still held at the end: {holds}")
 
 
 if __name__ == "__main__":

@@ -68,3 +68,16 @@ def test_the_object_rests_on_the_pad_it_was_set_on_and_on_no_support_on_the_tabl
     sim.data.qpos[adr : adr + 3] = top
     mujoco.mj_forward(sim.model, sim.data)
     assert script.resting_support(sim, scene, block) == wrong
+
+
+def test_the_placement_names_the_miss_against_the_named_pad_and_the_nearest_other_one():
+    script = load("analysis/policies/pick_offsets.py")
+    r = {
+        "destination": "red_pad",
+        "offsets": {"red_pad": 0.052, "green_pad": 0.21, "blue_pad": 0.14},
+        "held": False,
+    }
+    assert script.placement(r) == "  5.2 cm from it,  14.0 cm from blue_pad"
+    r["held"] = True
+    assert script.placement(r).endswith(", held")
+    assert script.placement({"destination": "red_pad", "held": False}) == "no destination offset"
