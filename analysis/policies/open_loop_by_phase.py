@@ -7,6 +7,8 @@
 Prints, per checkpoint and subtask, the mean absolute error of the whole predicted 16-step chunk
 against the recorded one (normalised units undone: radians, gripper 0-1), for the arms, the
 grippers and the view (torso yaw, head pitch), over every frame of the held-out set.
+``--memory-ablation blank``: the same with the memory frames gray, where a phase leans on what the
+policy saw before.
 """
 
 from __future__ import annotations
@@ -22,10 +24,12 @@ from lerobot_activearena.eval.learning_curve import GROUPS, chunk_errors
 from lerobot_activearena.eval.protocol import register_policy_types
 
 
-def by_phase(policy_dir: Path, repo_id: str, root: Path) -> dict[int, dict[str, float]]:
+def by_phase(
+    policy_dir: Path, repo_id: str, root: Path, memory_ablation: str = "none"
+) -> dict[int, dict[str, float]]:
     sums: dict[int, np.ndarray] = defaultdict(lambda: np.zeros(18))
     counts: dict[int, np.ndarray] = defaultdict(lambda: np.zeros(18))
-    for batch, err, valid in chunk_errors(policy_dir, repo_id, root, batch_size=16):
+    for batch, err, valid in chunk_errors(policy_dir, repo_id, root, 16, memory_ablation):
         for b, phase in enumerate(batch["subtask_index"].reshape(-1).tolist()):
             sums[phase] += err[b].sum(0)
             counts[phase] += valid[b].sum() * np.ones(18)
@@ -41,11 +45,26 @@ def main() -> None:
     p.add_argument("checkpoints", nargs="+", type=Path)
     p.add_argument("--repo-id", required=True)
     p.add_argument("--root", type=Path, required=True)
+    p.add_argument(
+        "--memory-ablation",
+        choices=["none", "blank"],
+        default="none",
+        help="blank: the memory frames reach the policy as gray images (--policy.memory_ablation)",
+    )
     args = p.parse_args()
     register_policy_types()
     for ckpt in args.checkpoints:
-        for phase, row in by_phase(ckpt, args.repo_id, args.root).items():
-            print(json.dumps({"checkpoint": str(ckpt), "subtask": phase, **row}))
+        for phase, row in by_phase(ckpt, args.repo_id, args.root, args.memory_ablation).items():
+            print(
+                json.dumps(
+                    {
+                        "checkpoint": str(ckpt),
+                        "memory_ablation": args.memory_ablation,
+                        "subtask": phase,
+                        **row,
+                    }
+                )
+            )
 
 
 if __name__ == "__main__":

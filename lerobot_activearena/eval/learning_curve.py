@@ -5,6 +5,7 @@ then executed, in joint units), and the plot of both against the closed-loop suc
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -68,11 +69,14 @@ def read_annotations_from(pre, repo_id: str, root: Path) -> None:
             step.cached_memory = False
 
 
-def chunk_errors(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32):
+def chunk_errors(
+    policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32, memory_ablation: str = "none"
+):
     """Per dataset batch (in order): the batch and the absolute error between the predicted and the
     recorded action chunk, (B, steps, ACTION_DIM) in joint units, zero on padded steps past an
     episode's end, with the (B, steps, 1) mask of the real steps. History policies get the batch's
-    ``*_is_pad`` flags, so frames before an episode's start are dropped as in training."""
+    ``*_is_pad`` flags, so frames before an episode's start are dropped as in training.
+    ``memory_ablation="blank"``: the memory frames reach the policy as gray images."""
     import torch
     from lerobot.configs.policies import PreTrainedConfig
     from lerobot.datasets.factory import resolve_delta_timestamps
@@ -80,6 +84,8 @@ def chunk_errors(policy_dir: Path, repo_id: str, root: Path, batch_size: int = 3
     from lerobot.policies import make_policy, make_pre_post_processors
 
     cfg = PreTrainedConfig.from_pretrained(policy_dir)
+    if memory_ablation != "none":  # through the config's checks (a memory-free policy has none to blank)
+        cfg = dataclasses.replace(cfg, memory_ablation=memory_ablation)
     cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
     if getattr(cfg, "vision_cache", None):  # the cache indexes the training build's frames, not these
         cfg.vision_cache = None

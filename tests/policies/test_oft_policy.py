@@ -999,6 +999,31 @@ def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root
     assert not torch.allclose(a_real, a_blank)
 
 
+def test_blanked_memory_in_a_dataset_batch_grays_only_the_memory_frames(vlm, root):
+    """memory_ablation=blank on a dataset batch (open-loop scoring): the present memory frames' pixel
+    rows turn gray and the current frames' stay; the chunk of a sample with memory frames changes,
+    that of a sample at its episode's first frame (no memory yet) does not."""
+    from lerobot_activearena.policies.activearena_vla.helpers import blank_memory_pixels
+
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none")
+    policy.eval()
+    batch = collate(ds, pre, [70, 0])
+    pixels, valid = batch[PIXELS], batch["observation.vlm.frame_valid"]
+    assert valid.sum(1).tolist() == [3, 1] and len(pixels) == 4
+    blank = blank_memory_pixels(pixels, valid)
+    # packed in (sample, slot) order: sample 0's two memory frames and its current one, sample 1's current
+    assert torch.count_nonzero(pixels[:2]) > 0 and torch.count_nonzero(blank[:2]) == 0
+    assert torch.equal(blank[2:], pixels[2:])
+    with torch.no_grad():
+        real = policy.predict_action_chunk(dict(batch))
+        policy.config.memory_ablation = "blank"
+        blanked = policy.predict_action_chunk(dict(batch))
+    assert not torch.allclose(real[0], blanked[0], atol=1e-4)
+    assert torch.allclose(real[1], blanked[1], atol=1e-5)
+    with pytest.raises(ValueError, match="vision cache"):
+        blank_memory_pixels(pixels[2:], valid)
+
+
 def test_small_presets_differ_only_in_their_memory():
     """configs/policy/small: the CPU-sized pair of the paper's memory comparison."""
     small = CONFIGS / "small"

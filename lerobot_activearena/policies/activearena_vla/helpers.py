@@ -148,6 +148,20 @@ def blank_entry(entry: dict) -> dict:
     return entry["blank"]
 
 
+def blank_memory_pixels(pixels: Tensor, valid: Tensor) -> Tensor:
+    """``blank_entry`` for a dataset batch: the pixel values (one row a present frame, packed in
+    (sample, slot) order) of every frame before a sample's last slot (its memory frames) set to gray
+    (zeros); the current frames' kept."""
+    slots = valid.cpu().nonzero()[:, 1]
+    if len(slots) != len(pixels):
+        raise ValueError(
+            f"the batch packs the pixels of {len(pixels)} frames, frame_valid marks {len(slots)}: blanking "
+            "needs every present frame's (a batch read through a vision cache has only the current frame's)"
+        )
+    current = (slots == valid.shape[1] - 1).to(pixels)
+    return pixels * current.view(-1, *[1] * (pixels.dim() - 1))
+
+
 def stack_frames(entries: list[list[dict]], slots: int, with_state: bool = True):
     """Per sample, its stored frames (dicts with ``pixels``, ``grid``, ``state``; oldest first, the
     last one the current frame) in the last of ``slots`` left-padded slots. Returns ``pixels`` (the

@@ -24,6 +24,7 @@ from ...annotations.keyframes import STRIDE, motion_keyframes
 from .configuration_activearena_vla import ActiveArenaVLAConfig
 from .helpers import (
     blank_entry,
+    blank_memory_pixels,
     checkpoint_layers,
     compile_layers,
     in_precision,
@@ -492,6 +493,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             state = batch.get(OBS_STATE)
             state = state[:, None] if state is not None and state.dim() == 2 else state
             pixels, grid, valid = batch[PIXELS], batch[GRID], batch[FRAME_VALID]
+            if self.config.memory_ablation == "blank":
+                pixels = blank_memory_pixels(pixels, valid)
         else:
             if self._bank is None:
                 self.start_episode(batch)
