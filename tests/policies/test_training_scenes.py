@@ -31,9 +31,23 @@ def test_the_env_replay_feeds_the_policy_its_training_inputs(tmp_path, tiny_vlm,
     # the env side's memory images blanked (0.8): a wrong memory shows
     shifted = max(float(np.abs(a - b).max()) for _, a, b in scenes.replay(episode, offset=8)[1:])
     scenes.policy.config.memory_ablation = "blank"
+    both_blanked = max(float(np.abs(a - b).max()) for _, a, b in scenes.replay(episode)[1:])
+    dataset_chunk = scenes.dataset_chunk
+
+    def unblanked_dataset_chunk(index):
+        scenes.policy.config.memory_ablation = "none"
+        try:
+            return dataset_chunk(index)
+        finally:
+            scenes.policy.config.memory_ablation = "blank"
+
+    scenes.dataset_chunk = unblanked_dataset_chunk
     blanked = max(float(np.abs(a - b).max()) for _, a, b in scenes.replay(episode)[1:])
+    scenes.dataset_chunk = dataset_chunk
     scenes.policy.config.memory_ablation = "none"
     assert gap < 0.4 * shifted < 0.4 * blanked, (gap, shifted, blanked)
+    # blanked on both sides (the dataset batch's memory frames gray as the bank's): they agree again
+    assert both_blanked < 0.4 * shifted, (both_blanked, shifted)
 
     # chunk_decision: the demonstration's turn at frame 16 read from its recorded actions, and the
     # prediction's from the chunk the policy predicts there
