@@ -9,12 +9,21 @@ Handover points: ``start`` (the policy alone, as ``activearena-eval`` plays it),
 expert alone: a check of the harness), ``subtask:K`` (the
 first frame the expert's own episode annotates with subtask K, e.g. the count task's press once
 the blocks are counted), ``subtask:K+N`` (N frames later). Validation episodes (manifest ID 50 on)
-by default. Prints, per handover point, the successes and failure states (DM / CO / CR).
+by default. Prints, per handover point, the successes and failure states (DM / CO / CR), and on an
+inspect-and-place task what the object rests on at the end: the destination its reading names,
+another support, or none.
+
+Does a policy place by what its memory holds? Hand over where placing starts (check_block_color:
+``subtask:4``, the block picked, its patch shown and turned away again) with the memory as it is
+and with ``--memory-ablation blank`` (the memory frames gray from the handover on; before it the
+policy's actions are discarded anyway): a policy that reads the colour from memory puts the block
+on the named pad with its memory and on any pad without it.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 from collections import Counter
 from pathlib import Path
@@ -23,6 +32,31 @@ import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.eval.handover import handover_step, play_with_handover
+from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
+
+
+def _sibling(name: str):
+    spec = importlib.util.spec_from_file_location(name, Path(__file__).with_name(f"{name}.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def where_it_rests(env) -> dict:
+    """On an inspect-and-place task's env after an episode: the support its inspected object rests on
+    (None: none) and the destination the object's reading names."""
+    task, scene = env.spec_task, env.scene
+    obj = scene.obj(task.inspected[0])
+    return {
+        "rests_on": _sibling("pick_offsets").resting_support(env.sim, scene, obj),
+        "destination": task.read(scene, obj.attributes).destination,
+    }
+
+
+def end_place(row: dict) -> str:
+    if row["rests_on"] is None:
+        return "no support"
+    return "the named one" if row["rests_on"] == row["destination"] else "another support"
 
 
 def main() -> None:
@@ -32,6 +66,12 @@ def main() -> None:
     p.add_argument("--split", default="id")
     p.add_argument("--episode-indices", default="50-59", help="manifest indices (default: validation)")
     p.add_argument("--handover", default="start,subtask:2", help="comma-separated handover points")
+    p.add_argument(
+        "--memory-ablation",
+        choices=("none", "blank"),
+        default="none",
+        help="blank: the policy's memory frames gray (as --policy.memory_ablation=blank)",
+    )
     p.add_argument("--out", type=Path, help="also write the per-episode records as JSON lines")
     args = p.parse_args()
 
@@ -53,6 +93,12 @@ def main() -> None:
         env_cfg,
         logs,
     ):
+        if args.memory_ablation != "none":
+            if not policy.config.history:
+                p.error(f"--memory-ablation {args.memory_ablation}: {args.checkpoint} has no memory")
+            policy.config.memory_ablation = args.memory_ablation
+        env = vec.envs[0].unwrapped
+        places = isinstance(env.spec_task, InspectAndPlaceTask)
         for ep in tqdm(episodes, desc="episodes"):
             seed = env_cfg.seed_base + ep
             expert = run_expert_episode(args.task, manifest_seed(args.task, args.split, ep), args.split)
@@ -65,11 +111,13 @@ def main() -> None:
                 rows.append(
                     {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
                     | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
+                    | (where_it_rests(env) if places else {})
                 )
     if args.out:
         args.out.parent.mkdir(parents=True, exist_ok=True)
         args.out.write_text("".join(json.dumps(r) + "\n" for r in rows))
-    print(f"{args.checkpoint} on {args.task} {args.split}, episodes {args.episode_indices}:")
+    memory = "" if args.memory_ablation == "none" else f", memory {args.memory_ablation}"
+    print(f"{args.checkpoint} on {args.task} {args.split}, episodes {args.episode_indices}{memory}:")
     for point in points:
         mine = [r for r in rows if r["handover"] == point]
         states = Counter(r["failure_state"] for r in mine if not r["success"])
@@ -77,6 +125,7 @@ def main() -> None:
         print(
             f"  handover {point:>14} (mean step {steps:5.1f}): {sum(r['success'] for r in mine)} of "
             f"{len(mine)} solved; failures {dict(states)}"
+            + (f"; the object rests on {dict(Counter(end_place(r) for r in mine))}" if places else "")
         )
 
 
