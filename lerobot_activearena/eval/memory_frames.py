@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..annotations.keyframes import STRIDE
+
 
 @contextmanager
 def policy_in_env(policy_path: Path, task: str, split: str, vlm_path: str | None = None, **env_options):
@@ -95,12 +97,32 @@ def play_and_record(
             )
         record = json.loads(next(logs.rglob("*.jsonl")).read_text().splitlines()[0])
         chunk = policy.config.n_action_steps
-    return {"frames": frames, "banks": banks, "chunk": chunk, "record": record}
+        # chunk memory re-planning every n < 16 steps holds more frames than a decision reads
+        read_stride = STRIDE if policy.config.memory == "chunk" else None
+        history = policy.config.history
+    return {
+        "frames": frames,
+        "banks": banks,
+        "chunk": chunk,
+        "record": record,
+        "read_stride": read_stride,
+        "history": history,
+    }
 
 
 def decision_step(n_steps: int, chunk: int) -> int:
     """The env step of the episode's last chunk prediction (chunks start at 0, chunk, 2 chunk, ...)."""
     return ((n_steps - 1) // chunk) * chunk
+
+
+def decision_memory(played: dict) -> tuple[int, list[int]]:
+    """The last decision's env step and the memory frames it read (env steps, oldest first)."""
+    banks = played["banks"]
+    t = decision_step(len(banks), played["chunk"])
+    memory = [s for s in (banks[t - 1] if t > 0 else []) if s < t]
+    if played.get("read_stride"):  # chunk memory: the frames 16, 32, ... steps back
+        memory = [s for s in memory if (t - s) % played["read_stride"] == 0][-played["history"] :]
+    return t, memory
 
 
 def draw_memory(played: dict, title: str, out: Path) -> Path:
@@ -111,10 +133,9 @@ def draw_memory(played: dict, title: str, out: Path) -> Path:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    frames, banks, rec = played["frames"], played["banks"], played["record"]
-    n_steps = len(banks)
-    t = decision_step(n_steps, played["chunk"])
-    memory = [s for s in (banks[t - 1] if t > 0 else []) if s < t]
+    frames, rec = played["frames"], played["record"]
+    n_steps = len(played["banks"])
+    t, memory = decision_memory(played)
     panels = [(s, f"memory t={s}") for s in memory] + [
         (t, f"decides at t={t}"),
         (n_steps, f"end t={n_steps}"),

@@ -248,6 +248,36 @@ def test_memory_bank_contents_per_write_policy(vlm, root, memory):
     assert policy.memory(0) == [] and policy.queued_actions == 0 and policy.step == 0
 
 
+@pytest.mark.parametrize("n_action_steps", [8, 5])
+def test_chunk_memory_re_planning_within_a_chunk_reads_the_training_history(vlm, root, n_action_steps):
+    """Re-planning every n < 16 steps, each decision at step t reads the frames t-16, t-32, ... (the K
+    newest), the history every training frame t has (``memory_frames("chunk", t, K)``), never a frame
+    1-15 steps old; the bank keeps the frames later decisions read."""
+    from lerobot_activearena.annotations.keyframes import memory_frames
+
+    _, policy, pre, _, _ = _setup(
+        vlm, root, memory="chunk", history=3, think="none", n_action_steps=n_action_steps
+    )
+    read, real = {}, policy.chunk_memory
+
+    def spy(b):
+        entries = real(b)
+        read[policy.step] = [e["t"] for e in entries]
+        return entries
+
+    policy.chunk_memory = spy
+    for t, obs, _ in _scripted_observations(70):
+        batch = pre(obs)
+        policy.select_action(batch)
+        if t % n_action_steps == 0:
+            assert read[t] == memory_frames("chunk", t, 3), t
+    assert sorted(read) == list(range(0, 70, n_action_steps))  # a decision every n steps, no other
+    assert any(len(m) == 3 for m in read.values())
+    stride = 8 if n_action_steps == 8 else 1
+    assert all(e["t"] % stride == 0 for e in policy.memory(0))
+    assert [e["t"] for e in policy.memory(0)][-1] == 69 // stride * stride
+
+
 @pytest.mark.parametrize("memory", ["chunk", "motion"])
 def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, memory, monkeypatch):
     """The preprocessor hands an env step's frames over as uint8; the policy runs the image processor only
@@ -451,8 +481,10 @@ def test_bad_config_values_are_named():
         ActiveArenaOFTConfig(think="plan", device="cpu")
     with pytest.raises(ValueError, match="n_action_steps"):
         ActiveArenaOFTConfig(n_action_steps=20, device="cpu")
-    with pytest.raises(ValueError, match="must be 16"):  # chunk memory acts on its write grid
-        ActiveArenaOFTConfig(memory="chunk", history=12, n_action_steps=8, device="cpu")
+    # chunk memory re-plans off its 16-step grid too (test_chunk_memory_re_planning_...)
+    assert (
+        ActiveArenaOFTConfig(memory="chunk", history=12, n_action_steps=8, device="cpu").n_action_steps == 8
+    )
     assert ActiveArenaOFTConfig(memory="none", n_action_steps=8, device="cpu").n_action_steps == 8
     with pytest.raises(ValueError, match="attn_implementation must be one of .*sdpa"):
         ActiveArenaOFTConfig(attn_implementation="flash3", device="cpu")

@@ -11,6 +11,7 @@ policy's memory bank, written causally and reset per episode), so both see ident
 from __future__ import annotations
 
 import copy
+import math
 from collections import deque
 
 import numpy as np
@@ -451,12 +452,24 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         ``pixels``, ``grid``, ``state`` and cached ``vision`` features (None until first encoded)."""
         return [] if self._bank is None else list(self._bank[b])
 
+    @property
+    def chunk_write_stride(self) -> int:
+        """Chunk memory's write period: every 16th step where the policy re-plans every 16 steps (the
+        paper's); with ``n_action_steps`` below 16, every step a later decision reads (gcd(16, n))."""
+        return math.gcd(STRIDE, self.config.n_action_steps)
+
+    def chunk_memory(self, b: int) -> list[dict]:
+        """What a decision at this step reads of env b's chunk memory: the frames 16, 32, ... steps back
+        (the K newest), the stride-16 history the policy was trained on at every frame."""
+        read = [e for e in self._bank[b] if (self._t - e["t"]) % STRIDE == 0]
+        return read[-self.config.history :]
+
     def writes_frame(self, b: int) -> bool:
         """Is the frame just observed (step ``self.step``) written to env b's memory? The paper's
         chunk (every 16th step) and motion (keyframes of the state so far) write policies."""
         policy = self.config.memory
         if policy == "chunk":
-            return self._t % STRIDE == 0
+            return self._t % self.chunk_write_stride == 0
         if policy == "motion":
             return bool(motion_keyframes(np.stack(self._raw_states[b]))[-1])
         return False
@@ -476,7 +489,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 "grid": batch[GRID][b, -1],
                 "state": None if cur_state is None else cur_state[b],
             }
-            memory = self._bank[b][-history:] if history else []
+            if not history:
+                memory = []
+            elif self.config.memory == "chunk":
+                memory = self.chunk_memory(b)
+            else:
+                memory = self._bank[b][-history:]
             if self.config.memory_ablation == "blank":
                 memory = [blank_entry(e) for e in memory]
             rows.append([*memory, current])
@@ -670,4 +688,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                             "vision": self._current_vision.get(b),
                         }
                     )
-                    del self._bank[b][: -self.config.history]
+                    kept = self.config.history
+                    if self.config.memory == "chunk":  # the frames of every re-planning step's history
+                        kept *= STRIDE // self.chunk_write_stride
+                    del self._bank[b][:-kept]
