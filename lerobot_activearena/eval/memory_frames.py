@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..annotations.keyframes import STRIDE
+from ..annotations.keyframes import STRIDE, stride_sequence
 
 
 @contextmanager
@@ -121,7 +121,8 @@ def decision_memory(played: dict) -> tuple[int, list[int]]:
     t = decision_step(len(banks), played["chunk"])
     memory = [s for s in (banks[t - 1] if t > 0 else []) if s < t]
     if played.get("read_stride"):  # chunk memory: the frames 16, 32, ... steps back
-        memory = [s for s in memory if (t - s) % played["read_stride"] == 0][-played["history"] :]
+        read = stride_sequence(t, played["read_stride"], played["history"])[:-1]
+        memory = [s for s in memory if s in read]
     return t, memory
 
 

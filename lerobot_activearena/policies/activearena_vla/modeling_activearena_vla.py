@@ -21,7 +21,7 @@ from lerobot.utils.constants import OBS_STATE
 from torch import Tensor, nn
 from transformers.modeling_outputs import BaseModelOutputWithPast
 
-from ...annotations.keyframes import STRIDE, motion_keyframes
+from ...annotations.keyframes import STRIDE, memory_frames, motion_keyframes
 from .configuration_activearena_vla import ActiveArenaVLAConfig
 from .helpers import (
     blank_entry,
@@ -461,8 +461,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def chunk_memory(self, b: int) -> list[dict]:
         """What a decision at this step reads of env b's chunk memory: the frames 16, 32, ... steps back
         (the K newest), the stride-16 history the policy was trained on at every frame."""
-        read = [e for e in self._bank[b] if (self._t - e["t"]) % STRIDE == 0]
-        return read[-self.config.history :]
+        read = set(memory_frames("chunk", self._t, self.config.history))
+        return [e for e in self._bank[b] if e["t"] in read]
 
     def writes_frame(self, b: int) -> bool:
         """Is the frame just observed (step ``self.step``) written to env b's memory? The paper's
