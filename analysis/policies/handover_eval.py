@@ -72,6 +72,11 @@ def main() -> None:
         default="none",
         help="blank: the policy's memory frames gray (as --policy.memory_ablation=blank)",
     )
+    p.add_argument(
+        "--n-action-steps",
+        type=int,
+        help="actions played per decision (as --policy.n_action_steps; default: the checkpoint's)",
+    )
     p.add_argument("--out", type=Path, help="also write the per-episode records as JSON lines")
     args = p.parse_args()
 
@@ -97,6 +102,12 @@ def main() -> None:
             if not policy.config.history:
                 p.error(f"--memory-ablation {args.memory_ablation}: {args.checkpoint} has no memory")
             policy.config.memory_ablation = args.memory_ablation
+        if args.n_action_steps is not None:
+            if not 1 <= args.n_action_steps <= policy.config.chunk_size:
+                p.error(
+                    f"--n-action-steps must be in 1..{policy.config.chunk_size}, got {args.n_action_steps}"
+                )
+            policy.config.n_action_steps = args.n_action_steps
         env = vec.envs[0].unwrapped
         places = isinstance(env.spec_task, InspectAndPlaceTask)
         for ep in tqdm(episodes, desc="episodes"):
@@ -117,6 +128,8 @@ def main() -> None:
         args.out.parent.mkdir(parents=True, exist_ok=True)
         args.out.write_text("".join(json.dumps(r) + "\n" for r in rows))
     memory = "" if args.memory_ablation == "none" else f", memory {args.memory_ablation}"
+    if args.n_action_steps is not None:
+        memory += f", {args.n_action_steps} actions a decision"
     print(f"{args.checkpoint} on {args.task} {args.split}, episodes {args.episode_indices}{memory}:")
     for point in points:
         mine = [r for r in rows if r["handover"] == point]

@@ -47,6 +47,7 @@ class BuildPlan:
     action_noise: float = 0.0  # perturbed demonstrations (``ActionNoise``), rad; 0: the benchmark's expert
     decision_period: int = 1  # chunk-aligned demonstrations (``ExpertContext``); 1: the benchmark's expert
     press_arm: str | None = None  # one-arm count presses (``ExpertContext``); None: the benchmark's expert
+    view_noise: float | None = None  # the view joints' own perturbation, rad; None: ``action_noise``'s
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -88,7 +89,13 @@ class BuildPlan:
 
     @property
     def variation(self) -> DemoVariation:
-        return DemoVariation(self.search_overshoot, self.action_noise, self.decision_period, self.press_arm)
+        return DemoVariation(
+            search_overshoot=self.search_overshoot,
+            action_noise=self.action_noise,
+            decision_period=self.decision_period,
+            press_arm=self.press_arm,
+            view_noise=self.view_noise,
+        )
 
     def to_json(self) -> dict:
         from .features import dataset_features  # the feature set is part of a build's identity

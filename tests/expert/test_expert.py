@@ -377,3 +377,32 @@ def test_action_noise_perturbs_what_runs_and_records_the_experts_own_commands(ex
     assert not np.array_equal(first, ActionNoise(0.02, 1, task)(zero))
     with pytest.raises(ValueError, match="action-noise"):
         DemoVariation(action_noise=0.5)
+
+
+def test_view_noise_perturbs_the_view_joints_alone_and_runs_the_expert_to_success(expert_episode):
+    """Perturbed views: with the arms' sigma 0 and the view joints' own, only the torso yaw and the
+    head pitch leave the commanded path; the default view sigma is the arms' (existing builds keep
+    their episodes)."""
+    from lerobot_activearena.episodes.rollout import VIEW_JOINTS, ActionNoise, run_expert_episode
+
+    task = "check_block_color"
+    zero = np.zeros(18)
+    noise = ActionNoise(0.0, seed=0, task=task, view_sigma=0.1)
+    offsets = np.array([noise(zero) for _ in range(3000)])
+    arms = [i for i in range(18) if i not in VIEW_JOINTS]
+    assert np.all(offsets[:, arms] == 0.0)
+    assert offsets[500:, list(VIEW_JOINTS)].std(0) == pytest.approx([0.1, 0.1], rel=0.25)
+    same, explicit = ActionNoise(0.02, 0, task), ActionNoise(0.02, 0, task, view_sigma=0.02)
+    np.testing.assert_array_equal([same(zero) for _ in range(50)], [explicit(zero) for _ in range(50)])
+    with pytest.raises(ValueError, match="not both 0"):
+        ActionNoise(0.0, 0, task, view_sigma=0.0)
+    with pytest.raises(ValueError, match="view"):
+        ActionNoise(0.0, 0, task, view_sigma=0.5)
+
+    plain = expert_episode(task, 0, "id")
+    viewed = run_expert_episode(task, 0, "id", view_noise=0.1)
+    assert plain.success and viewed.success
+    drift = np.abs(np.asarray(viewed.states)[1:] - np.asarray(viewed.actions)[:-1])
+    plain_drift = np.abs(np.asarray(plain.states)[1:] - np.asarray(plain.actions)[:-1])
+    assert drift[:, list(VIEW_JOINTS)].mean() > 3 * plain_drift[:, list(VIEW_JOINTS)].mean()
+    assert drift[:, arms[:16]].mean() < 1.5 * plain_drift[:, arms[:16]].mean()  # the arms as commanded
