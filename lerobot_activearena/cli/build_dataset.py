@@ -72,11 +72,11 @@ def parser() -> argparse.ArgumentParser:
         "expert's own commands, which lead back to its path (default 0: the benchmark's expert)",
     )
     p.add_argument(
-        "--view-noise",
+        "--face-jitter",
         type=float,
         default=None,
-        help="perturbed views: the view joints' (torso yaw, head pitch) own standard deviation in rad, "
-        "so that the demonstrations also show views off the expert's centring (default: --action-noise's)",
+        help="off-centre demonstrations: each torso turn that puts an object in front of an arm is off by a "
+        "uniform angle in +/- this many rad and the arm reaches from there (default 0: the benchmark's expert)",
     )
     p.add_argument(
         "--decision-period",
@@ -194,7 +194,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         action_noise=float(pick("action_noise")),
         decision_period=pick("decision_period"),  # an int, or the clear error of a recipe's 16.5
         press_arm=pick("press_arm"),
-        view_noise=None if pick("view_noise") is None else float(pick("view_noise")),
+        face_jitter=float(pick("face_jitter")),
     )
 
 

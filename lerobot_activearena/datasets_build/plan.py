@@ -47,7 +47,7 @@ class BuildPlan:
     action_noise: float = 0.0  # perturbed demonstrations (``ActionNoise``), rad; 0: the benchmark's expert
     decision_period: int = 1  # chunk-aligned demonstrations (``ExpertContext``); 1: the benchmark's expert
     press_arm: str | None = None  # one-arm count presses (``ExpertContext``); None: the benchmark's expert
-    view_noise: float | None = None  # the view joints' own perturbation, rad; None: ``action_noise``'s
+    face_jitter: float = 0.0  # off-centre demonstrations (``ExpertContext``), rad; 0: the benchmark's expert
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -94,7 +94,7 @@ class BuildPlan:
             action_noise=self.action_noise,
             decision_period=self.decision_period,
             press_arm=self.press_arm,
-            view_noise=self.view_noise,
+            face_jitter=self.face_jitter,
         )
 
     def to_json(self) -> dict:

@@ -22,7 +22,7 @@ RECIPE_KEYS = {
     "action_noise": 0.0,  # perturbed demonstrations: joint noise (rad) on the executed commands
     "decision_period": 1,  # chunk-aligned demonstrations: the search reacts every N frames
     "press_arm": None,  # one-arm demonstrations: the count-and-press tasks press with this arm
-    "view_noise": None,  # perturbed views: the view joints' noise (rad; None: action_noise's)
+    "face_jitter": 0.0,  # off-centre demonstrations: the torso's facing turns off by up to this (rad)
 }
 
 

@@ -17,9 +17,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..annotations.writer import AnnotationWriter
-from ..expert.context import PRESS_ARMS, ExpertContext, ExpertError
+from ..expert.context import MAX_FACE_JITTER, PRESS_ARMS, ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
-from ..sim.action import GRIPPER_INDICES, HEAD_PITCH, TORSO_YAW
+from ..sim.action import GRIPPER_INDICES
 from ..sim.health import PENETRATION_LIMIT
 from ..sim.perception import PerceptionMemory
 from ..sim.scene import HEAD_SIZE
@@ -95,8 +95,7 @@ def make_sidecar(
 class DemoVariation:
     """How a dataset's demonstrations differ from the benchmark's expert (the defaults: they do not).
     ``search_overshoot``: ``ExpertContext``'s recovery demonstrations; ``action_noise``: ``ActionNoise``'s
-    sigma in rad; ``view_noise``: its sigma for the view joints alone (None: ``action_noise``'s);
-    ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame);
+    sigma in rad; ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad); ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame);
     ``press_arm``: ``ExpertContext``'s one arm for the count-and-press tasks' press (None: the arm on
     the button's half of the fan)."""
 
@@ -104,7 +103,7 @@ class DemoVariation:
     action_noise: float = 0.0
     decision_period: int = 1
     press_arm: str | None = None
-    view_noise: float | None = None
+    face_jitter: float = 0.0
 
     def __post_init__(self):
         if not 0.0 <= self.search_overshoot <= 1.0:
@@ -114,10 +113,9 @@ class DemoVariation:
                 f"--action-noise is a joint standard deviation in [0, {MAX_ACTION_NOISE}] rad, got "
                 f"{self.action_noise}"
             )
-        if self.view_noise is not None and not 0.0 <= self.view_noise <= MAX_VIEW_NOISE:
+        if not 0.0 <= self.face_jitter <= MAX_FACE_JITTER:
             raise ValueError(
-                f"--view-noise is the view joints' standard deviation in [0, {MAX_VIEW_NOISE}] rad, got "
-                f"{self.view_noise}"
+                f"--face-jitter is an angle in [0, {MAX_FACE_JITTER}] rad, got {self.face_jitter}"
             )
         if not isinstance(self.decision_period, int) or self.decision_period < 1:
             raise ValueError(
@@ -131,38 +129,28 @@ class DemoVariation:
 
 
 MAX_ACTION_NOISE = 0.1  # rad: beyond it the expert's strokes fail more often than they succeed
-MAX_VIEW_NOISE = 0.2  # rad: the view joints alone; the object being worked on stays in view
-VIEW_JOINTS = (TORSO_YAW, HEAD_PITCH)
 
 
 class ActionNoise:
     """Perturbed demonstrations for datasets (DART, Laskey et al. 2017): a smooth joint offset, an
     Ornstein-Uhlenbeck process with standard deviation ``sigma`` rad and correlation time
     ``tau_steps`` control steps, added to the arm and view joints of the action the simulator
-    executes (grippers untouched; ``view_sigma``: the view joints' own deviation, default ``sigma``).
-    The dataset records the expert's own action, so at each perturbed
+    executes (grippers untouched). The dataset records the expert's own action, so at each perturbed
     state it shows the command that leads back onto the expert's path. Inside a contact stroke
     (``ExpertContext.precise``: a press) the offset halves every step, so the stroke lands where the
     expert aims it. Drawn from its own stream, seeded by the scene seed: deterministic, and the
     scene's sampling is not touched."""
 
-    def __init__(
-        self, sigma: float, seed: int, task: str, tau_steps: float = 5.0, view_sigma: float | None = None
-    ):
-        view_sigma = sigma if view_sigma is None else view_sigma
-        if not (0.0 <= sigma <= MAX_ACTION_NOISE and 0.0 <= view_sigma <= MAX_VIEW_NOISE) or not (
-            sigma or view_sigma
-        ):
+    def __init__(self, sigma: float, seed: int, task: str, tau_steps: float = 5.0):
+        if not 0.0 < sigma <= MAX_ACTION_NOISE:
             raise ValueError(
-                f"action_noise is a joint standard deviation in [0, {MAX_ACTION_NOISE}] rad and the view "
-                f"joints' in [0, {MAX_VIEW_NOISE}], not both 0; got {sigma} and {view_sigma}"
+                f"action_noise is a joint standard deviation in (0, {MAX_ACTION_NOISE}] rad, got {sigma}"
             )
         self.rng = np.random.default_rng([int(seed), zlib.crc32(f"action_noise/{task}".encode())])
         self.decay = math.exp(-1.0 / tau_steps)
-        keep = math.sqrt(1.0 - self.decay**2)  # keeps the stationary deviation at sigma
-        self.scale = np.full(18, sigma * keep)
-        self.scale[list(VIEW_JOINTS)] = view_sigma * keep
-        self.scale[list(GRIPPER_INDICES)] = 0.0
+        self.scale = sigma * math.sqrt(1.0 - self.decay**2)  # keeps the stationary deviation at sigma
+        self.mask = np.ones(18)
+        self.mask[list(GRIPPER_INDICES)] = 0.0
         self.offset = np.zeros(18)  # the episode starts at home, unperturbed
 
     def __call__(self, action: np.ndarray, precise: bool = False) -> np.ndarray:
@@ -170,7 +158,7 @@ class ActionNoise:
         if precise:
             self.offset = 0.5 * self.offset
         else:
-            self.offset = self.decay * self.offset + self.scale * step
+            self.offset = self.decay * self.offset + self.scale * step * self.mask
         return np.asarray(action, float) + self.offset
 
 
@@ -192,6 +180,7 @@ class ExpertDriver:
         search_overshoot: float = 0.0,
         decision_period: int = 1,
         press_arm: str | None = None,
+        face_jitter: float = 0.0,
     ):
         ik, gaze = shared_kinematics()
         self.task = task
@@ -199,6 +188,11 @@ class ExpertDriver:
         rng = None
         if search_overshoot > 0.0:  # its own stream: the scene's sampling is not touched
             rng = np.random.default_rng([int(scene.seed), zlib.crc32(f"overshoot/{task.name}".encode())])
+        face_rng = None
+        if face_jitter > 0.0:
+            face_rng = np.random.default_rng(
+                [int(scene.seed), zlib.crc32(f"face_jitter/{task.name}".encode())]
+            )
         self.ctx = ExpertContext(
             sim,
             scene.objects,
@@ -210,6 +204,8 @@ class ExpertDriver:
             rng=rng,
             decision_period=decision_period,
             press_arm=press_arm,
+            face_jitter=face_jitter,
+            face_rng=face_rng,
         )
         self._script = task.expert(self.ctx, scene)
         self.finished = False
@@ -253,7 +249,7 @@ def run_expert_episode(
     action_noise: float = 0.0,
     decision_period: int = 1,
     press_arm: str | None = None,
-    view_noise: float | None = None,
+    face_jitter: float = 0.0,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
@@ -261,10 +257,10 @@ def run_expert_episode(
     pixel-space fields (boxes, camera intrinsics) follow it. ``search_overshoot``: the probability of a
     recovery demonstration per empty end sector of a search (``ExpertContext``; 0 = the benchmark's
     expert). ``action_noise``: ``ActionNoise``'s sigma in rad (0 = none): ``actions`` stay the expert's,
-    ``states`` are where the perturbed commands took the robot; ``view_noise``: its sigma for the view
-    joints (None: ``action_noise``'s). ``decision_period``: the search reacts
+    ``states`` are where the perturbed commands took the robot. ``decision_period``: the search reacts
     to the view only every that many frames (``ExpertContext``; 1 = the benchmark's expert).
     ``press_arm``: the count-and-press tasks' press with that arm (``ExpertContext``; None = the
+    benchmark's expert). ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad; 0 = the
     benchmark's expert)."""
     t0 = time.perf_counter()
     task = get_task(task_name)
@@ -279,12 +275,9 @@ def run_expert_episode(
         search_overshoot=search_overshoot,
         decision_period=decision_period,
         press_arm=press_arm,
+        face_jitter=face_jitter,
     )
-    perturb = (
-        ActionNoise(action_noise, seed, task.name, view_sigma=view_noise)
-        if action_noise or view_noise
-        else None
-    )
+    perturb = ActionNoise(action_noise, seed, task.name) if action_noise else None
     frames, actions, states = [], [], []
     failure = None
     for t in range(task.max_episode_steps + 1):

@@ -21,6 +21,8 @@ class ExpertError(RuntimeError):
     """The scripted expert cannot finish this episode (object not found, grasp lost, IK failure)."""
 
 
+MAX_FACE_JITTER = 0.2  # rad: beyond it objects at the fan's edge fall out of the arm's reach
+
 PRESS_ARMS = (
     None,
     "left",
@@ -44,13 +46,19 @@ class ExpertContext:
         rng: np.random.Generator | None = None,
         decision_period: int = 1,
         press_arm: str | None = None,
+        face_jitter: float = 0.0,
+        face_rng: np.random.Generator | None = None,
     ):
         if not isinstance(decision_period, int) or decision_period < 1:
             raise ValueError(f"decision_period is a number of frames >= 1, got {decision_period!r}")
         if not 0.0 <= search_overshoot <= 1.0:
             raise ValueError(f"search_overshoot is a probability in [0, 1], got {search_overshoot}")
+        if not 0.0 <= face_jitter <= MAX_FACE_JITTER:
+            raise ValueError(f"face_jitter is an angle in [0, {MAX_FACE_JITTER}] rad, got {face_jitter}")
         if search_overshoot > 0.0 and rng is None:
             raise ValueError("search_overshoot > 0 needs an rng (seeded from the scene seed)")
+        if face_jitter > 0.0 and face_rng is None:
+            raise ValueError("face_jitter > 0 needs a face_rng (seeded from the scene seed)")
         self.sim, self.perception, self.ik, self.gaze = sim, perception, ik, gaze
         # Recovery demonstrations for datasets (0 = the benchmark's expert): the probability that a
         # search sweep that found nothing in an end sector goes on to the torso's joint limit before it
@@ -66,6 +74,11 @@ class ExpertContext:
         if press_arm not in PRESS_ARMS:
             raise ValueError(f"press_arm is 'left', 'right' or None, got {press_arm!r}")
         self.press_arm = press_arm
+        # Off-centre demonstrations for datasets (0 = the benchmark's expert): each turn that puts an
+        # object in front of an arm (``view_moves.face_for_arm``) is off by a uniform angle in
+        # +/- this many rad, and the arm reaches from there, so the arm's path depends on where the
+        # object sits in the view, not only on the torso's heading.
+        self.face_jitter, self.face_rng = face_jitter, face_rng
         self.n_subtasks = n_subtasks
         self.objects = list(objects)
         self.info = {o.name: o for o in sim.info.objects}
@@ -161,6 +174,12 @@ class ExpertContext:
         if self.search_overshoot == 0.0 or self.views[sector][0] == 0.0:
             return False  # no draw: the default expert's episodes are unchanged
         return bool(self.rng.random() < self.search_overshoot)
+
+    def face_offset(self) -> float:
+        """The torso's offset (rad) for the next turn that faces an object for an arm (``face_jitter``)."""
+        if self.face_jitter == 0.0:
+            return 0.0  # no draw: the default expert's episodes are unchanged
+        return float(self.face_rng.uniform(-self.face_jitter, self.face_jitter))
 
     def require_idle(self, side: str) -> None:
         """Raise if the ``side`` arm is still making a trailing motion (``motion.await_trailing``)."""

@@ -103,8 +103,10 @@ def look_at(ctx: ExpertContext, point, mode: int = CAMERA_CENTER) -> Actions:
 
 
 def face_for_arm(ctx: ExpertContext, point, side: str) -> Actions:
-    """Torso turns so ``point`` is in front of ``side``'s arm; the head pitches to keep it in view."""
-    yaw = torso_yaw_for_arm(point, side)
+    """Torso turns so ``point`` is in front of ``side``'s arm (off by ``ctx.face_offset()``: 0 but
+    in off-centre demonstrations); the head pitches to keep it in view."""
+    low, high = embodiment.TORSO_YAW_RANGE
+    yaw = float(np.clip(torso_yaw_for_arm(point, side) + ctx.face_offset(), low, high))
     _, pitch = ctx.gaze.aim(point, yaw, ctx.pitch, fix_yaw=True)
     yield from move_head_torso_to(ctx, yaw, pitch, CAMERA_CENTER)
 

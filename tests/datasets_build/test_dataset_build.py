@@ -357,7 +357,7 @@ def test_bad_arguments_get_clear_errors():
         ("action_noise", 0.02, "0.03", 0.5),
         ("decision_period", 16, "8", 0),
         ("press_arm", "left", "right", "both"),
-        ("view_noise", 0.1, "0.15", 0.5),
+        ("face_jitter", 0.1, "0.15", 0.5),
     ],
 )
 def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, value, flag, bad):
