@@ -77,6 +77,13 @@ def main() -> None:
         type=int,
         help="actions played per decision (as --policy.n_action_steps; default: the checkpoint's)",
     )
+    p.add_argument(
+        "--torso-offset",
+        type=float,
+        default=0.0,
+        help="rad added to the expert's torso yaw commands from step 8 on (its first turn is done by "
+        "then): does the policy take over from a heading a little off the expert's",
+    )
     p.add_argument("--out", type=Path, help="also write the per-episode records as JSON lines")
     args = p.parse_args()
 
@@ -86,8 +93,17 @@ def main() -> None:
     from lerobot_activearena.envs.manifests import manifest_seed
     from lerobot_activearena.episodes.rollout import run_expert_episode
     from lerobot_activearena.eval.memory_frames import policy_in_env
+    from lerobot_activearena.sim.action import TORSO_YAW
 
     lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})
+    adjust = None
+    if args.torso_offset:
+
+        def adjust(t, actions):
+            if t >= 8:
+                actions[:, TORSO_YAW] += args.torso_offset
+            return actions
+
     points = args.handover.split(",")
     episodes = int_ranges(args.episode_indices)
     rows = []
@@ -116,7 +132,7 @@ def main() -> None:
             subtasks = [int(f["subtask"]) for f in expert.frames]
             for point in points:
                 step = handover_step(point, subtasks)
-                play_with_handover(policy, processors, vec, seed, step)
+                play_with_handover(policy, processors, vec, seed, step, adjust_expert=adjust)
                 log = sorted(logs.rglob("*.jsonl"))[0]
                 rec = json.loads(log.read_text().splitlines()[-1])
                 rows.append(
@@ -130,6 +146,8 @@ def main() -> None:
     memory = "" if args.memory_ablation == "none" else f", memory {args.memory_ablation}"
     if args.n_action_steps is not None:
         memory += f", {args.n_action_steps} actions a decision"
+    if args.torso_offset:
+        memory += f", the expert's torso {args.torso_offset:+.3f} rad off from step 8"
     print(f"{args.checkpoint} on {args.task} {args.split}, episodes {args.episode_indices}{memory}:")
     for point in points:
         mine = [r for r in rows if r["handover"] == point]

@@ -7,7 +7,9 @@ success rate jumps as the handover moves later is the part of the task the polic
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
+import numpy as np
 import torch
 
 
@@ -26,9 +28,19 @@ def handover_step(point: str, subtasks: list[int]) -> int:
     return subtasks.index(k) + extra
 
 
-def play_with_handover(policy, processors, vec, seed: int, handover: int, render_callback=None) -> None:
+def play_with_handover(
+    policy,
+    processors,
+    vec,
+    seed: int,
+    handover: int,
+    render_callback=None,
+    adjust_expert: Callable[[int, np.ndarray], np.ndarray] | None = None,
+) -> None:
     """One episode through LeRobot's rollout loop on ``vec`` (one env with ``expert_channel``), the
-    expert's action executed before step ``handover``; ``render_callback(vec)`` after every step."""
+    expert's action executed before step ``handover``; ``render_callback(vec)`` after every step.
+    ``adjust_expert(t, actions)``: what runs instead of the expert's (1, 18) actions at step t (e.g. the
+    torso turned off its heading: where the policy takes over from)."""
     from lerobot.scripts import lerobot_eval
 
     real_reset, real_step = vec.reset, vec.step
@@ -42,6 +54,8 @@ def play_with_handover(policy, processors, vec, seed: int, handover: int, render
     def step(actions):
         if state["t"] < handover:
             actions = state["expert"].astype(actions.dtype)
+            if adjust_expert is not None:
+                actions = adjust_expert(state["t"], actions.copy())
         out = real_step(actions)
         state.update(t=state["t"] + 1, expert=out[0]["environment_state"].copy())
         return out

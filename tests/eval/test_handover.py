@@ -22,9 +22,28 @@ def test_handover_points_name_env_steps():
         handover_step("press", subtasks)
 
 
+def torso_yaw(into: list):
+    from lerobot_activearena.sim.action import TORSO_YAW
+
+    return lambda vec: into.append(float(vec.envs[0].unwrapped.sim.state()[TORSO_YAW]))
+
+
+def off_by(rad: float, start: int, called: list):
+    from lerobot_activearena.sim.action import TORSO_YAW
+
+    def adjust(t, actions):
+        called.append(t)
+        if t >= start:
+            actions[:, TORSO_YAW] += rad
+        return actions
+
+    return adjust
+
+
 def test_the_expert_drives_until_the_handover_and_the_policy_after():
     """On a saved tiny (untrained) checkpoint: the expert alone (``never``) rings the bell, and the policy
-    from the start does not: it plays to the step limit or until a validity check ends its episode (its
+    from the start does not (an ``adjust_expert`` changes what runs before the handover, and only from
+    its step): it plays to the step limit or until a validity check ends its episode (its
     flailing can knock the bell over, depending on the machine's float rounding)."""
     with policy_in_env(
         SAVED / "checkpoint",
@@ -34,11 +53,22 @@ def test_the_expert_drives_until_the_handover_and_the_policy_after():
         expert_channel=True,
     ) as (policy, processors, vec, env_cfg, logs):
         seed = env_cfg.seed_base
-        records = []
+        records, yaws = [], []
         for handover in (10**9, 0):
-            play_with_handover(policy, processors, vec, seed, handover)
+            yaw = []
+            play_with_handover(policy, processors, vec, seed, handover, render_callback=torso_yaw(yaw))
             records.append(json.loads(sorted(logs.rglob("*.jsonl"))[0].read_text().splitlines()[-1]))
+            yaws.append(yaw)
         assert vec.step.__func__ is type(vec).step  # the env's own step is back after each episode
+        turned, called = [], []
+        off = off_by(0.06, 8, called)
+        play_with_handover(
+            policy, processors, vec, seed, 20, render_callback=torso_yaw(turned), adjust_expert=off
+        )
+    plain = yaws[0]
+    assert called == list(range(20))  # the expert's steps only, the policy's after
+    assert turned[:8] == plain[:8]  # the expert's own commands before step 8
+    assert abs(turned[19] - plain[19]) > 0.03  # then a torso turned elsewhere
     expert, policy_alone = records
     assert expert["success"] and expert["steps"] < 137
     assert not policy_alone["success"]
