@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
-from lerobot_activearena.eval.handover import handover_step, play_with_handover
+from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
 
 
@@ -93,17 +93,9 @@ def main() -> None:
     from lerobot_activearena.envs.manifests import manifest_seed
     from lerobot_activearena.episodes.rollout import run_expert_episode
     from lerobot_activearena.eval.memory_frames import policy_in_env
-    from lerobot_activearena.sim.action import TORSO_YAW
 
     lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})
-    adjust = None
-    if args.torso_offset:
-
-        def adjust(t, actions):
-            if t >= 8:
-                actions[:, TORSO_YAW] += args.torso_offset
-            return actions
-
+    adjust = torso_offset(args.torso_offset) if args.torso_offset else None
     points = args.handover.split(",")
     episodes = int_ranges(args.episode_indices)
     rows = []

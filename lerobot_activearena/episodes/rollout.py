@@ -95,7 +95,8 @@ def make_sidecar(
 class DemoVariation:
     """How a dataset's demonstrations differ from the benchmark's expert (the defaults: they do not).
     ``search_overshoot``: ``ExpertContext``'s recovery demonstrations; ``action_noise``: ``ActionNoise``'s
-    sigma in rad; ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad); ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame);
+    sigma in rad; ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad);
+    ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame);
     ``press_arm``: ``ExpertContext``'s one arm for the count-and-press tasks' press (None: the arm on
     the button's half of the fan)."""
 

@@ -28,6 +28,19 @@ def handover_step(point: str, subtasks: list[int]) -> int:
     return subtasks.index(k) + extra
 
 
+def torso_offset(rad: float, from_step: int = 8) -> Callable[[int, np.ndarray], np.ndarray]:
+    """An ``adjust_expert`` that adds ``rad`` to the expert's torso yaw from ``from_step`` on (the
+    expert's first turn is done by step 8): the policy takes over from a heading off the expert's."""
+    from ..sim.action import TORSO_YAW
+
+    def adjust(t: int, actions: np.ndarray) -> np.ndarray:
+        if t >= from_step:
+            actions[:, TORSO_YAW] += rad
+        return actions
+
+    return adjust
+
+
 def play_with_handover(
     policy,
     processors,

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from lerobot_activearena.eval.handover import handover_step, play_with_handover
+from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
 from lerobot_activearena.eval.memory_frames import policy_in_env
 
 SAVED = Path(__file__).resolve().parents[1] / "policies" / "fixtures" / "oft_saved_2026_11_25"
@@ -29,13 +29,11 @@ def torso_yaw(into: list):
 
 
 def off_by(rad: float, start: int, called: list):
-    from lerobot_activearena.sim.action import TORSO_YAW
+    offset = torso_offset(rad, start)
 
     def adjust(t, actions):
         called.append(t)
-        if t >= start:
-            actions[:, TORSO_YAW] += rad
-        return actions
+        return offset(t, actions)
 
     return adjust
 
