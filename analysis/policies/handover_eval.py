@@ -11,7 +11,8 @@ first frame the expert's own episode annotates with subtask K, e.g. the count ta
 the blocks are counted), ``subtask:K+N`` (N frames later). Validation episodes (manifest ID 50 on)
 by default. Prints, per handover point, the successes and failure states (DM / CO / CR), and on an
 inspect-and-place task what the object rests on at the end: the destination its reading names,
-another support, or none.
+another support, or none (of those on none: how many a gripper still holds, how far the others
+end from the named destination), and how far round from the named destination it was let go.
 
 Does a policy place by what its memory holds? Hand over where placing starts (check_block_color:
 ``subtask:4``, the block picked, its patch shown and turned away again) with the memory as it is
@@ -32,6 +33,8 @@ import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
+from lerobot_activearena.sim.embodiment import ARMS
+from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
 
 
@@ -47,10 +50,62 @@ def where_it_rests(env) -> dict:
     (None: none) and the destination the object's reading names."""
     task, scene = env.spec_task, env.scene
     obj = scene.obj(task.inspected[0])
+    pick_offsets = _sibling("pick_offsets")
     return {
-        "rests_on": _sibling("pick_offsets").resting_support(env.sim, scene, obj),
+        "rests_on": pick_offsets.resting_support(env.sim, scene, obj),
         "destination": task.read(scene, obj.attributes).destination,
+        "held": any(predicates.grasped_by(env.sim, obj.body, arm) for arm in ARMS),
+        "offsets": pick_offsets.support_offsets(env.sim, scene, obj),
+        "tilt_deg": float(np.degrees(np.arccos(np.clip(env.sim.data.body(obj.body).xmat[8], -1.0, 1.0)))),
     }
+
+
+class ReleaseWatch:
+    """A ``render_callback``: where (polar: m, deg) the inspected object was when a gripper last let
+    go of it, and where the destination its reading names is."""
+
+    def __init__(self, env):
+        self.env, self.held, self.released_at = env, False, None
+
+    def __call__(self, vec) -> None:
+        sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
+        held = any(predicates.grasped_by(sim, obj.body, arm) for arm in ARMS)
+        if self.held and not held:
+            self.released_at = predicates.polar(sim.data.body(obj.body).xpos[:2])
+        self.held = held
+
+    def row(self) -> dict:
+        scene = self.env.scene
+        obj = scene.obj(self.env.spec_task.inspected[0])
+        dest = scene.obj(self.env.spec_task.read(scene, obj.attributes).destination)
+        return {
+            "released_at": self.released_at,
+            "destination_at": predicates.polar(self.env.sim.data.body(dest.body).xpos[:2]),
+        }
+
+
+def release_angles(rows: list[dict]) -> str:
+    """How far round from the named destination the object was let go (median |angle difference|)."""
+    off = [abs(r["released_at"][1] - r["destination_at"][1]) for r in rows if r["released_at"]]
+    if not off:
+        return "; never let go"
+    return f"; let go {np.median(off):.0f} deg round from the named one (median of {len(off)})"
+
+
+def missed_places(rows: list[dict]) -> str:
+    """Of the episodes whose object rests on no support: how many a gripper still holds, and how far
+    the others' centres end from the named destination (median, cm)."""
+    missed = [r for r in rows if r["rests_on"] is None]
+    if not missed:
+        return ""
+    held = sum(r["held"] for r in missed)
+    off = [100 * r["offsets"][r["destination"]] for r in missed if not r["held"]]
+    text = f"; of the {len(missed)} on no support {held} still held"
+    if off:
+        text += (
+            f", the others {np.median(off):.1f} cm from the named one (median; {min(off):.1f}-{max(off):.1f})"
+        )
+    return text
 
 
 def end_place(row: dict) -> str:
@@ -124,13 +179,16 @@ def main() -> None:
             subtasks = [int(f["subtask"]) for f in expert.frames]
             for point in points:
                 step = handover_step(point, subtasks)
-                play_with_handover(policy, processors, vec, seed, step, adjust_expert=adjust)
+                watch = ReleaseWatch(env) if places else None
+                play_with_handover(
+                    policy, processors, vec, seed, step, render_callback=watch, adjust_expert=adjust
+                )
                 log = sorted(logs.rglob("*.jsonl"))[0]
                 rec = json.loads(log.read_text().splitlines()[-1])
                 rows.append(
                     {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
                     | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
-                    | (where_it_rests(env) if places else {})
+                    | (where_it_rests(env) | watch.row() if places else {})
                 )
     if args.out:
         args.out.parent.mkdir(parents=True, exist_ok=True)
@@ -148,7 +206,11 @@ def main() -> None:
         print(
             f"  handover {point:>14} (mean step {steps:5.1f}): {sum(r['success'] for r in mine)} of "
             f"{len(mine)} solved; failures {dict(states)}"
-            + (f"; the object rests on {dict(Counter(end_place(r) for r in mine))}" if places else "")
+            + (
+                f"; the object rests on {dict(Counter(end_place(r) for r in mine))}{missed_places(mine)}{release_angles(mine)}"
+                if places
+                else ""
+            )
         )
 
 

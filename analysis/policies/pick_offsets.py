@@ -100,6 +100,16 @@ def resting_support(sim, scene, obj) -> str | None:
     return None
 
 
+def support_offsets(sim, scene, obj) -> dict[str, float]:
+    """xy distance (m) from ``obj``'s centre to each registered support's centre, now."""
+    centre = predicates.centre_point(sim, obj)
+    return {
+        name: float(np.linalg.norm(predicates.centre_point(sim, scene.obj(name))[:2] - centre[:2]))
+        for name in scene.objects
+        if name != obj.name and scene.obj(name).functional.support is not None
+    }
+
+
 def record_step(task, sim, scene) -> None:
     obj = scene.obj(task.inspected[0])
     centre = predicates.centre_point(sim, obj)
@@ -116,11 +126,7 @@ def record_step(task, sim, scene) -> None:
     record["rests_on"] = resting_support(sim, scene, obj)
     record["destination"] = task.read(scene, obj.attributes).destination
     record["held"] = any(predicates.grasped_by(sim, obj.body, arm) for arm in ARMS)
-    record["offsets"] = {  # xy distance from the object's centre to each support's centre, now
-        name: float(np.linalg.norm(predicates.centre_point(sim, scene.obj(name))[:2] - centre[:2]))
-        for name in scene.objects
-        if name != obj.name and scene.obj(name).functional.support is not None
-    }
+    record["offsets"] = support_offsets(sim, scene, obj)
 
 
 def main() -> None:

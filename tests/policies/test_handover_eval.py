@@ -29,15 +29,51 @@ def test_the_end_names_the_pad_the_reading_names_another_pad_or_none():
     named = task.read(scene, block.attributes).destination
 
     row = script.where_it_rests(env)
-    assert row == {"rests_on": None, "destination": named}  # spawned on the table
+    assert (row["rests_on"], row["destination"], row["held"]) == (None, named, False)  # on the table
     assert script.end_place(row) == "no support"
+    assert set(row["offsets"]) == {"red_pad", "green_pad", "blue_pad"}
+    assert min(row["offsets"].values()) > 0.05  # spawned apart from every pad
+    summary = script.missed_places([row])
+    assert "of the 1 on no support 0 still held" in summary
+    assert f"{100 * row['offsets'][named]:.1f} cm from the named one" in summary
 
     _set_on(sim, scene, block, named)
     row = script.where_it_rests(env)
     assert row["rests_on"] == named and script.end_place(row) == "the named one"
+    assert row["offsets"][named] < 0.005  # centred on it
+    assert script.missed_places([row]) == ""
 
     other = next(n for n in ("red_pad", "green_pad", "blue_pad") if n != named)
     _set_on(sim, scene, block, other)
     row = script.where_it_rests(env)
-    assert row == {"rests_on": other, "destination": named}
+    assert (row["rests_on"], row["destination"]) == (other, named)
     assert script.end_place(row) == "another support"
+
+
+def test_release_watch_notes_where_the_object_was_let_go_against_the_named_destination():
+    from lerobot_activearena.sim.simulator import ActiveArenaSim
+    from lerobot_activearena.tasks import get_task, predicates
+    from lerobot_activearena.tasks.sampling import sample_scene
+
+    script = load("analysis/policies/handover_eval.py")
+    task = get_task("check_block_color")
+    scene = sample_scene(task, 3, "id")
+    sim = ActiveArenaSim(scene.model, scene.info)
+    env = SimpleNamespace(spec_task=task, scene=scene, sim=sim)
+    block = scene.obj("gray_block")
+    named = task.read(scene, block.attributes).destination
+
+    watch = script.ReleaseWatch(env)
+    watch(None)  # never held: nothing let go
+    assert watch.row()["released_at"] is None
+    assert script.release_angles([watch.row()]) == "; never let go"
+
+    watch.held = True  # as if a gripper held it a step ago; now nothing does
+    _set_on(sim, scene, block, named)
+    watch(None)
+    row = watch.row()
+    assert row["destination_at"] == predicates.polar(sim.data.body(named).xpos[:2])
+    assert abs(row["released_at"][1] - row["destination_at"][1]) < 1.0  # let go over the named pad
+    assert not watch.held
+    far = dict(row, released_at=(0.4, row["destination_at"][1] + 30.0))
+    assert script.release_angles([row, far, far]) == "; let go 30 deg round from the named one (median of 3)"
