@@ -1315,3 +1315,30 @@ def test_batched_vision_attention_equals_qwens_per_image_loop(tmp_path, sizes, m
     )
     with pytest.raises(TypeError, match="expected Qwen3-VL's vision attention, got Linear"):
         batch_vision_attention(other)
+
+
+def test_decision_think_appends_the_read_decision_from_the_frame_it_was_read_on(vlm, root, tmp_path):
+    """think=decision: the subtask text, then from the inspection's frame on the decision the expert
+    took from it (an inspect-and-place episode's ``expert_notes``); before it the plain subtask."""
+    copy = tmp_path / "data"
+    shutil.copytree(root, copy)
+    side_path = copy / "meta/activearena/sidecars/episode_000000.json"
+    side = json.loads(side_path.read_text())
+    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
+    side_path.write_text(json.dumps(side))
+    ann = DatasetAnnotations(copy, REPO)
+    assert ann.decision(19) is None and ann.subtask_and_decision(19) == ann.subtask(19)
+    assert ann.decision(20) == ann.decision(40) == "place on the red pad"
+    assert ann.subtask_and_decision(40) == f"{ann.subtask(40)}; place on the red pad"
+    other = int(ann.ep_start[1])  # the second episode read nothing
+    assert ann.subtask_and_decision(other + 40) == ann.subtask(other + 40)
+
+    _, _, pre, _, ds = _setup(vlm, copy, memory="chunk", history=2, think="decision")
+    _, _, pre_subtask, _, _ = _setup(vlm, copy, memory="chunk", history=2, think="subtask")
+    early, late = collate(ds, pre, [10, 40]), collate(ds, pre_subtask, [10, 40])
+    decided = collate(ds, pre, [40, 10])
+    span = lambda b, i: b[THINK_IDS][i][b[THINK_MASK][i]].tolist()  # noqa: E731
+    assert span(early, 0) == span(late, 0)  # frame 10: nothing read yet, the subtask alone
+    assert len(span(decided, 0)) > len(span(late, 1))  # frame 40: the decision follows the subtask
+    n = len(span(late, 1)) - 2  # the subtask span less its closing </think><|im_end|>
+    assert span(decided, 0)[:n] == span(late, 1)[:n]  # the subtask first, then the decision

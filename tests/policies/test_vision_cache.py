@@ -322,6 +322,25 @@ def test_the_block_pair_is_the_tuned_count_pair_on_the_block_build_at_batch_64()
     assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
 
 
+def test_the_decision_pair_is_the_block_pair_with_the_read_decision_in_its_think_target():
+    """``oft_decision_*_block_readings_tuned``: the block pair with ``think=decision`` (the subtask text
+    and, once the patch is read, the expert's decision), nothing else changed."""
+    from lerobot.configs.train import TrainPipelineConfig
+
+    for memory in ("action_12", "no_0"):
+        block = json.loads(
+            (CONFIGS / "small" / f"oft_subtask_{memory}_ws_grounded_block_readings_tuned.json").read_text()
+        )
+        name = f"oft_decision_{memory}_ws_grounded_block_readings_tuned"
+        decision = json.loads((CONFIGS / "small" / f"{name}.json").read_text())
+        assert {k for k in block if block[k] != decision[k]} == {"policy", "job_name"}
+        assert differing_policy_keys(decision, block) == {"think"}
+        assert decision["job_name"] == f"small_{name}"
+        assert (
+            TrainPipelineConfig.from_pretrained(CONFIGS / "small" / f"{name}.json").policy.think == "decision"
+        )
+
+
 def test_the_wms_preset_is_the_wos_chunk_12_one_with_state_tokens_on_its_memory_frames():
     """``_wms_``: the wos chunk-12 preset with the memory frames' state tokens back and none on the
     current frame (``state_frames=memory``); without a memory that is no state at all, so its

@@ -20,7 +20,7 @@ from ...sim.action import ACTION_DIM, HEAD_PITCH, TORSO_YAW
 from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
 IMAGE_KEY = "observation.images.head"
-THINK_TARGETS = ("none", "instruction", "subtask")
+THINK_TARGETS = ("none", "instruction", "subtask", "decision")
 MEMORY_ABLATIONS = ("none", "blank")
 MEMORY_VISION = ("shared", "frozen")
 DTYPES = ("auto", "float32", "bfloat16")
@@ -63,7 +63,9 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # ActiveArena-Fixed: learn only the 16 arm and gripper dimensions; every output chunk holds the
     # torso yaw and head pitch at home (evaluate with configs/env/activearena_fixed_*.json)
     fixed_view: bool = False
-    think: str = "subtask"  # auxiliary <think> target: none | instruction | subtask
+    # Auxiliary <think> target: none | instruction | subtask | decision (the subtask, followed from the
+    # frame the expert read a hidden face on by the decision it took from it: "...; place on the red pad")
+    think: str = "subtask"
     lm_loss_weight: float = 0.1
     subtask_max_tokens: int = 32  # greedy <think> decoding budget (OFT's memory=subtask, FAST's think span)
     chunk_size: int = 16

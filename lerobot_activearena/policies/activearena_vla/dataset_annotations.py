@@ -39,14 +39,32 @@ class DatasetAnnotations:
         self.ep_end = {int(e["episode_index"]): int(e["dataset_to_index"]) for e in self.ds.meta.episodes}
         self.subtask_text: dict[int, dict[int, str]] = {}
         self.instruction: dict[int, str] = {}
+        self.decisions: dict[int, list[tuple[int, str]]] = {}  # (frame read on, decision), in order
         for ep in self.ep_start:
             side = json.loads((root / f"meta/activearena/sidecars/episode_{ep:06d}.json").read_text())
             self.subtask_text[ep] = {int(s["id"]): s["text"] for s in side["subtasks"]}
             self.instruction[ep] = side["instruction"]
+            self.decisions[ep] = sorted(
+                (int(e["frame"]), e["decision"])
+                for e in (side.get("expert_notes") or {}).get("inspections", [])
+                if e.get("decision")
+            )
 
     def subtask(self, index: int) -> str:
         ep, sid = int(self.cols["episode_index"][index]), int(self.cols["subtask_index"][index])
         return self.subtask_text[ep].get(sid, self.instruction[ep])
+
+    def decision(self, index: int) -> str | None:
+        """The decision the expert took from the last hidden face it read at or before the frame at
+        global ``index`` (``expert_notes.inspections``), or None before any reading."""
+        ep, x = int(self.cols["episode_index"][index]), int(self.cols["frame_index"][index])
+        made = [d for frame, d in self.decisions[ep] if frame <= x]
+        return made[-1] if made else None
+
+    def subtask_and_decision(self, index: int) -> str:
+        """The subtask text, with the decision in force appended: the ``think=decision`` target."""
+        decision = self.decision(index)
+        return self.subtask(index) if decision is None else f"{self.subtask(index)}; {decision}"
 
     def subtask_keyframes(self, index: int) -> tuple[int, list[int]]:
         """The frame at global ``index``'s episode position x and its episode's subtask keyframes <= x."""

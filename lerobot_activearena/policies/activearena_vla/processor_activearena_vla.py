@@ -105,7 +105,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     _ann: Any = field(default=None, init=False, repr=False)
 
     def _needs_subtask(self) -> bool:
-        return self.think == "subtask" or self.subtask_prompt
+        return self.think in ("subtask", "decision") or self.subtask_prompt
 
     def _cached_chunk(self) -> bool:
         return self.cached_memory and self.memory == "chunk" and self.history > 0
@@ -135,6 +135,8 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         comp = dict(comp)
         if self._needs_subtask():
             comp["subtask"] = [self._ann.subtask(i) for i in idx]
+        if self.think == "decision":
+            comp["think_target"] = [self._ann.subtask_and_decision(i) for i in idx]
         obs = dict(transition[TransitionKey.OBSERVATION])
         if self.memory in KEYFRAME_MEMORIES and self.history > 0:
             img = obs[IMAGE_KEY]
@@ -278,12 +280,12 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             [self.prompt_template.format(instruction=t) for t in named]
         )
         if transition.get(TransitionKey.ACTION) is not None and self.think != "none":
-            if "think_target" in comp:  # a complete target written by the annotation step (the planner)
+            if "think_target" in comp:  # a complete target written by the annotation step
                 targets = list(comp["think_target"])
-            elif self.think == "subtask":
+            elif self.think in ("subtask", "decision"):
                 if "subtask" not in comp:
                     raise ValueError(
-                        "think=subtask needs the annotated subtask text: train on an ActiveArena "
+                        f"think={self.think} needs the annotated subtask text: train on an ActiveArena "
                         "dataset (activearena-build-dataset) with --policy.dataset_root set"
                     )
                 targets = list(comp["subtask"])
