@@ -15,18 +15,27 @@ def _set_on(sim, scene, block, pad_name):
     mujoco.mj_forward(sim.model, sim.data)
 
 
-def test_the_end_names_the_pad_the_reading_names_another_pad_or_none():
+def _block_scene():
+    """The script, a check_block_color scene as an env stand-in, its block and the pad it names."""
     from lerobot_activearena.sim.simulator import ActiveArenaSim
     from lerobot_activearena.tasks import get_task
     from lerobot_activearena.tasks.sampling import sample_scene
 
-    script = load("analysis/policies/handover_eval.py")
     task = get_task("check_block_color")
     scene = sample_scene(task, 3, "id")
-    sim = ActiveArenaSim(scene.model, scene.info)
-    env = SimpleNamespace(spec_task=task, scene=scene, sim=sim)
+    env = SimpleNamespace(spec_task=task, scene=scene, sim=ActiveArenaSim(scene.model, scene.info))
     block = scene.obj("gray_block")
-    named = task.read(scene, block.attributes).destination
+    return (
+        load("analysis/policies/handover_eval.py"),
+        env,
+        block,
+        task.read(scene, block.attributes).destination,
+    )
+
+
+def test_the_end_names_the_pad_the_reading_names_another_pad_or_none():
+    script, env, block, named = _block_scene()
+    sim, scene = env.sim, env.scene
 
     row = script.where_it_rests(env)
     assert (row["rests_on"], row["destination"], row["held"]) == (None, named, False)  # on the table
@@ -51,17 +60,10 @@ def test_the_end_names_the_pad_the_reading_names_another_pad_or_none():
 
 
 def test_release_watch_notes_where_the_object_was_let_go_against_the_named_destination():
-    from lerobot_activearena.sim.simulator import ActiveArenaSim
-    from lerobot_activearena.tasks import get_task, predicates
-    from lerobot_activearena.tasks.sampling import sample_scene
+    from lerobot_activearena.tasks import predicates
 
-    script = load("analysis/policies/handover_eval.py")
-    task = get_task("check_block_color")
-    scene = sample_scene(task, 3, "id")
-    sim = ActiveArenaSim(scene.model, scene.info)
-    env = SimpleNamespace(spec_task=task, scene=scene, sim=sim)
-    block = scene.obj("gray_block")
-    named = task.read(scene, block.attributes).destination
+    script, env, block, named = _block_scene()
+    sim, scene = env.sim, env.scene
 
     watch = script.ReleaseWatch(env)
     watch(None)  # never held: nothing let go
