@@ -33,7 +33,6 @@ import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
-from lerobot_activearena.sim.embodiment import ARMS
 from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
 
@@ -54,7 +53,7 @@ def where_it_rests(env) -> dict:
     return {
         "rests_on": pick_offsets.resting_support(env.sim, scene, obj),
         "destination": task.read(scene, obj.attributes).destination,
-        "held": any(predicates.grasped_by(env.sim, obj.body, arm) for arm in ARMS),
+        "held": pick_offsets.held(env.sim, obj),
         "offsets": pick_offsets.support_offsets(env.sim, scene, obj),
         "tilt_deg": float(np.degrees(np.arccos(np.clip(env.sim.data.body(obj.body).xmat[8], -1.0, 1.0)))),
     }
@@ -66,10 +65,11 @@ class ReleaseWatch:
 
     def __init__(self, env):
         self.env, self.held, self.released_at = env, False, None
+        self._held = _sibling("pick_offsets").held
 
     def __call__(self, vec) -> None:
         sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
-        held = any(predicates.grasped_by(sim, obj.body, arm) for arm in ARMS)
+        held = self._held(sim, obj)
         if self.held and not held:
             self.released_at = predicates.polar(sim.data.body(obj.body).xpos[:2])
         self.held = held

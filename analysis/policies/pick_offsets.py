@@ -100,6 +100,11 @@ def resting_support(sim, scene, obj) -> str | None:
     return None
 
 
+def held(sim, obj) -> bool:
+    """Does either gripper hold ``obj`` with both pads now?"""
+    return any(predicates.grasped_by(sim, obj.body, arm) for arm in ARMS)
+
+
 def support_offsets(sim, scene, obj) -> dict[str, float]:
     """xy distance (m) from ``obj``'s centre to each registered support's centre, now."""
     centre = predicates.centre_point(sim, obj)
@@ -125,7 +130,7 @@ def record_step(task, sim, scene) -> None:
     record = STEPS[scene.seed]
     record["rests_on"] = resting_support(sim, scene, obj)
     record["destination"] = task.read(scene, obj.attributes).destination
-    record["held"] = any(predicates.grasped_by(sim, obj.body, arm) for arm in ARMS)
+    record["held"] = held(sim, obj)
     record["offsets"] = support_offsets(sim, scene, obj)
 
 

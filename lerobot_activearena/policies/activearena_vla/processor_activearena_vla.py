@@ -105,7 +105,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     _ann: Any = field(default=None, init=False, repr=False)
 
     def _needs_subtask(self) -> bool:
-        return self.think in ("subtask", "decision") or self.subtask_prompt
+        return self.think == "subtask" or self.subtask_prompt
 
     def _cached_chunk(self) -> bool:
         return self.cached_memory and self.memory == "chunk" and self.history > 0
@@ -113,6 +113,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     def _needed(self) -> bool:
         return (
             self._needs_subtask()
+            or self.think == "decision"
             or (self.memory in KEYFRAME_MEMORIES and self.history > 0)
             or self._cached_chunk()
         )
