@@ -6,13 +6,14 @@ observation from the first step, so its memory bank holds what the expert's view
         --episode-indices 50-59 --handover start,subtask:2,subtask:2+12
 
 Handover points: ``start`` (the policy alone, as ``activearena-eval`` plays it), ``never`` (the
-expert alone: a check of the harness), ``subtask:K`` (the
-first frame the expert's own episode annotates with subtask K, e.g. the count task's press once
-the blocks are counted), ``subtask:K+N`` (N frames later). Validation episodes (manifest ID 50 on)
-by default. Prints, per handover point, the successes and failure states (DM / CO / CR), and on an
-inspect-and-place task what the object rests on at the end: the destination its reading names,
-another support, or none (of those on none: how many a gripper still holds, how far the others
-end from the named destination), and how far round from the named destination it was let go.
+expert alone: a check of the harness), ``subtask:K`` (the first frame the expert's own episode
+annotates with subtask K, e.g. the count task's press once the blocks are counted), ``subtask:K+N``
+(N frames later). Validation episodes (manifest ID 50 on) by default; ``--scene-seeds 0-19`` plays a
+training build's own scenes instead. Prints, per handover point, the successes and failure states
+(DM / CO / CR), and on an inspect-and-place task what the object rests on at the end: the
+destination its reading names, another support, or none (of those on none: how many a gripper still
+holds, how far the others end from the named destination), and how far round from the named
+destination it was let go.
 
 Does a policy place by what its memory holds? Hand over where placing starts (check_block_color:
 ``subtask:4``, the block picked, its patch shown and turned away again) with the memory as it is
@@ -120,6 +121,11 @@ def main() -> None:
     p.add_argument("--task", required=True)
     p.add_argument("--split", default="id")
     p.add_argument("--episode-indices", default="50-59", help="manifest indices (default: validation)")
+    p.add_argument(
+        "--scene-seeds",
+        help="scene seeds played as given instead of manifest episodes, e.g. a training build's 0-19: "
+        "does the policy do on the scenes it was trained on what it fails on held-out ones",
+    )
     p.add_argument("--handover", default="start,subtask:2", help="comma-separated handover points")
     p.add_argument(
         "--memory-ablation",
@@ -152,9 +158,12 @@ def main() -> None:
     lerobot_eval.trange = lambda *a, **k: trange(*a, **{**k, "disable": True})
     adjust = torso_offset(args.torso_offset) if args.torso_offset else None
     points = args.handover.split(",")
-    episodes = int_ranges(args.episode_indices)
+    episodes = int_ranges(args.scene_seeds or args.episode_indices)
+    as_given = args.scene_seeds is not None
     rows = []
-    with policy_in_env(args.checkpoint, args.task, args.split, expert_channel=True) as (
+    with policy_in_env(
+        args.checkpoint, args.task, args.split, expert_channel=True, use_manifest=not as_given
+    ) as (
         policy,
         processors,
         vec,
@@ -174,8 +183,9 @@ def main() -> None:
         env = vec.envs[0].unwrapped
         places = isinstance(env.spec_task, InspectAndPlaceTask)
         for ep in tqdm(episodes, desc="episodes"):
-            seed = env_cfg.seed_base + ep
-            expert = run_expert_episode(args.task, manifest_seed(args.task, args.split, ep), args.split)
+            seed = ep if as_given else env_cfg.seed_base + ep
+            scene = ep if as_given else manifest_seed(args.task, args.split, ep)
+            expert = run_expert_episode(args.task, scene, args.split)
             subtasks = [int(f["subtask"]) for f in expert.frames]
             for point in points:
                 step = handover_step(point, subtasks)
@@ -198,7 +208,8 @@ def main() -> None:
         memory += f", {args.n_action_steps} actions a decision"
     if args.torso_offset:
         memory += f", the expert's torso {args.torso_offset:+.3f} rad off from step 8"
-    print(f"{args.checkpoint} on {args.task} {args.split}, episodes {args.episode_indices}{memory}:")
+    which = f"scene seeds {args.scene_seeds}" if as_given else f"episodes {args.episode_indices}"
+    print(f"{args.checkpoint} on {args.task} {args.split}, {which}{memory}:")
     for point in points:
         mine = [r for r in rows if r["handover"] == point]
         states = Counter(r["failure_state"] for r in mine if not r["success"])

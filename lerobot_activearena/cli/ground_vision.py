@@ -11,6 +11,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .args import int_ranges
+
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0].split(": ", 1)[1])
@@ -29,6 +31,13 @@ def main(argv: list[str] | None = None) -> None:
         help="as the policy's --policy.image_max_pixels (12,288: 96 x 128 images at their size)",
     )
     p.add_argument("--val-every", type=int, default=10, help="hold out every N-th episode and score it")
+    p.add_argument(
+        "--episodes",
+        type=int_ranges,
+        default=None,
+        help="ground on these episodes of the build only, e.g. 0-199 (default: all). The frames are held "
+        "decoded in memory (192 x 256: 147 kB each), so a large build needs a subset",
+    )
     p.add_argument("--seed", type=int, default=0)
     p.add_argument(
         "--point-weight",
@@ -121,6 +130,7 @@ def main(argv: list[str] | None = None) -> None:
             jitter=args.jitter,
             random_conv=args.random_conv,
             eval_root=args.eval_root,
+            episodes=args.episodes,
         )
     except ValueError as e:  # a build without the annotations
         p.error(str(e))

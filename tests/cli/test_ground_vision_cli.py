@@ -16,6 +16,7 @@ from lerobot_activearena.policies.activearena_vla.vision_grounding import (
     READING,
     GroundingOutput,
     appearance_class,
+    check_decoded_size,
     color_jitter,
     grounding_loss,
     identity_token_targets,
@@ -166,6 +167,21 @@ def test_grounding_frames_are_the_datasets_frames_and_annotations(bell_count_dat
     assert not any(c[-1].isdigit() for c in named.classes if "block" in c)
     # a class wherever the object is visible, nowhere else
     assert ((named.object_class >= 0) == (named.object_uv[..., 0] >= 0)).all()
+
+
+def test_grounding_on_a_subset_decodes_only_its_episodes(bell_count_dataset):
+    whole = load_grounding_frames(bell_count_dataset)
+    one = load_grounding_frames(bell_count_dataset, episodes=[1])
+    assert set(one.episodes) == {1} and len(one.images) == (whole.episodes == 1).sum() < len(whole.images)
+    assert torch.equal(one.images, whole.images[whole.episodes == 1])
+    with pytest.raises(ValueError, match="no episode 7 .*--episodes"):
+        load_grounding_frames(bell_count_dataset, episodes=[0, 7])
+
+
+def test_a_build_too_large_to_decode_is_refused_with_the_subset_that_fits():
+    check_decoded_size(1000, (192, 256, 3), "small")  # 0.3 GB: decoded
+    with pytest.raises(ValueError, match=r"10000000 frames .*\(--episodes 0-N, about \d+ frames fit"):
+        check_decoded_size(10_000_000, (192, 256, 3), "huge")
 
 
 def test_reading_rows_are_the_frames_near_each_reading_in_its_episode():

@@ -138,17 +138,37 @@ def within_cells(uv: np.ndarray, rows: int, cols: int) -> np.ndarray:
     return np.clip(scaled - np.minimum(np.floor(scaled), [cols - 1, rows - 1]), 0.0, 1.0).astype(np.float32)
 
 
+def check_decoded_size(n_frames: int, shape, root) -> None:
+    """Refuse to decode more frames than memory holds (uint8, and a second copy while they are joined)."""
+    need = 2 * n_frames * int(np.prod(shape))
+    try:
+        line = next(x for x in Path("/proc/meminfo").read_text().splitlines() if x.startswith("MemAvailable"))
+        available = int(line.split()[1]) * 1024
+    except (OSError, StopIteration):
+        return  # not Linux: no check
+    if need > 0.8 * available:
+        fits = max(1, int(0.8 * available / need * n_frames))
+        raise ValueError(
+            f"grounding on {root} decodes {n_frames} frames of {tuple(shape)} into memory: about "
+            f"{need / 2**30:.1f} GiB with {available / 2**30:.1f} GiB available. Ground on a subset of "
+            f"its episodes (--episodes 0-N, about {fits} frames fit)"
+        )
+
+
 def load_grounding_frames(
     root: str | Path,
     camera: str = "observation.images.head",
     search: bool = False,
     identity: bool = False,
     reading_window: int = 0,
+    episodes: list[int] | None = None,
 ) -> GroundingFrames:
-    """Every frame of the build at ``root``: its decoded head image and its focus annotations (and, with
-    ``search``, its search targets' image points; with ``identity``, every object's point and
-    appearance class, and with ``reading_window`` > 0 an inspected object's class within that many
-    frames of the expert's reading is "<class> showing <reading>")."""
+    """Every frame of the build at ``root`` (of its ``episodes`` only, if given): its decoded head image
+    and its focus annotations (and, with ``search``, its search targets' image points; with
+    ``identity``, every object's point and appearance class, and with ``reading_window`` > 0 an
+    inspected object's class within that many frames of the expert's reading is "<class> showing
+    <reading>"). The frames are held decoded in memory; a build too large for it is refused before
+    decoding, with the subset to pass."""
     import pandas as pd
     from lerobot.datasets.video_utils import decode_video_frames
     from tqdm import tqdm
@@ -170,7 +190,18 @@ def load_grounding_frames(
     info = json.loads((root / "meta/info.json").read_text())
     if camera not in info["features"]:
         raise ValueError(f"{root} has no {camera}; its features: {sorted(info['features'])}")
+    chosen = episodes
     episodes = pd.concat(pd.read_parquet(f) for f in sorted((root / "meta/episodes").glob("*/*.parquet")))
+    if chosen is not None:
+        unknown = sorted(set(chosen) - set(episodes["episode_index"].astype(int)))
+        if unknown:
+            raise ValueError(
+                f"{root} has no episode {unknown[0]} (it holds {len(episodes)}, indexed from 0): pass "
+                "--episodes within them"
+            )
+        episodes = episodes[episodes["episode_index"].isin(chosen)]
+        data = data[data["episode_index"].isin(chosen)]
+    check_decoded_size(len(data), info["features"][camera]["shape"], root)
     data = data.sort_values("index")
     images, parts = [], []
     for _, ep in tqdm(list(episodes.iterrows()), desc="decoding frames", unit="episode"):
@@ -486,6 +517,7 @@ def ground_vision_tower(
     jitter: bool = False,
     random_conv: bool = False,
     eval_root: str | Path | None = None,
+    episodes: list[int] | None = None,
 ) -> dict:
     """Fit ``vlm_path``'s vision tower to the focus object's place in the build at ``root``'s head frames
     and save the whole model (tokenizer and processor copied) to ``out_dir``. Every ``val_every``-th
@@ -496,7 +528,7 @@ def ground_vision_tower(
     ``jitter`` colour-jitters every training batch (``color_jitter``), ``random_conv`` passes half its
     frames through a random convolution (``random_convolution``). ``eval_root`` (another build, an OOD
     one say) is scored whole after each epoch too, the focus figures with an ``eval_`` prefix.
-    Returns the figures also written to ``out_dir/grounding.json``."""
+    ``episodes``: ground on those of the build only (None: all). Returns the figures also written to ``out_dir/grounding.json``."""
     from tqdm import tqdm
     from transformers import AutoProcessor
 
@@ -508,7 +540,11 @@ def ground_vision_tower(
             "--reading-window names the readings among the identity classes: it needs --identity-weight > 0"
         )
     frames = load_grounding_frames(
-        root, search=search_weight > 0, identity=identity_weight > 0, reading_window=reading_window
+        root,
+        search=search_weight > 0,
+        identity=identity_weight > 0,
+        reading_window=reading_window,
+        episodes=episodes,
     )
     extra = load_grounding_frames(eval_root) if eval_root is not None else None
     # as the policy builds it (linear patch embedding, batched vision attention): the same weights, and
