@@ -45,12 +45,14 @@ def _sibling(name: str):
     return module
 
 
+pick_offsets = _sibling("pick_offsets")
+
+
 def where_it_rests(env) -> dict:
     """On an inspect-and-place task's env after an episode: the support its inspected object rests on
     (None: none) and the destination the object's reading names."""
     task, scene = env.spec_task, env.scene
     obj = scene.obj(task.inspected[0])
-    pick_offsets = _sibling("pick_offsets")
     return {
         "rests_on": pick_offsets.resting_support(env.sim, scene, obj),
         "destination": task.read(scene, obj.attributes).destination,
@@ -66,11 +68,10 @@ class ReleaseWatch:
 
     def __init__(self, env):
         self.env, self.held, self.released_at = env, False, None
-        self._held = _sibling("pick_offsets").held
 
     def __call__(self, vec) -> None:
         sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
-        held = self._held(sim, obj)
+        held = pick_offsets.held(sim, obj)
         if self.held and not held:
             self.released_at = predicates.polar(sim.data.body(obj.body).xpos[:2])
         self.held = held

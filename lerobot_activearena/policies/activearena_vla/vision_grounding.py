@@ -190,21 +190,20 @@ def load_grounding_frames(
     info = json.loads((root / "meta/info.json").read_text())
     if camera not in info["features"]:
         raise ValueError(f"{root} has no {camera}; its features: {sorted(info['features'])}")
-    chosen = episodes
-    episodes = pd.concat(pd.read_parquet(f) for f in sorted((root / "meta/episodes").glob("*/*.parquet")))
-    if chosen is not None:
-        unknown = sorted(set(chosen) - set(episodes["episode_index"].astype(int)))
+    ep_table = pd.concat(pd.read_parquet(f) for f in sorted((root / "meta/episodes").glob("*/*.parquet")))
+    if episodes is not None:
+        unknown = sorted(set(episodes) - set(ep_table["episode_index"].astype(int)))
         if unknown:
             raise ValueError(
-                f"{root} has no episode {unknown[0]} (it holds {len(episodes)}, indexed from 0): pass "
+                f"{root} has no episode {unknown[0]} (it holds {len(ep_table)}, indexed from 0): pass "
                 "--episodes within them"
             )
-        episodes = episodes[episodes["episode_index"].isin(chosen)]
-        data = data[data["episode_index"].isin(chosen)]
+        ep_table = ep_table[ep_table["episode_index"].isin(episodes)]
+        data = data[data["episode_index"].isin(episodes)]
     check_decoded_size(len(data), info["features"][camera]["shape"], root)
     data = data.sort_values("index")
     images, parts = [], []
-    for _, ep in tqdm(list(episodes.iterrows()), desc="decoding frames", unit="episode"):
+    for _, ep in tqdm(list(ep_table.iterrows()), desc="decoding frames", unit="episode"):
         rows = data[data["episode_index"] == ep["episode_index"]]
         parts.append(rows)
         path = root / info["video_path"].format(
@@ -223,7 +222,7 @@ def load_grounding_frames(
     if search or identity:
         sidecars = {
             int(ep): json.loads((root / f"meta/activearena/sidecars/episode_{int(ep):06d}.json").read_text())
-            for ep in episodes["episode_index"]
+            for ep in ep_table["episode_index"]
         }
         object_uv = np.stack(order["object_uv_norm"].to_numpy()).reshape(len(order), -1, 2)
         visible = np.stack(order["visible_object_mask"].to_numpy())
@@ -528,7 +527,8 @@ def ground_vision_tower(
     ``jitter`` colour-jitters every training batch (``color_jitter``), ``random_conv`` passes half its
     frames through a random convolution (``random_convolution``). ``eval_root`` (another build, an OOD
     one say) is scored whole after each epoch too, the focus figures with an ``eval_`` prefix.
-    ``episodes``: ground on those of the build only (None: all). Returns the figures also written to ``out_dir/grounding.json``."""
+    ``episodes``: ground on those of the build only (None: all). Returns the figures also written to
+    ``out_dir/grounding.json``."""
     from tqdm import tqdm
     from transformers import AutoProcessor
 
