@@ -1,18 +1,20 @@
-"""Does a trained ActiveArena-VLA know the count when it must choose the button? A linear probe on the
-count task's decision frames of a built dataset.
+"""Does a trained ActiveArena-VLA know what to choose when it must choose? A linear probe on the
+decision frames of a built dataset: the count task's press and the inspection task's place.
 
     python analysis/policies/decision_probe.py --root outputs/datasets/cpu_count_192 \\
         RUN_A/checkpoints/012000/pretrained_model RUN_B/checkpoints/003000/pretrained_model
 
-For every episode it takes the frame ``--offset`` steps after the expert's press subtask begins (the
-blocks are counted, the view is on the buttons, the arm has not moved yet: the decision), runs the
+For every episode it takes the frame ``--offset`` steps after the deciding subtask begins, runs the
 policy on it as in training (its memory frames from the dataset), and keeps the last-layer states at
-the action queries (their mean). A logistic regression from those states to the number of target
-blocks, cross-validated over episodes (at its best of a few L2 weights: an upper bound), says whether
-the count is linearly readable where the policy decides; the majority class is the floor. The same
-for the matching button's place among the three (by azimuth: the decision itself), from the states,
-from the predicted chunk, and from the expert's recorded chunk at the same frames (the control:
-what a policy that has decided shows).
+the action queries (their mean). On ``count_target_press_button`` that is the press (the blocks are
+counted, the view is on the buttons, the arm has not moved yet; labels: the number of target blocks,
+and the matching button's place among the three by azimuth); on ``check_block_color`` the place (the
+block picked, its patch shown and turned away again; labels: the patch colour, and the named pad's
+place among the three by azimuth). A logistic regression from those states to each label,
+cross-validated over episodes (at its best of a few L2 weights: an upper bound), says whether it is
+linearly readable where the policy decides; the majority class is the floor. The same from the
+predicted chunk, and from the expert's recorded chunk at the same frames (the control: what a policy
+that has decided shows). The task is read from the build.
 """
 
 from __future__ import annotations
@@ -24,38 +26,61 @@ from pathlib import Path
 import numpy as np
 import torch
 
-TASK = "count_target_press_button"
 
-
-def count_and_button(seed: int, split: str) -> tuple[int, int]:
+def count_labels(scene) -> dict[str, int]:
     """The scene's number of target blocks, and where the matching button lies among the three
     (0, 1, 2 by azimuth): the decision the press makes."""
-    from lerobot_activearena.tasks.registry import get_task
-    from lerobot_activearena.tasks.sampling import sample_scene
-
-    scene = sample_scene(get_task(TASK), seed, split)
     count = int(scene.params["count"])
-    buttons = sorted((p["angle"], p["name"]) for p in scene.params["placements"] if p["category"] == "button")
-    return count, [name for _, name in buttons].index(f"button_{count}")
+    return {"count": count, "button": _place_among(scene, "button", f"button_{count}")}
 
 
-def decision_frames(root: Path, offset: int) -> tuple[list[int], list[tuple[int, int]]]:
-    """Dataset indices of each episode's decision frame, and the episode's count and button."""
+def inspection_labels(scene) -> dict[str, str | int]:
+    """The patch colour, and where the pad it names lies among the pads (0, 1, 2 by azimuth): the
+    decision the place makes."""
+    colour = scene.params["patch_color"]
+    return {"colour": colour, "pad": _place_among(scene, "color_pad", f"{colour}_pad")}
+
+
+def _place_among(scene, category: str, name: str) -> int:
+    ordered = sorted((p["angle"], p["name"]) for p in scene.params["placements"] if p["category"] == category)
+    return [n for _, n in ordered].index(name)
+
+
+# task: (the deciding subtask's index, the default offset into it, the labels of a scene)
+DECISIONS = {
+    "count_target_press_button": (2, 10, count_labels),
+    "check_block_color": (4, 0, inspection_labels),
+}
+
+
+def decision_frames(root: Path, offset: int | None) -> tuple[list[int], list[dict]]:
+    """Dataset indices of each episode's decision frame, and the episode's labels."""
     import json
 
     import pandas as pd
 
+    from lerobot_activearena.tasks.registry import get_task
+    from lerobot_activearena.tasks.sampling import sample_scene
+
     frame = pd.concat(pd.read_parquet(f) for f in sorted(root.glob("data/*/*.parquet")))
     episodes = [json.loads(line) for line in (root / "meta/activearena/episodes.jsonl").open()]
-    indices, counts = [], []
+    tasks = {ep["task"] for ep in episodes}
+    if len(tasks) != 1 or not tasks <= DECISIONS.keys():
+        raise SystemExit(
+            f"{root} holds {sorted(tasks)}; the probe reads one task's build, one of {sorted(DECISIONS)}"
+        )
+    task = tasks.pop()
+    subtask, default_offset, labels_of = DECISIONS[task]
+    offset = default_offset if offset is None else offset
+    indices, labels = [], []
     for ep in episodes:
         g = frame[frame["episode_index"] == ep["episode_index"]].sort_values("frame_index")
-        press = np.flatnonzero(g["subtask_index"].to_numpy() == 2)
-        if len(press) == 0:
+        deciding = np.flatnonzero(g["subtask_index"].to_numpy() == subtask)
+        if len(deciding) == 0:
             continue
-        indices.append(int(g["index"].to_numpy()[min(press[0] + offset, len(g) - 1)]))
-        counts.append(count_and_button(ep["seed"], ep["split"]))
-    return indices, counts
+        indices.append(int(g["index"].to_numpy()[min(deciding[0] + offset, len(g) - 1)]))
+        labels.append(labels_of(sample_scene(get_task(task), ep["seed"], ep["split"])))
+    return indices, labels
 
 
 def features(policy_dir: Path, repo_id: str, root: Path, indices: list[int]) -> tuple[np.ndarray, np.ndarray]:
@@ -146,20 +171,25 @@ L2_WEIGHTS = (1e-3, 1e-2, 1e-1, 1.0)
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("checkpoints", nargs="+", type=Path, help="ActiveArena-VLA pretrained_model folders")
-    p.add_argument("--root", type=Path, required=True, help="a count-task build (with meta/activearena)")
+    p.add_argument("--root", type=Path, required=True, help="a build of one task (with meta/activearena)")
     p.add_argument("--repo-id", default=None, help="default: local/<root folder name>")
-    p.add_argument("--offset", type=int, default=10, help="frames after the press subtask begins")
+    p.add_argument(
+        "--offset",
+        type=int,
+        default=None,
+        help="frames after the deciding subtask begins (default: the task's)",
+    )
     p.add_argument(
         "--heldout-root", type=Path, help="a build of other seeds: the probes fitted above, tested there"
     )
     args = p.parse_args()
     repo_id = args.repo_id or f"local/{args.root.name}"
     indices, labels = decision_frames(args.root, args.offset)
-    targets = {"count": np.array([c for c, _ in labels]), "button": np.array([b for _, b in labels])}
+    targets = {name: np.array([lab[name] for lab in labels]) for name in labels[0]}
     held = {}
     if args.heldout_root is not None:
         h_indices, h_labels = decision_frames(args.heldout_root, args.offset)
-        held = {"count": np.array([c for c, _ in h_labels]), "button": np.array([b for _, b in h_labels])}
+        held = {name: np.array([lab[name] for lab in h_labels]) for name in h_labels[0]}
     for name, y in targets.items():
         floor = Counter(y.tolist()).most_common(1)[0][1] / len(y)
         print(
@@ -167,7 +197,7 @@ def main() -> None:
         )
     print(
         "probe accuracy, cross-validated over the build's episodes at the best L2 weight"
-        + (f" / fitted there, tested on {len(held['count'])} held-out episodes:" if held else ":")
+        + (f" / fitted there, tested on {len(h_indices)} held-out episodes:" if held else ":")
     )
 
     def probes(data, out=None) -> str:

@@ -136,3 +136,23 @@ def test_chunk_decision_record_keys_checkpoints_by_run_and_step_and_plots_each_r
     from PIL import Image
 
     assert Image.open(tmp_path / "d.png").size[0] > 400
+
+
+def test_the_decision_probe_labels_the_place_by_the_pad_the_patch_names(bell_count_dataset):
+    from lerobot_activearena.tasks.registry import get_task
+    from lerobot_activearena.tasks.sampling import sample_scene
+
+    probe = chunk_decision.decision_probe
+    places = set()
+    for seed in range(6):
+        scene = sample_scene(get_task("check_block_color"), seed, "id")
+        labels = probe.inspection_labels(scene)
+        pads = sorted(
+            (p["angle"], p["name"]) for p in scene.params["placements"] if p["category"] == "color_pad"
+        )
+        assert labels["colour"] == scene.params["patch_color"]
+        assert pads[labels["pad"]][1] == f"{labels['colour']}_pad"
+        places.add(labels["pad"])
+    assert len(places) > 1  # the named pad's place varies with the scene
+    with pytest.raises(SystemExit, match="reads one task's build"):  # the fixture holds two tasks
+        probe.decision_frames(bell_count_dataset, None)
