@@ -147,6 +147,61 @@ def test_actions_cannot_see_the_think_text(vlm, root):
     assert not torch.isclose(lm, lm_other)  # the think span is really there and read by the LM loss
 
 
+def test_think_first_actions_read_the_think_text(vlm, root):
+    """``think_first``: the span sits between the prompt and the queries, so the actions change with it."""
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask", think_first=True)
+    batch = collate(ds, pre, [40, len(ds) - 10])
+    policy.eval()
+    with torch.no_grad():
+        seq = policy.assemble(*_encode_args(batch), batch[THINK_IDS], batch[THINK_MASK])
+        a_think, lm = policy.encode(*_encode_args(batch), batch[THINK_IDS], batch[THINK_MASK])
+        other = torch.flip(batch[THINK_IDS], dims=[1])
+        a_other, lm_other = policy.encode(
+            *_encode_args(batch), other, torch.flip(batch[THINK_MASK], dims=[1])
+        )
+    for kind in seq["kind"]:
+        think_at, query_at = torch.nonzero(kind == 4).flatten(), torch.nonzero(kind == 3).flatten()
+        assert think_at.max() < query_at.min() and len(query_at) == 16
+    assert (a_think - a_other).abs().max() > 1e-4
+    assert not torch.isclose(lm, lm_other)
+
+
+def test_think_first_decodes_its_span_then_acts_on_it(vlm, root):
+    _, policy, pre, _, ds = _setup(
+        vlm, root, memory="chunk", history=4, think="subtask", think_first=True, subtask_max_tokens=24
+    )
+    batch = collate(ds, pre, [len(ds) - 20])
+    opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
+    for _ in range(150):  # memorise this one sample's subtask text
+        loss, _ = policy.forward(batch)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+    policy.eval()
+    target = batch[THINK_IDS][0][batch[THINK_MASK][0]].tolist()  # <think> text </think> <|im_end|>
+    with torch.no_grad():
+        tokens, chunk = policy.think_then_act(_encode_args(batch))
+        taught, _ = policy.encode(*_encode_args(batch), batch[THINK_IDS], batch[THINK_MASK])
+        cached = policy.greedy_decode(_encode_args(batch), target[:1], target[-2], 6, use_cache=True)
+        full = policy.greedy_decode(_encode_args(batch), target[:1], target[-2], 6, use_cache=False)
+        blank_think = torch.full_like(batch[THINK_IDS], policy.pad_id)
+        untaught, _ = policy.encode(*_encode_args(batch), blank_think, batch[THINK_MASK])
+        predicted = policy.predict_action_chunk(batch)  # a dataset batch: decodes too
+    assert list(tokens[0]) == target[1:-1]
+    assert torch.allclose(chunk, taught, atol=1e-5) and torch.allclose(predicted, taught, atol=1e-5)
+    assert (untaught - taught).abs().max() > 1e-3  # the chunk depends on the span it decoded
+    assert cached[0] == full[0]  # decoding leaves the queries out, so the cache sees what training did
+    for a, b in zip(cached[1], full[1], strict=True):
+        assert torch.allclose(a, b, atol=1e-4), (a - b).abs().max()
+
+
+def test_think_first_settings_that_cannot_work_are_named(vlm):
+    with pytest.raises(ValueError, match="needs a think target"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), think="none", think_first=True)
+    with pytest.raises(ValueError, match="does not combine with memory=subtask"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), memory="subtask", think="subtask", think_first=True)
+
+
 def test_memory_state_frames_give_the_memory_its_poses_and_the_current_frame_none(vlm, root):
     """``state_frames=memory``: a state token after every memory frame and none after the current one,
     so the chunk follows a memory frame's state and not the current state."""

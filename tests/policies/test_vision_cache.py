@@ -341,6 +341,22 @@ def test_the_decision_pair_is_the_block_pair_with_the_read_decision_in_its_think
         )
 
 
+def test_the_think_first_pair_is_the_decision_pair_with_its_span_before_the_actions():
+    """``oft_decision_*_block_readings_tuned_think_first``: the decision pair with ``think_first`` (the
+    actions read the span, decoded by the policy at evaluation), nothing else changed."""
+    from lerobot.configs.train import TrainPipelineConfig
+
+    for memory in ("action_12", "no_0"):
+        name = f"oft_decision_{memory}_ws_grounded_block_readings_tuned"
+        decision = json.loads((CONFIGS / "small" / f"{name}.json").read_text())
+        first = json.loads((CONFIGS / "small" / f"{name}_think_first.json").read_text())
+        assert {k for k in decision if decision[k] != first[k]} == {"policy", "job_name"}
+        assert differing_policy_keys(first, decision) == {"think_first"}
+        assert first["job_name"] == f"small_{name}_think_first"
+        cfg = TrainPipelineConfig.from_pretrained(CONFIGS / "small" / f"{name}_think_first.json").policy
+        assert cfg.think_first and cfg.think == "decision"
+
+
 def test_the_wms_preset_is_the_wos_chunk_12_one_with_state_tokens_on_its_memory_frames():
     """``_wms_``: the wos chunk-12 preset with the memory frames' state tokens back and none on the
     current frame (``state_frames=memory``); without a memory that is no state at all, so its

@@ -1,6 +1,7 @@
 """ActiveArena-VLA-OFT: the shared ActiveArena-VLA policy with the OFT head: 16 action-query positions
 after the prompt feed an MLPResNet that regresses a 16 x 18 chunk with L1 (the ``<think>`` span after
-the queries is trained with next-token loss, weight 0.1)."""
+the queries is trained with next-token loss, weight 0.1; with ``think_first`` the span comes before the
+queries and the policy decodes it before it acts)."""
 
 from __future__ import annotations
 
@@ -32,6 +33,10 @@ class ActiveArenaOFTPolicy(ActiveArenaVLAPolicy):
     def n_queries(self) -> int:
         """Action query tokens after the prompt: one per chunk step."""
         return self.config.chunk_size
+
+    @property
+    def think_first(self) -> bool:
+        return self.config.think_first
 
     def decode_actions(self, hidden: Tensor, kind: Tensor) -> Tensor:
         """The (B, chunk, predicted_action_dim) prediction from the last-layer states at the action queries."""
@@ -65,6 +70,8 @@ class ActiveArenaOFTPolicy(ActiveArenaVLAPolicy):
         return None if self._bank is None else self._subtask[b]
 
     def predict_chunk(self, encode_args: tuple, vision_cache: dict | None = None) -> Tensor:
+        if self.think_first:
+            return self.think_then_act(encode_args, vision_cache=vision_cache)[1]
         if self.config.memory != "subtask" or not self.config.uses_history:
             return super().predict_chunk(encode_args, vision_cache)
         subtasks, pred = self.predict_subtask_and_actions(encode_args, vision_cache=vision_cache)
@@ -104,3 +111,24 @@ class ActiveArenaOFTPolicy(ActiveArenaVLAPolicy):
             encode_args, [start], end, self.config.subtask_max_tokens, use_cache, vision_cache
         )
         return tokens, step_logits, self.decode_actions(hidden, kind)
+
+    # ----- think first: the actions read the policy's own decoded span -----
+    @torch.no_grad()
+    def think_then_act(
+        self, encode_args: tuple, vision_cache: dict | None = None
+    ) -> tuple[list[tuple[int, ...]], Tensor]:
+        """Greedy ``<think>`` decoding (images and prompt only), then the chunk from a pass with the decoded
+        span before the queries, closed as in training (``</think>``, end of turn). Returns each sample's
+        decoded tokens (up to and including ``</think>``) and the (B, chunk, predicted_action_dim) chunk."""
+        start, end = self.think_token_ids()
+        tokens, _, _ = self.greedy_decode(
+            encode_args, [start], end, self.config.subtask_max_tokens, vision_cache=vision_cache
+        )
+        close = [end, self.text_tokenizer.convert_tokens_to_ids("<|im_end|>")]
+        spans = [[start, *t[:-1], *close] if t and t[-1] == end else [start, *t, *close] for t in tokens]
+        width = max(len(s) for s in spans)
+        think = torch.full((len(spans), width), self.pad_id, dtype=torch.long)
+        mask = torch.zeros_like(think, dtype=torch.bool)
+        for b, span in enumerate(spans):
+            think[b, : len(span)], mask[b, : len(span)] = torch.tensor(span), True
+        return tokens, self.encode(*encode_args, think, mask, vision_cache=vision_cache)[0]

@@ -119,6 +119,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         return 0
 
     @property
+    def think_first(self) -> bool:
+        """Whether the think span sits before the action queries (the actions read it) or after them."""
+        return False
+
+    @property
     def device(self) -> torch.device:
         return self.vlm.get_input_embeddings().weight.device
 
@@ -159,9 +164,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         think: Tensor | None = None,
         think_mask: Tensor | None = None,
         without_pixels: set | None = None,
+        queries: bool = True,
     ) -> dict[str, Tensor]:
         """One right-padded token sequence per sample: the frames (each followed by its state token), the
-        prompt, the action queries, then the optional think span. Returns the backbone's inputs and the
+        prompt, the action queries, then the optional think span (before the queries where
+        ``think_first``; ``queries=False`` leaves them out). Returns the backbone's inputs and the
         per-position ``kind`` (-1 = padding). ``pixels`` holds every present frame's pixel values except
         those of the (sample, frame) slots in ``without_pixels``, whose features the caller supplies."""
         batch_size, n_frames = valid.shape
@@ -194,12 +201,14 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                         (b, j, j + self.max_frames - n_frames)
                     )  # current frame: always the last slot
             p = prompt[b][prompt_mask[b]].tolist()
-            ids += p + [self.pad_id] * self.n_queries
-            kind += [TEXT] * len(p) + [QUERY] * self.n_queries
-            if think is not None:
-                t = think[b][think_mask[b]].tolist()
-                ids += t
-                kind += [THINK] * len(t)
+            t = think[b][think_mask[b]].tolist() if think is not None else []
+            n_queries = self.n_queries if queries else 0
+            if self.think_first:
+                ids += p + t + [self.pad_id] * n_queries
+                kind += [TEXT] * len(p) + [THINK] * len(t) + [QUERY] * n_queries
+            else:
+                ids += p + [self.pad_id] * n_queries + t
+                kind += [TEXT] * len(p) + [QUERY] * n_queries + [THINK] * len(t)
             seqs.append(ids)
             kinds.append(kind)
         seq_len = max(len(s) for s in seqs)
@@ -217,7 +226,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         )
         input_ids, kind, attn, mm = input_ids.to(dev), kind.to(dev), attn.to(dev), mm.to(dev)
         embeds = self.vlm.get_input_embeddings()(input_ids)
-        if self.n_queries:
+        if (kind == QUERY).any():
             embeds = embeds.masked_scatter(
                 (kind == QUERY)[..., None], self.action_queries.to(embeds.dtype).repeat(batch_size, 1)
             )
@@ -520,7 +529,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         args = self.encode_args(
             pixels, grid, valid, state, batch[PREFIX_IDS], batch[PROMPT_IDS], batch[PROMPT_MASK]
         )
-        pred = self.encode(*args)[0] if cache is None else self.predict_chunk(args, vision_cache=cache)
+        if cache is None and not self.think_first:
+            pred = self.encode(*args)[0]
+        else:  # a think-first policy decodes its span before it acts, on dataset batches too
+            pred = self.predict_chunk(args, vision_cache=cache)
         if self.config.fixed_view:  # placeholders: the postprocessor sets torso and head to home
             pred = nn.functional.pad(pred, (0, self.config.action_dim - pred.shape[-1]))
         # the current frames' features, for a memory write at this step (none where a memory tower
@@ -590,7 +602,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         seq = cache = first = None
         for _ in range(max_tokens):
             if seq is None or not use_cache:
-                seq = self.assemble(*encode_args, fed, torch.ones_like(fed, dtype=torch.bool))
+                # think first: the queries would sit after the span, so the decoding runs without them
+                seq = self.assemble(
+                    *encode_args, fed, torch.ones_like(fed, dtype=torch.bool), queries=not self.think_first
+                )
                 out = self.run_backbone(seq, use_cache=use_cache, vision_cache=vision_cache)[0]
                 last = (
                     torch.where(seq["kind"] == THINK, torch.arange(seq["kind"].shape[1], device=dev), -1)
