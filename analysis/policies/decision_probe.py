@@ -20,6 +20,7 @@ that has decided shows). The task is read from the build.
 from __future__ import annotations
 
 import argparse
+import re
 from collections import Counter
 from pathlib import Path
 
@@ -83,9 +84,11 @@ def decision_frames(root: Path, offset: int | None) -> tuple[list[int], list[dic
     return indices, labels
 
 
-def features(policy_dir: Path, repo_id: str, root: Path, indices: list[int]) -> tuple[np.ndarray, np.ndarray]:
+def features(
+    policy_dir: Path, repo_id: str, root: Path, indices: list[int], spans: list[str] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """(episodes, width) mean action-query states, (episodes, chunk * dims) predicted chunks and the
-    recorded ones."""
+    recorded ones. A ``think_first`` policy's decoded spans go to ``spans`` where one is given."""
     from lerobot.configs.policies import PreTrainedConfig
     from lerobot.datasets.factory import resolve_delta_timestamps
     from lerobot.datasets.lerobot_dataset import LeRobotDataset, LeRobotDatasetMetadata
@@ -112,6 +115,15 @@ def features(policy_dir: Path, repo_id: str, root: Path, indices: list[int]) -> 
         return decode(hidden, kind)
 
     policy.decode_actions = keep
+    if spans is not None and getattr(policy, "think_first", False):
+        think_then_act = policy.think_then_act
+
+        def decoded(*args, **kwargs):
+            tokens, chunk = think_then_act(*args, **kwargs)
+            spans.extend(policy.text_tokenizer.decode(list(t)) for t in tokens)
+            return tokens, chunk
+
+        policy.think_then_act = decoded
     with torch.no_grad():
         for batch in loader:
             chunks.append(policy.predict_action_chunk(pre(policy_inputs(batch, cfg))).flatten(1))
@@ -207,7 +219,8 @@ def main() -> None:
         )
 
     for i, ckpt in enumerate(args.checkpoints):
-        x, chunk, expert = features(ckpt, repo_id, args.root, indices)
+        spans: list[str] = []
+        x, chunk, expert = features(ckpt, repo_id, args.root, indices, spans)
         hx = hchunk = hexpert = None
         if held:
             hx, hchunk, hexpert = features(
@@ -217,6 +230,15 @@ def main() -> None:
             print(f"  the expert's recorded chunk: {probes(expert, hexpert)}")
         print(f"  {ckpt} action-query states: {probes(x, hx)}")
         print(f"  {ckpt} predicted chunk: {probes(chunk, hchunk)}")
+        if spans and "colour" in targets:
+            print(f"  {ckpt} decoded span (think_first): {named_colours(spans, targets['colour'])}")
+
+
+def named_colours(spans: list[str], colours: np.ndarray) -> str:
+    """How often a think-first policy's decoded span names the patch colour ("place on the red pad")."""
+    named = [m.group(1) if (m := re.search(r"place on the (\w+) pad", s)) else None for s in spans]
+    right = sum(n == c for n, c in zip(named, colours.tolist(), strict=True))
+    return f"names the right colour in {right / len(spans):.0%}, none in {named.count(None) / len(spans):.0%}"
 
 
 if __name__ == "__main__":

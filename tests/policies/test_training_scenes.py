@@ -156,3 +156,14 @@ def test_the_decision_probe_labels_the_place_by_the_pad_the_patch_names(bell_cou
     assert len(places) > 1  # the named pad's place varies with the scene
     with pytest.raises(SystemExit, match="reads one task's build"):  # the fixture holds two tasks
         probe.decision_frames(bell_count_dataset, None)
+
+
+def test_the_decision_probe_scores_the_colour_a_think_first_span_names():
+    named = chunk_decision.decision_probe.named_colours
+    spans = [
+        "<think>localize it; place on the red pad</think>",
+        "<think>localize it</think>",
+        "place on the blue pad",
+    ]
+    assert named(spans, np.array(["red", "red", "green"])) == "names the right colour in 33%, none in 33%"
+    assert named(spans[:1], np.array(["red"])) == "names the right colour in 100%, none in 0%"
