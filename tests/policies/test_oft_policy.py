@@ -147,6 +147,17 @@ def test_actions_cannot_see_the_think_text(vlm, root):
     assert not torch.isclose(lm, lm_other)  # the think span is really there and read by the LM loss
 
 
+def _memorise(policy, batch, steps: int = 150) -> None:
+    """Fit the policy to this one batch (its subtask text and chunk), then switch it to evaluation."""
+    opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
+    for _ in range(steps):
+        loss, _ = policy.forward(batch)
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+    policy.eval()
+
+
 def test_think_first_actions_read_the_think_text(vlm, root):
     """``think_first``: the span sits between the prompt and the queries, so the actions change with it."""
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask", think_first=True)
@@ -171,13 +182,7 @@ def test_think_first_decodes_its_span_then_acts_on_it(vlm, root):
         vlm, root, memory="chunk", history=4, think="subtask", think_first=True, subtask_max_tokens=24
     )
     batch = collate(ds, pre, [len(ds) - 20])
-    opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
-    for _ in range(150):  # memorise this one sample's subtask text
-        loss, _ = policy.forward(batch)
-        opt.zero_grad()
-        loss.backward()
-        opt.step()
-    policy.eval()
+    _memorise(policy, batch)
     target = batch[THINK_IDS][0][batch[THINK_MASK][0]].tolist()  # <think> text </think> <|im_end|>
     with torch.no_grad():
         tokens, chunk = policy.think_then_act(_encode_args(batch))
@@ -481,13 +486,7 @@ def test_memory_frames_are_encoded_once_and_reused(vlm, root, monkeypatch):
 def test_greedy_think_decoding_recovers_a_learned_subtask(vlm, root):
     _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=0, think="subtask")
     batch = collate(ds, pre, [len(ds) - 20])
-    opt = torch.optim.AdamW(policy.parameters(), lr=3e-3)
-    for _ in range(150):  # memorise this one sample's subtask text
-        loss, _ = policy.forward(batch)
-        opt.zero_grad()
-        loss.backward()
-        opt.step()
-    policy.eval()
+    _memorise(policy, batch)
     decoded = policy.predict_subtask(_encode_args(batch))[0]
     target = batch[THINK_IDS][0][batch[THINK_MASK][0]].tolist()  # <think> text </think> <|im_end|>
     assert list(decoded) == target[1:-1]
