@@ -100,6 +100,7 @@ def features(
     register_policy_types()
     cfg = PreTrainedConfig.from_pretrained(policy_dir)
     cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
+    refuse_table_memory(cfg)
     meta = LeRobotDatasetMetadata(repo_id, root=root)
     policy = make_policy(cfg, ds_meta=meta).eval()
     pre, _ = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
@@ -129,6 +130,17 @@ def features(
             chunks.append(policy.predict_action_chunk(pre(policy_inputs(batch, cfg))).flatten(1))
             recorded.append(batch["action"].flatten(1))
     return torch.cat(states).numpy(), torch.cat(chunks).numpy(), torch.cat(recorded).numpy()
+
+
+def refuse_table_memory(cfg) -> None:
+    """The probe loads the dataset with the policy's own delta timestamps; a policy that reads its memory
+    frames from a vision table loads the current frame only, so it would run here without memory."""
+    if getattr(cfg, "vision_cache", None):
+        raise SystemExit(
+            f"this policy reads its memory from the vision table {cfg.vision_cache}: its dataset samples "
+            "hold the current frame only, so the probe would run it without memory; probe a policy that "
+            "reads its memory as images"
+        )
 
 
 def fit_probe(x: np.ndarray, y: np.ndarray, l2: float):
