@@ -89,22 +89,9 @@ def features(
 ) -> tuple[np.ndarray, np.ndarray]:
     """(episodes, width) mean action-query states, (episodes, chunk * dims) predicted chunks and the
     recorded ones. A ``think_first`` policy's decoded spans go to ``spans`` where one is given."""
-    from lerobot.configs.policies import PreTrainedConfig
-    from lerobot.datasets.factory import resolve_delta_timestamps
-    from lerobot.datasets.lerobot_dataset import LeRobotDataset, LeRobotDatasetMetadata
-    from lerobot.policies import make_policy, make_pre_post_processors
+    from lerobot_activearena.eval.learning_curve import policy_inputs, scoring_policy
 
-    from lerobot_activearena.eval.learning_curve import policy_inputs
-    from lerobot_activearena.eval.protocol import register_policy_types
-
-    register_policy_types()
-    cfg = PreTrainedConfig.from_pretrained(policy_dir)
-    cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
-    refuse_table_memory(cfg)
-    meta = LeRobotDatasetMetadata(repo_id, root=root)
-    policy = make_policy(cfg, ds_meta=meta).eval()
-    pre, _ = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
-    ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    cfg, policy, pre, _, ds = scoring_policy(policy_dir, repo_id, root)
     loader = torch.utils.data.DataLoader(torch.utils.data.Subset(ds, indices), batch_size=16)
     states, chunks, recorded = [], [], []
     decode = policy.decode_actions
@@ -130,17 +117,6 @@ def features(
             chunks.append(policy.predict_action_chunk(pre(policy_inputs(batch, cfg))).flatten(1))
             recorded.append(batch["action"].flatten(1))
     return torch.cat(states).numpy(), torch.cat(chunks).numpy(), torch.cat(recorded).numpy()
-
-
-def refuse_table_memory(cfg) -> None:
-    """The probe loads the dataset with the policy's own delta timestamps; a policy that reads its memory
-    frames from a vision table loads the current frame only, so it would run here without memory."""
-    if getattr(cfg, "vision_cache", None):
-        raise SystemExit(
-            f"this policy reads its memory from the vision table {cfg.vision_cache}: its dataset samples "
-            "hold the current frame only, so the probe would run it without memory; probe a policy that "
-            "reads its memory as images"
-        )
 
 
 def fit_probe(x: np.ndarray, y: np.ndarray, l2: float):

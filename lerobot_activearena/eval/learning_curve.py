@@ -69,6 +69,33 @@ def read_annotations_from(pre, repo_id: str, root: Path) -> None:
             step.cached_memory = False
 
 
+def scoring_policy(policy_dir: Path, repo_id: str, root: Path, memory_ablation: str = "none"):
+    """A checkpoint loaded to score dataset frames as it acts in an env: ``(cfg, policy, pre, post, ds)``
+    with ``ds`` the dataset at its own delta timestamps. A policy trained on a vision table loads its
+    history as images (the table indexes the training build's frames; its memory tower reads them), and
+    the annotation step reads ``root``'s. ``memory_ablation="blank"``: the memory frames come gray."""
+    from lerobot.configs.policies import PreTrainedConfig
+    from lerobot.datasets.factory import resolve_delta_timestamps
+    from lerobot.datasets.lerobot_dataset import LeRobotDataset, LeRobotDatasetMetadata
+    from lerobot.policies import make_policy, make_pre_post_processors
+
+    from .protocol import register_policy_types
+
+    register_policy_types()
+    cfg = PreTrainedConfig.from_pretrained(policy_dir)
+    if memory_ablation != "none":  # through the config's checks (a memory-free policy has none to blank)
+        cfg = dataclasses.replace(cfg, memory_ablation=memory_ablation)
+    cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
+    if getattr(cfg, "vision_cache", None):  # the delta timestamps then load the history as images
+        cfg.vision_cache = None
+    meta = LeRobotDatasetMetadata(repo_id, root=root)
+    policy = make_policy(cfg, ds_meta=meta).eval()
+    pre, post = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
+    read_annotations_from(pre, repo_id, root)
+    ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    return cfg, policy, pre, post, ds
+
+
 def chunk_errors(
     policy_dir: Path, repo_id: str, root: Path, batch_size: int = 32, memory_ablation: str = "none"
 ):
@@ -78,23 +105,8 @@ def chunk_errors(
     ``*_is_pad`` flags, so frames before an episode's start are dropped as in training.
     ``memory_ablation="blank"``: the memory frames reach the policy as gray images."""
     import torch
-    from lerobot.configs.policies import PreTrainedConfig
-    from lerobot.datasets.factory import resolve_delta_timestamps
-    from lerobot.datasets.lerobot_dataset import LeRobotDataset, LeRobotDatasetMetadata
-    from lerobot.policies import make_policy, make_pre_post_processors
 
-    cfg = PreTrainedConfig.from_pretrained(policy_dir)
-    if memory_ablation != "none":  # through the config's checks (a memory-free policy has none to blank)
-        cfg = dataclasses.replace(cfg, memory_ablation=memory_ablation)
-    cfg.pretrained_path, cfg.device = Path(policy_dir), "cpu"
-    if getattr(cfg, "vision_cache", None):  # the cache indexes the training build's frames, not these
-        cfg.vision_cache = None
-    meta = LeRobotDatasetMetadata(repo_id, root=root)
-    policy = make_policy(cfg, ds_meta=meta)
-    policy.eval()
-    pre, post = make_pre_post_processors(cfg, pretrained_path=cfg.pretrained_path)
-    read_annotations_from(pre, repo_id, root)
-    ds = LeRobotDataset(repo_id, root=root, delta_timestamps=resolve_delta_timestamps(cfg, meta))
+    cfg, policy, pre, post, ds = scoring_policy(policy_dir, repo_id, root, memory_ablation)
     loader = torch.utils.data.DataLoader(ds, batch_size=batch_size, shuffle=False, num_workers=0)
     with torch.no_grad():
         for batch in loader:

@@ -167,12 +167,3 @@ def test_the_decision_probe_scores_the_colour_a_think_first_span_names():
     ]
     assert named(spans, np.array(["red", "red", "green"])) == "names the right colour in 33%, none in 33%"
     assert named(spans[:1], np.array(["red"])) == "names the right colour in 100%, none in 0%"
-
-
-def test_the_decision_probe_refuses_a_policy_whose_memory_is_a_vision_table():
-    from types import SimpleNamespace
-
-    refuse = chunk_decision.decision_probe.refuse_table_memory
-    with pytest.raises(SystemExit, match="without memory"):
-        refuse(SimpleNamespace(vision_cache="outputs/vision_cache/table.safetensors"))
-    refuse(SimpleNamespace(vision_cache=None))  # memory as images: probed

@@ -230,9 +230,24 @@ def test_the_object_grounded_pair_is_the_one_arm_pair_on_its_own_tower():
     assert chunk["policy"]["vision_cache"].endswith("_grounded_objects.safetensors")
 
 
-def test_the_tuned_pair_trains_the_current_frames_tower_and_keeps_the_memorys(
-    tiny_vlm, bell_count_dataset, table, tmp_path
-):
+TUNED = "oft_subtask_action_12_ws_grounded_count_left_objects_tuned"
+
+
+@pytest.fixture(scope="module")
+def tuned_checkpoint(tiny_vlm, bell_count_dataset, table, tmp_path_factory):
+    """The tuned chunk-12 preset through lerobot-train on the table: a checkpoint whose memory tower is
+    a frozen copy and whose training batches held the current frame only."""
+    return train_preset(
+        CONFIGS / "small" / f"{TUNED}.json",
+        bell_count_dataset,
+        tiny_vlm,
+        tmp_path_factory.mktemp(TUNED) / "run",
+        f"--policy.image_max_pixels={PIXELS_96}",
+        f"--policy.vision_cache={table}",
+    )
+
+
+def test_the_tuned_pair_trains_the_current_frames_tower_and_keeps_the_memorys(tiny_vlm, tuned_checkpoint):
     """The _count_left_objects_tuned pair: the object-grounded pair with the vision tower trained (at
     vision_lr) on the current frame; the chunk-12 one reads its memory through a frozen copy of the
     grounded tower (and that tower's table). The two still differ only in the memory; the chunk-12
@@ -250,16 +265,7 @@ def test_the_tuned_pair_trains_the_current_frames_tower_and_keeps_the_memorys(
         assert tuned["policy"]["freeze_vision"] is False and tuned["policy"]["vision_lr"] == 1e-4
     chunk, free = pair["action_12"], pair["no_0"]
     assert differing_policy_keys(chunk, free) == MEMORY_KEYS | {"memory_vision"}
-    name = "oft_subtask_action_12_ws_grounded_count_left_objects_tuned"
-    ckpt = train_preset(
-        CONFIGS / "small" / f"{name}.json",
-        bell_count_dataset,
-        tiny_vlm,
-        tmp_path / name,
-        f"--policy.image_max_pixels={PIXELS_96}",
-        f"--policy.vision_cache={table}",
-    )
-    weights = load_file(str(ckpt / "model.safetensors"))
+    weights = load_file(str(tuned_checkpoint / "model.safetensors"))
     original = load_policy_vlm(str(tiny_vlm), torch.float32, "sdpa").model.visual.state_dict()
     copies = {k.removeprefix("memory_tower."): v for k, v in weights.items() if k.startswith("memory_tower.")}
     assert copies and copies.keys() == original.keys()
@@ -270,6 +276,41 @@ def test_the_tuned_pair_trains_the_current_frames_tower_and_keeps_the_memorys(
         if k.startswith("vlm.model.visual.")
     }
     assert any(not torch.equal(trained[k], original[k]) for k in original)
+
+
+def test_scoring_dataset_frames_reads_a_table_policys_memory_as_images(tuned_checkpoint, bell_count_dataset):
+    """A policy trained on a vision table, scored on dataset frames (decision probe, open-loop error):
+    its history comes as images through its memory tower and gives the action-query states of the
+    training path (memory from the table); the current frame alone gives others."""
+    from helpers.analysis_scripts import load
+    from lerobot.configs.policies import PreTrainedConfig
+
+    from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY
+
+    indices = [70, 120]
+    states, _, _ = load("analysis/policies/decision_probe.py").features(
+        tuned_checkpoint, REPO, bell_count_dataset, indices
+    )
+    cfg = PreTrainedConfig.from_pretrained(tuned_checkpoint)
+    assert cfg.vision_cache  # the training path: the table by frame index
+    cfg.device, cfg.pretrained_path = "cpu", tuned_checkpoint
+    policy, pre, _, ds = build_policy(cfg, bell_count_dataset)
+    policy.eval()
+    batch = collate(ds, pre, indices)
+    assert batch[MEMORY_INDEX].shape == (2, 12) and len(batch[PIXELS]) == 2
+
+    def query_states(b, cache):
+        with torch.no_grad():
+            h, kind, _ = policy.hidden_states(*policy.training_args(b), vision_cache=cache)
+        return h[kind == QUERY].view(len(indices), -1, h.shape[-1]).float().mean(1).numpy()
+
+    trained = query_states(batch, policy.cached_memory(batch))
+    current_only = dict(batch)
+    current_only[FRAME_VALID] = torch.zeros_like(batch[FRAME_VALID])
+    current_only[FRAME_VALID][:, -1] = True
+    alone = query_states(current_only, {})
+    gap = float(abs(states - trained).max())
+    assert gap < 0.05 * float(abs(alone - trained).max()), (gap, float(abs(alone - trained).max()))
 
 
 def test_the_wos_pair_is_the_tuned_pair_without_state_tokens_at_batch_64():
