@@ -85,13 +85,22 @@ def decision_frames(root: Path, offset: int | None) -> tuple[list[int], list[dic
 
 
 def features(
-    policy_dir: Path, repo_id: str, root: Path, indices: list[int], spans: list[str] | None = None
+    policy_dir: Path,
+    repo_id: str,
+    root: Path,
+    indices: list[int],
+    spans: list[str] | None = None,
+    span: str = "decoded",
 ) -> tuple[np.ndarray, np.ndarray]:
     """(episodes, width) mean action-query states, (episodes, chunk * dims) predicted chunks and the
-    recorded ones. A ``think_first`` policy's decoded spans go to ``spans`` where one is given."""
+    recorded ones. A ``think_first`` policy's decoded spans go to ``spans`` where one is given. It acts
+    on its own decoded span, or on the annotated one (``span="annotated"``, teacher-forced as in
+    training), or on the annotated one with the named colour swapped for the next (``"swapped"``)."""
     from lerobot_activearena.eval.learning_curve import policy_inputs, scoring_policy
 
     cfg, policy, pre, _, ds = scoring_policy(policy_dir, repo_id, root)
+    if span == "swapped":
+        swap_named_colour(pre)
     loader = torch.utils.data.DataLoader(torch.utils.data.Subset(ds, indices), batch_size=16)
     states, chunks, recorded = [], [], []
     decode = policy.decode_actions
@@ -114,9 +123,33 @@ def features(
         policy.think_then_act = decoded
     with torch.no_grad():
         for batch in loader:
-            chunks.append(policy.predict_action_chunk(pre(policy_inputs(batch, cfg))).flatten(1))
+            if span != "decoded":  # the action and index make the preprocessor write the think target
+                b = pre(policy_inputs(batch, cfg) | {k: batch[k] for k in ("action", "index")})
+                chunks.append(policy.encode(*policy.training_args(b))[0].flatten(1))
+            else:
+                chunks.append(policy.predict_action_chunk(pre(policy_inputs(batch, cfg))).flatten(1))
             recorded.append(batch["action"].flatten(1))
     return torch.cat(states).numpy(), torch.cat(chunks).numpy(), torch.cat(recorded).numpy()
+
+
+def swap_named_colour(pre) -> None:
+    """The annotation step's decision text names the next colour ("place on the red pad" -> green)."""
+    from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+        ActiveArenaAnnotationStep,
+    )
+
+    (step,) = [s for s in pre.steps if isinstance(s, ActiveArenaAnnotationStep)]
+    ann = step._ann = DatasetAnnotations(step.dataset_root, step.repo_id)
+    annotated = ann.subtask_and_decision
+
+    ann.subtask_and_decision = lambda index: swap_colour(annotated(index))
+
+
+def swap_colour(text: str) -> str:
+    """ "...; place on the red pad" -> "...; place on the green pad" (red -> green -> blue -> red)."""
+    following = {"red": "green", "green": "blue", "blue": "red"}
+    return re.sub(r"place on the (\w+) pad", lambda m: f"place on the {following[m.group(1)]} pad", text)
 
 
 def fit_probe(x: np.ndarray, y: np.ndarray, l2: float):
@@ -182,7 +215,16 @@ def main() -> None:
     p.add_argument(
         "--heldout-root", type=Path, help="a build of other seeds: the probes fitted above, tested there"
     )
+    p.add_argument(
+        "--span",
+        choices=("decoded", "annotated", "swapped"),
+        default="decoded",
+        help="what a think_first policy acts on: its own decoding, the annotated span (teacher-forced), "
+        "or the annotated span with the named colour swapped (then also: how far that moves the chunk)",
+    )
     args = p.parse_args()
+    if args.span != "decoded":
+        print(f"think_first policies act on the {args.span} span")
     repo_id = args.repo_id or f"local/{args.root.name}"
     indices, labels = decision_frames(args.root, args.offset)
     targets = {name: np.array([lab[name] for lab in labels]) for name in labels[0]}
@@ -208,7 +250,13 @@ def main() -> None:
 
     for i, ckpt in enumerate(args.checkpoints):
         spans: list[str] = []
-        x, chunk, expert = features(ckpt, repo_id, args.root, indices, spans)
+        x, chunk, expert = features(ckpt, repo_id, args.root, indices, spans, args.span)
+        if args.span == "swapped":
+            _, kept, _ = features(ckpt, repo_id, args.root, indices, span="annotated")
+            print(
+                f"  {ckpt} the swap moves the chunk by {np.abs(chunk - kept).mean():.4f} (mean, normalised); "
+                f"from one episode's to the next's {np.abs(kept - np.roll(kept, 1, 0)).mean():.4f}"
+            )
         hx = hchunk = hexpert = None
         if held:
             hx, hchunk, hexpert = features(

@@ -167,3 +167,13 @@ def test_the_decision_probe_scores_the_colour_a_think_first_span_names():
     ]
     assert named(spans, np.array(["red", "red", "green"])) == "names the right colour in 33%, none in 33%"
     assert named(spans[:1], np.array(["red"])) == "names the right colour in 100%, none in 0%"
+
+
+def test_the_decision_probe_swaps_the_named_colour_for_the_next():
+    swap = chunk_decision.decision_probe.swap_colour
+    assert swap("localize the matching pad; place on the red pad") == (
+        "localize the matching pad; place on the green pad"
+    )
+    assert swap("place on the green pad") == "place on the blue pad"
+    assert swap("place on the blue pad") == "place on the red pad"
+    assert swap("locate and pick up the gray target block") == "locate and pick up the gray target block"
