@@ -1371,6 +1371,52 @@ def test_batched_vision_attention_equals_qwens_per_image_loop(tmp_path, sizes, m
         batch_vision_attention(other)
 
 
+def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vlm, root, tmp_path):
+    """--policy.decision_weight: the first decision_window frames of every subtask that begins after the
+    episode's first reading weigh that much in the action loss; a build without readings is refused."""
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import ACTION_WEIGHT
+
+    copy = tmp_path / "data"
+    shutil.copytree(root, copy)
+    side_path = copy / "meta/activearena/sidecars/episode_000001.json"  # the count episode: 2 subtasks
+    side = json.loads(side_path.read_text())
+    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
+    side_path.write_text(json.dumps(side))
+    ann = DatasetAnnotations(copy, REPO)
+    onsets = ann.decision_onsets(window=8)
+    frames, subtasks = ann.cols["frame_index"], ann.cols["subtask_index"]
+    expected, since = [], None
+    for i in range(ann.ep_start[1], ann.ep_end[1]):  # episode 1, frame by frame
+        if i == ann.ep_start[1] or subtasks[i] != subtasks[i - 1]:
+            since = 0 if frames[i] >= 20 else None
+        elif since is not None:
+            since += 1
+        expected.append(since is not None and since < 8)
+    assert onsets[ann.ep_start[1] : ann.ep_end[1]].tolist() == expected and sum(expected) == 8
+    assert not onsets[: ann.ep_start[1]].any()  # the first episode read nothing
+    onset, other = int(np.flatnonzero(onsets)[0]), int(np.flatnonzero(onsets)[0]) - 1
+
+    cfg, policy, pre, _, ds = _setup(
+        vlm, copy, memory="chunk", history=2, think="none", decision_weight=5.0, decision_window=8
+    )
+    batch = collate(ds, pre, [onset, other])
+    assert batch[ACTION_WEIGHT].tolist() == [5.0, 1.0]
+    plain = {k: v for k, v in batch.items() if k != ACTION_WEIGHT}
+    policy.eval()
+    with torch.no_grad():
+        per_sample = policy.forward(plain, reduction="none")[0]
+        weighted = policy.forward(batch)[0]
+    assert torch.allclose(weighted, (5 * per_sample[0] + per_sample[1]) / 6)
+    assert not torch.allclose(weighted, per_sample.mean())
+    _, _, unread_pre, _, unread_ds = _setup(
+        vlm, root, memory="chunk", history=2, think="none", decision_weight=5.0
+    )
+    with pytest.raises(ValueError, match="holds none"):
+        collate(unread_ds, unread_pre, [onset])
+    with pytest.raises(ValueError, match="decision_weight must be > 0"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), decision_weight=0.0)
+
+
 def test_decision_think_appends_the_read_decision_from_the_frame_it_was_read_on(vlm, root, tmp_path):
     """think=decision: the subtask text, then from the inspection's frame on the decision the expert
     took from it (an inspect-and-place episode's ``expert_notes``); before it the plain subtask."""

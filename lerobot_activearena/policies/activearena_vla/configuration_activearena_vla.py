@@ -67,6 +67,12 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # frame the expert read a hidden face on by the decision it took from it: "...; place on the red pad")
     think: str = "subtask"
     lm_loss_weight: float = 0.1
+    # The action loss of the frames where the expert starts acting on what it read: the first
+    # ``decision_window`` frames of every subtask that begins after a reading (expert_notes.inspections),
+    # weighted ``decision_weight`` times the others (1: unweighted). Elsewhere the current view and
+    # state show where the arm is heading; there only the memory (or the span it decoded) does.
+    decision_weight: float = 1.0
+    decision_window: int = 16
     subtask_max_tokens: int = 32  # greedy <think> decoding budget (OFT's memory=subtask, FAST's think span)
     chunk_size: int = 16
     # Actions run per predicted chunk. Chunk memory is written every 16th step (the paper's); below 16
@@ -228,6 +234,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 f"--policy.vision_lr is the training vision tower's learning rate: a number > 0 with "
                 f"--policy.freeze_vision=false (got vision_lr={self.vision_lr}, freeze_vision={self.freeze_vision})"
+            )
+        if self.decision_weight <= 0 or self.decision_window < 1:
+            raise ValueError(
+                f"--policy.decision_weight must be > 0 and --policy.decision_window >= 1 (got "
+                f"{self.decision_weight}, {self.decision_window})"
             )
         # A local folder is stored absolute, so a checkpoint reloads from any working directory.
         for name in ("vlm_path", "dataset_root", "vision_cache"):

@@ -50,6 +50,20 @@ class DatasetAnnotations:
                 if e.get("decision")
             )
 
+    def decision_onsets(self, window: int) -> np.ndarray:
+        """Per global frame: whether it is among the first ``window`` frames of a subtask that began at
+        or after the episode's first reading (where the expert starts acting on what it read)."""
+        ep, sub = self.cols["episode_index"], self.cols["subtask_index"]
+        new_subtask = np.ones(len(ep), dtype=bool)
+        new_subtask[1:] = (ep[1:] != ep[:-1]) | (sub[1:] != sub[:-1])
+        starts = np.flatnonzero(new_subtask)
+        start_of = starts[np.searchsorted(starts, np.arange(len(ep)), side="right") - 1]
+        frame = self.cols["frame_index"]
+        first_reading = np.array(
+            [self.decisions[int(e)][0][0] if self.decisions[int(e)] else np.inf for e in ep], dtype=float
+        )
+        return (frame[start_of] >= first_reading) & (np.arange(len(ep)) - start_of < window)
+
     def subtask(self, index: int) -> str:
         ep, sid = int(self.cols["episode_index"][index]), int(self.cols["subtask_index"][index])
         return self.subtask_text[ep].get(sid, self.instruction[ep])

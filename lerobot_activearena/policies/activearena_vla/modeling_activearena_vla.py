@@ -34,6 +34,7 @@ from .helpers import (
     weights_dtype,
 )
 from .processor_activearena_vla import (
+    ACTION_WEIGHT,
     FRAME_VALID,
     FRAMES,
     GRID,
@@ -428,6 +429,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             *self.training_args(batch), vision_cache=self.cached_memory(batch)
         )
         per_sample, info = self.action_loss(h, kind, batch)
+        if ACTION_WEIGHT in batch:  # --policy.decision_weight: the decision onsets weigh more
+            weight = batch[ACTION_WEIGHT].to(per_sample)
+            per_sample = per_sample * weight * (len(weight) / weight.sum())
         loss = per_sample.mean() if reduction == "mean" else per_sample
         if lm_loss is not None:
             loss = loss + self.config.lm_loss_weight * lm_loss

@@ -35,6 +35,8 @@ PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VL
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
 # training with a vision cache: (batch, history) global indices of the memory frames, -1 where padded
 MEMORY_INDEX = VLM + "memory_index"
+# training with --policy.decision_weight: (batch,) each sample's action-loss weight
+ACTION_WEIGHT = VLM + "action_weight"
 FRAMES = VLM + "frames"  # an env step's current frames (EnvFrames), until the policy needs their pixels
 PREFIX = "<|im_start|>user\n"
 ASSISTANT = "<|im_end|>\n<|im_start|>assistant\n"  # closes a user turn, opens the answer
@@ -102,7 +104,11 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     subtask_prompt: bool = False  # the prompt names the current subtask (ActiveArena-Plan's executor)
     # the chunk memory's frames come as indices into a vision cache (their states from the dataset)
     cached_memory: bool = False
+    # the action-loss weight of the frames where the expert starts acting on a reading (1: none)
+    decision_weight: float = 1.0
+    decision_window: int = 16
     _ann: Any = field(default=None, init=False, repr=False)
+    _onsets: Any = field(default=None, init=False, repr=False)
 
     def _needs_subtask(self) -> bool:
         return self.think == "subtask" or self.subtask_prompt
@@ -116,6 +122,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             or self.think == "decision"
             or (self.memory in KEYFRAME_MEMORIES and self.history > 0)
             or self._cached_chunk()
+            or self.decision_weight != 1
         )
 
     def __call__(self, transition):
@@ -148,6 +155,8 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             )
             if states is not None:
                 obs[OBS_STATE] = states
+        if self.decision_weight != 1:
+            comp[ACTION_WEIGHT] = self._action_weights(idx)
         if self._cached_chunk():
             comp[MEMORY_INDEX], states = self._ann.memory_index_batch(
                 torch.tensor(idx), obs.get(OBS_STATE), self.history
@@ -158,8 +167,22 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
         return out
 
+    def _action_weights(self, idx: list[int]) -> torch.Tensor:
+        if self._onsets is None:
+            self._onsets = self._ann.decision_onsets(self.decision_window)
+            if not self._onsets.any():
+                raise ValueError(
+                    f"--policy.decision_weight={self.decision_weight} weights the frames where the expert "
+                    f"acts on a reading, and {self.dataset_root} holds none (no expert_notes.inspections): "
+                    "train an inspection task's build, or leave decision_weight at 1"
+                )
+        onset = torch.as_tensor(self._onsets[idx])
+        return torch.where(onset, self.decision_weight, 1.0).float()
+
     def get_config(self) -> dict[str, Any]:
         return {
+            "decision_weight": self.decision_weight,
+            "decision_window": self.decision_window,
             "dataset_root": self.dataset_root,
             "repo_id": self.repo_id,
             "memory": self.memory,
@@ -367,6 +390,8 @@ def make_activearena_vla_pre_post_processors(
         think=config.think,
         subtask_prompt=subtask_prompt,
         cached_memory=bool(config.vision_cache),
+        decision_weight=config.decision_weight,
+        decision_window=config.decision_window,
     )
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,
