@@ -222,11 +222,13 @@ def main() -> None:
         help="what a think_first policy acts on: its own decoding, the annotated span (teacher-forced), "
         "or the annotated span with the named colour swapped (then also: how far that moves the chunk)",
     )
+    p.add_argument("--episodes", type=int, default=None, help="the build's first N episodes only")
     args = p.parse_args()
     if args.span != "decoded":
         print(f"think_first policies act on the {args.span} span")
     repo_id = args.repo_id or f"local/{args.root.name}"
     indices, labels = decision_frames(args.root, args.offset)
+    indices, labels = indices[: args.episodes], labels[: args.episodes]
     targets = {name: np.array([lab[name] for lab in labels]) for name in labels[0]}
     held = {}
     if args.heldout_root is not None:
