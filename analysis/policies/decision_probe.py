@@ -95,7 +95,7 @@ def features(
     """(episodes, width) mean action-query states, (episodes, chunk * dims) predicted chunks and the
     recorded ones. A ``think_first`` policy's decoded spans go to ``spans`` where one is given. It acts
     on its own decoded span, or on the annotated one (``span="annotated"``, teacher-forced as in
-    training), or on the annotated one with the named colour swapped for the next (``"swapped"``)."""
+    training), or on the annotated one with the named colour (and place) swapped for the next (``"swapped"``)."""
     from lerobot_activearena.eval.learning_curve import policy_inputs, scoring_policy
 
     cfg, policy, pre, _, ds = scoring_policy(policy_dir, repo_id, root)
@@ -142,14 +142,24 @@ def swap_named_colour(pre) -> None:
     (step,) = [s for s in pre.steps if isinstance(s, ActiveArenaAnnotationStep)]
     ann = step._ann = DatasetAnnotations(step.dataset_root, step.repo_id)
     annotated = ann.subtask_and_decision
+    ann.subtask_and_decision = lambda index, place=False: swap_colour(annotated(index, place))
 
-    ann.subtask_and_decision = lambda index: swap_colour(annotated(index))
+
+FOLLOWING = {
+    "red": "green",
+    "green": "blue",
+    "blue": "red",
+    "right": "middle",
+    "middle": "left",
+    "left": "right",
+}
 
 
 def swap_colour(text: str) -> str:
-    """ "...; place on the red pad" -> "...; place on the green pad" (red -> green -> blue -> red)."""
-    following = {"red": "green", "green": "blue", "blue": "red"}
-    return re.sub(r"place on the (\w+) pad", lambda m: f"place on the {following[m.group(1)]} pad", text)
+    """The named colour for the next ("place on the red pad" -> "place on the green pad"; red -> green
+    -> blue -> red), and a named place with it ("..., the right one" -> "..., the middle one")."""
+    text = re.sub(r"place on the (\w+) pad", lambda m: f"place on the {FOLLOWING[m.group(1)]} pad", text)
+    return re.sub(r", the (\w+) one", lambda m: f", the {FOLLOWING[m.group(1)]} one", text)
 
 
 def fit_probe(x: np.ndarray, y: np.ndarray, l2: float):

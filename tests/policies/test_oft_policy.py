@@ -1371,6 +1371,38 @@ def test_batched_vision_attention_equals_qwens_per_image_loop(tmp_path, sizes, m
         batch_vision_attention(other)
 
 
+def test_decision_place_names_where_the_decided_object_lies_among_its_kind(vlm, root, tmp_path):
+    """--policy.decision_place: the think=decision target names the decided pad by its place among the
+    pads by azimuth (larger angle: further left); a decision that names no placed object is refused."""
+    copy = tmp_path / "data"
+    shutil.copytree(root, copy)
+    side_path = copy / "meta/activearena/sidecars/episode_000000.json"
+    side = json.loads(side_path.read_text())
+    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
+    pads = {"blue_pad": 25.5, "green_pad": 83.0, "red_pad": 107.2}
+    side["placements"] = [{"name": n, "category": "color_pad", "r": 0.4, "angle": a} for n, a in pads.items()]
+    side["placements"].append({"name": "bell", "category": "bell", "r": 0.5, "angle": 200.0})
+    side_path.write_text(json.dumps(side))
+    ann = DatasetAnnotations(copy, REPO)
+    assert (
+        ann.subtask_and_decision(40, place=True) == f"{ann.subtask(40)}; place on the red pad, the left one"
+    )
+    assert ann.subtask_and_decision(40) == f"{ann.subtask(40)}; place on the red pad"
+    places = [ann.place_of(0, f"place on the {c} pad") for c in ("blue", "green", "red")]
+    assert places == ["right", "middle", "left"]
+    assert ann.subtask_and_decision(10, place=True) == ann.subtask(10)  # nothing read yet
+    with pytest.raises(ValueError, match="yellow_pad, which is not among"):
+        ann.place_of(0, "place on the yellow pad")
+
+    _, _, pre, _, ds = _setup(vlm, copy, memory="chunk", history=2, think="decision", decision_place=True)
+    _, _, plain_pre, _, _ = _setup(vlm, copy, memory="chunk", history=2, think="decision")
+    tok = lambda b: b[THINK_IDS][0][b[THINK_MASK][0]].tolist()  # noqa: E731
+    placed, plain = tok(collate(ds, pre, [40])), tok(collate(ds, plain_pre, [40]))
+    assert len(placed) > len(plain) and placed[: len(plain) - 2] == plain[:-2]  # the place follows
+    with pytest.raises(ValueError, match="set --policy.think=decision"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), think="subtask", decision_place=True)
+
+
 def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vlm, root, tmp_path):
     """--policy.decision_weight: the first decision_window frames of every subtask that begins after the
     episode's first reading weigh that much in the action loss; a build without readings is refused."""

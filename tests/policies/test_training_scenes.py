@@ -177,3 +177,5 @@ def test_the_decision_probe_swaps_the_named_colour_for_the_next():
     assert swap("place on the green pad") == "place on the blue pad"
     assert swap("place on the blue pad") == "place on the red pad"
     assert swap("locate and pick up the gray target block") == "locate and pick up the gray target block"
+    assert swap("place on the blue pad, the right one") == "place on the red pad, the middle one"
+    assert swap("place on the red pad, the left one") == "place on the green pad, the right one"

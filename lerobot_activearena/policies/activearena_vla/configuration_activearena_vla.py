@@ -73,6 +73,9 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # state show where the arm is heading; there only the memory (or the span it decoded) does.
     decision_weight: float = 1.0
     decision_window: int = 16
+    # think=decision: the decided object also named by its place among its kind by azimuth ("place on
+    # the blue pad, the right one"), so the span carries where to go, not only what was read.
+    decision_place: bool = False
     subtask_max_tokens: int = 32  # greedy <think> decoding budget (OFT's memory=subtask, FAST's think span)
     chunk_size: int = 16
     # Actions run per predicted chunk. Chunk memory is written every 16th step (the paper's); below 16
@@ -234,6 +237,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 f"--policy.vision_lr is the training vision tower's learning rate: a number > 0 with "
                 f"--policy.freeze_vision=false (got vision_lr={self.vision_lr}, freeze_vision={self.freeze_vision})"
+            )
+        if self.decision_place and self.think != "decision":
+            raise ValueError(
+                f"--policy.decision_place names the decided object's place in the think=decision target; "
+                f"this policy has think={self.think!r}: set --policy.think=decision"
             )
         if self.decision_weight <= 0 or self.decision_window < 1:
             raise ValueError(

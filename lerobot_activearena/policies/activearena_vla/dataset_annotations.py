@@ -40,10 +40,14 @@ class DatasetAnnotations:
         self.subtask_text: dict[int, dict[int, str]] = {}
         self.instruction: dict[int, str] = {}
         self.decisions: dict[int, list[tuple[int, str]]] = {}  # (frame read on, decision), in order
+        self.placements: dict[
+            int, list[dict]
+        ] = {}  # the scene's objects on the table (name, category, angle)
         for ep in self.ep_start:
             side = json.loads((root / f"meta/activearena/sidecars/episode_{ep:06d}.json").read_text())
             self.subtask_text[ep] = {int(s["id"]): s["text"] for s in side["subtasks"]}
             self.instruction[ep] = side["instruction"]
+            self.placements[ep] = side.get("placements", [])
             self.decisions[ep] = sorted(
                 (int(e["frame"]), e["decision"])
                 for e in (side.get("expert_notes") or {}).get("inspections", [])
@@ -75,10 +79,38 @@ class DatasetAnnotations:
         made = [d for frame, d in self.decisions[ep] if frame <= x]
         return made[-1] if made else None
 
-    def subtask_and_decision(self, index: int) -> str:
-        """The subtask text, with the decision in force appended: the ``think=decision`` target."""
+    def subtask_and_decision(self, index: int, place: bool = False) -> str:
+        """The subtask text, with the decision in force appended: the ``think=decision`` target. With
+        ``place``, the decision's object is also named by its place among the objects of its kind, as
+        the robot sees them by azimuth ("place on the blue pad, the right one")."""
         decision = self.decision(index)
-        return self.subtask(index) if decision is None else f"{self.subtask(index)}; {decision}"
+        if decision is None:
+            return self.subtask(index)
+        if place:
+            decision = (
+                f"{decision}, the {self.place_of(int(self.cols['episode_index'][index]), decision)} one"
+            )
+        return f"{self.subtask(index)}; {decision}"
+
+    def place_of(self, ep: int, decision: str) -> str:
+        """Where the object a decision ends on ("place on the blue pad": blue_pad) lies among the objects
+        of its category, by azimuth: right / middle / left of three, right / left of two."""
+        name = "_".join(decision.split()[-2:])
+        found = [p for p in self.placements[ep] if p["name"] == name]
+        if not found:
+            raise ValueError(
+                f"episode {ep}'s decision {decision!r} names {name}, which is not among its sidecar's "
+                "placements: --policy.decision_place needs decisions that end on a placed object's name"
+            )
+        kin = sorted(
+            (p["angle"], p["name"]) for p in self.placements[ep] if p["category"] == found[0]["category"]
+        )
+        words = {2: ["right", "left"], 3: ["right", "middle", "left"]}.get(len(kin))
+        if words is None:
+            raise ValueError(
+                f"--policy.decision_place names one of two or three objects, {name} has {len(kin)}"
+            )
+        return words[[n for _, n in kin].index(name)]
 
     def subtask_keyframes(self, index: int) -> tuple[int, list[int]]:
         """The frame at global ``index``'s episode position x and its episode's subtask keyframes <= x."""

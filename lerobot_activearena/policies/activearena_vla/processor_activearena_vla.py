@@ -107,6 +107,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     # the action-loss weight of the frames where the expert starts acting on a reading (1: none)
     decision_weight: float = 1.0
     decision_window: int = 16
+    decision_place: bool = False  # think=decision: the decided object's place named too
     _ann: Any = field(default=None, init=False, repr=False)
     _onsets: Any = field(default=None, init=False, repr=False)
 
@@ -144,7 +145,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         if self._needs_subtask():
             comp["subtask"] = [self._ann.subtask(i) for i in idx]
         if self.think == "decision":
-            comp["think_target"] = [self._ann.subtask_and_decision(i) for i in idx]
+            comp["think_target"] = [self._ann.subtask_and_decision(i, self.decision_place) for i in idx]
         obs = dict(transition[TransitionKey.OBSERVATION])
         if self.memory in KEYFRAME_MEMORIES and self.history > 0:
             img = obs[IMAGE_KEY]
@@ -183,6 +184,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         return {
             "decision_weight": self.decision_weight,
             "decision_window": self.decision_window,
+            "decision_place": self.decision_place,
             "dataset_root": self.dataset_root,
             "repo_id": self.repo_id,
             "memory": self.memory,
@@ -392,6 +394,7 @@ def make_activearena_vla_pre_post_processors(
         cached_memory=bool(config.vision_cache),
         decision_weight=config.decision_weight,
         decision_window=config.decision_window,
+        decision_place=config.decision_place,
     )
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,
