@@ -1440,6 +1440,9 @@ def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vl
         weighted = policy.forward(batch)[0]
     assert torch.allclose(weighted, (5 * per_sample[0] + per_sample[1]) / 6)
     assert not torch.allclose(weighted, per_sample.mean())
+    policy.train()  # training on batches of a preprocessor without the weights (an older checkpoint's)
+    with pytest.raises(ValueError, match="carries no action weights"):
+        policy.forward(plain)
     _, _, unread_pre, _, unread_ds = _setup(
         vlm, root, memory="chunk", history=2, think="none", decision_weight=5.0
     )

@@ -429,6 +429,13 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             *self.training_args(batch), vision_cache=self.cached_memory(batch)
         )
         per_sample, info = self.action_loss(h, kind, batch)
+        if self.training and self.config.decision_weight != 1 and ACTION_WEIGHT not in batch:
+            raise ValueError(
+                f"--policy.decision_weight={self.config.decision_weight}, but the batch carries no action "
+                "weights: the preprocessor was loaded from a checkpoint saved without them (lerobot-train "
+                "with --policy.pretrained_path keeps that checkpoint's preprocessor settings); set "
+                "decision_weight, decision_window and decision_place in its policy_preprocessor.json"
+            )
         if ACTION_WEIGHT in batch:  # --policy.decision_weight: the decision onsets weigh more
             weight = batch[ACTION_WEIGHT].to(per_sample)
             per_sample = per_sample * weight * (len(weight) / weight.sum())
