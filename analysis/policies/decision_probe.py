@@ -280,6 +280,8 @@ def main() -> None:
         print(f"  {ckpt} predicted chunk: {probes(chunk, hchunk)}")
         if spans and "colour" in targets:
             print(f"  {ckpt} decoded span (think_first): {named_colours(spans, targets['colour'])}")
+            if any(re.search(r", the \w+ one", t) for t in spans):  # a decision_place policy
+                print(f"  {ckpt} decoded span's place: {named_places(spans, targets['pad'])}")
 
 
 def named_colours(spans: list[str], colours: np.ndarray) -> str:
@@ -287,6 +289,15 @@ def named_colours(spans: list[str], colours: np.ndarray) -> str:
     named = [m.group(1) if (m := re.search(r"place on the (\w+) pad", s)) else None for s in spans]
     right = sum(n == c for n, c in zip(named, colours.tolist(), strict=True))
     return f"names the right colour in {right / len(spans):.0%}, none in {named.count(None) / len(spans):.0%}"
+
+
+def named_places(spans: list[str], pads: np.ndarray) -> str:
+    """How often a decision_place span names the named pad's place ("..., the right one"; pads by
+    azimuth 0, 1, 2 = right, middle, left)."""
+    words = ["right", "middle", "left"]
+    named = [m.group(1) if (m := re.search(r", the (\w+) one", s)) else None for s in spans]
+    right = sum(n == words[int(p)] for n, p in zip(named, pads.tolist(), strict=True))
+    return f"names the right place in {right / len(spans):.0%}, none in {named.count(None) / len(spans):.0%}"
 
 
 if __name__ == "__main__":

@@ -167,6 +167,14 @@ def test_the_decision_probe_scores_the_colour_a_think_first_span_names():
     ]
     assert named(spans, np.array(["red", "red", "green"])) == "names the right colour in 33%, none in 33%"
     assert named(spans[:1], np.array(["red"])) == "names the right colour in 100%, none in 0%"
+    places = chunk_decision.decision_probe.named_places
+    placed = [
+        "place on the red pad, the left one",
+        "place on the red pad, the right one",
+        "place on the red pad",
+    ]
+    assert places(placed, np.array([2, 2, 0])) == "names the right place in 33%, none in 33%"
+    assert places(placed[:2], np.array([2, 0])) == "names the right place in 100%, none in 0%"
 
 
 def test_the_decision_probe_swaps_the_named_colour_for_the_next():
