@@ -294,7 +294,9 @@ def named_colours(spans: list[str], colours: np.ndarray) -> str:
 def named_places(spans: list[str], pads: np.ndarray) -> str:
     """How often a decision_place span names the named pad's place ("..., the right one"; pads by
     azimuth 0, 1, 2 = right, middle, left)."""
-    words = ["right", "middle", "left"]
+    from lerobot_activearena.policies.activearena_vla.dataset_annotations import PLACE_WORDS
+
+    words = PLACE_WORDS[3]
     named = [m.group(1) if (m := re.search(r", the (\w+) one", s)) else None for s in spans]
     right = sum(n == words[int(p)] for n, p in zip(named, pads.tolist(), strict=True))
     return f"names the right place in {right / len(spans):.0%}, none in {named.count(None) / len(spans):.0%}"

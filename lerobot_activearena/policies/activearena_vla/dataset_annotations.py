@@ -13,6 +13,8 @@ import torch
 from ...annotations.keyframes import memory_frames
 from .configuration_activearena_vla import IMAGE_KEY
 
+# an object's place among 2 or 3 of its kind, by increasing azimuth (counter-clockwise: right to left)
+PLACE_WORDS = {2: ("right", "left"), 3: ("right", "middle", "left")}
 COLUMNS = ("episode_index", "frame_index", "subtask_index", "subtask_keyframe", "motion_keyframe")
 
 
@@ -40,9 +42,8 @@ class DatasetAnnotations:
         self.subtask_text: dict[int, dict[int, str]] = {}
         self.instruction: dict[int, str] = {}
         self.decisions: dict[int, list[tuple[int, str]]] = {}  # (frame read on, decision), in order
-        self.placements: dict[
-            int, list[dict]
-        ] = {}  # the scene's objects on the table (name, category, angle)
+        # the scene's objects on the table (name, category, angle)
+        self.placements: dict[int, list[dict]] = {}
         for ep in self.ep_start:
             side = json.loads((root / f"meta/activearena/sidecars/episode_{ep:06d}.json").read_text())
             self.subtask_text[ep] = {int(s["id"]): s["text"] for s in side["subtasks"]}
@@ -105,7 +106,7 @@ class DatasetAnnotations:
         kin = sorted(
             (p["angle"], p["name"]) for p in self.placements[ep] if p["category"] == found[0]["category"]
         )
-        words = {2: ["right", "left"], 3: ["right", "middle", "left"]}.get(len(kin))
+        words = PLACE_WORDS.get(len(kin))
         if words is None:
             raise ValueError(
                 f"--policy.decision_place names one of two or three objects, {name} has {len(kin)}"
