@@ -39,7 +39,9 @@ def inspection_labels(scene) -> dict[str, str | int]:
     """The patch colour, and where the pad it names lies among the pads (0, 1, 2 by azimuth): the
     decision the place makes."""
     colour = scene.params["patch_color"]
-    return {"colour": colour, "pad": _place_among(scene, "color_pad", f"{colour}_pad")}
+    pads = sorted((p["angle"], p["name"]) for p in scene.params["placements"] if p["category"] == "color_pad")
+    layout = ", ".join(n.replace("_", " ") for _, n in pads)  # right to left
+    return {"colour": colour, "pad": _place_among(scene, "color_pad", f"{colour}_pad"), "layout": layout}
 
 
 def _place_among(scene, category: str, name: str) -> int:
@@ -142,7 +144,7 @@ def swap_named_colour(pre) -> None:
     (step,) = [s for s in pre.steps if isinstance(s, ActiveArenaAnnotationStep)]
     ann = step._ann = DatasetAnnotations(step.dataset_root, step.repo_id)
     annotated = ann.subtask_and_decision
-    ann.subtask_and_decision = lambda index, place=False: swap_colour(annotated(index, place))
+    ann.subtask_and_decision = lambda index, *flags: swap_colour(annotated(index, *flags))
 
 
 FOLLOWING = {
@@ -282,6 +284,8 @@ def main() -> None:
             print(f"  {ckpt} decoded span (think_first): {named_colours(spans, targets['colour'])}")
             if any(re.search(r", the \w+ one", t) for t in spans):  # a decision_place policy
                 print(f"  {ckpt} decoded span's place: {named_places(spans, targets['pad'])}")
+            if any(" pad right, " in t for t in spans):  # a decision_layout policy
+                print(f"  {ckpt} decoded span's layout: {named_layouts(spans, targets['layout'])}")
 
 
 def named_colours(spans: list[str], colours: np.ndarray) -> str:
@@ -300,6 +304,27 @@ def named_places(spans: list[str], pads: np.ndarray) -> str:
     named = [m.group(1) if (m := re.search(r", the (\w+) one", s)) else None for s in spans]
     right = sum(n == words[int(p)] for n, p in zip(named, pads.tolist(), strict=True))
     return f"names the right place in {right / len(spans):.0%}, none in {named.count(None) / len(spans):.0%}"
+
+
+def named_layouts(spans: list[str], layouts: np.ndarray) -> str:
+    """How often a decision_layout span lists the pads right to left as they lie ("blue pad right, green
+    pad middle, red pad left"), and how often it names the decided place as its own list has it."""
+    from lerobot_activearena.policies.activearena_vla.dataset_annotations import PLACE_WORDS
+
+    pattern = ", ".join(rf"(\w+ pad) {w}" for w in PLACE_WORDS[3])
+    listed = [m.groups() if (m := re.search(pattern, s)) else None for s in spans]
+    right = sum(
+        lay is not None and ", ".join(lay) == t for lay, t in zip(listed, layouts.tolist(), strict=True)
+    )
+    copied = 0
+    for lay, s in zip(listed, spans, strict=True):
+        colour, place = re.search(r"place on the (\w+) pad", s), re.search(r", the (\w+) one", s)
+        if lay and colour and place and f"{colour.group(1)} pad" in lay:
+            copied += PLACE_WORDS[3][lay.index(f"{colour.group(1)} pad")] == place.group(1)
+    return (
+        f"lists the pads right in {right / len(spans):.0%}, none in {listed.count(None) / len(spans):.0%}; "
+        f"the place follows its own list in {copied / len(spans):.0%}"
+    )
 
 
 if __name__ == "__main__":

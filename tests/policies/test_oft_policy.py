@@ -1373,7 +1373,8 @@ def test_batched_vision_attention_equals_qwens_per_image_loop(tmp_path, sizes, m
 
 def test_decision_place_names_where_the_decided_object_lies_among_its_kind(vlm, root, tmp_path):
     """--policy.decision_place: the think=decision target names the decided pad by its place among the
-    pads by azimuth (larger angle: further left); a decision that names no placed object is refused."""
+    pads by azimuth (larger angle: further left); --policy.decision_layout lists every pad's place before
+    it; a decision that names no placed object is refused."""
     copy = tmp_path / "data"
     shutil.copytree(root, copy)
     side_path = copy / "meta/activearena/sidecars/episode_000000.json"
@@ -1391,6 +1392,9 @@ def test_decision_place_names_where_the_decided_object_lies_among_its_kind(vlm, 
     places = [ann.place_of(0, f"place on the {c} pad") for c in ("blue", "green", "red")]
     assert places == ["right", "middle", "left"]
     assert ann.subtask_and_decision(10, place=True) == ann.subtask(10)  # nothing read yet
+    assert ann.subtask_and_decision(40, place=True, layout=True) == (
+        f"{ann.subtask(40)}; blue pad right, green pad middle, red pad left; place on the red pad, the left one"
+    )
     with pytest.raises(ValueError, match="yellow_pad, which is not among"):
         ann.place_of(0, "place on the yellow pad")
 
@@ -1399,8 +1403,15 @@ def test_decision_place_names_where_the_decided_object_lies_among_its_kind(vlm, 
     tok = lambda b: b[THINK_IDS][0][b[THINK_MASK][0]].tolist()  # noqa: E731
     placed, plain = tok(collate(ds, pre, [40])), tok(collate(ds, plain_pre, [40]))
     assert len(placed) > len(plain) and placed[: len(plain) - 2] == plain[:-2]  # the place follows
+    _, _, laid_pre, _, _ = _setup(
+        vlm, copy, memory="chunk", history=2, think="decision", decision_place=True, decision_layout=True
+    )
+    laid = tok(collate(ds, laid_pre, [40]))
+    assert len(laid) > len(placed) and laid[-len(placed) + len(plain) - 2 :] == placed[len(plain) - 2 :]
     with pytest.raises(ValueError, match="set --policy.think=decision"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), think="subtask", decision_place=True)
+    with pytest.raises(ValueError, match="set --policy.decision_place=true"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), think="decision", decision_layout=True)
 
 
 def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vlm, root, tmp_path):

@@ -152,6 +152,7 @@ def test_the_decision_probe_labels_the_place_by_the_pad_the_patch_names(bell_cou
         )
         assert labels["colour"] == scene.params["patch_color"]
         assert pads[labels["pad"]][1] == f"{labels['colour']}_pad"
+        assert labels["layout"] == ", ".join(n.replace("_", " ") for _, n in pads)
         places.add(labels["pad"])
     assert len(places) > 1  # the named pad's place varies with the scene
     with pytest.raises(SystemExit, match="reads one task's build"):  # the fixture holds two tasks
@@ -175,6 +176,16 @@ def test_the_decision_probe_scores_the_colour_a_think_first_span_names():
     ]
     assert places(placed, np.array([2, 2, 0])) == "names the right place in 33%, none in 33%"
     assert places(placed[:2], np.array([2, 0])) == "names the right place in 100%, none in 0%"
+    layouts = chunk_decision.decision_probe.named_layouts
+    laid = [
+        "pick; blue pad right, green pad middle, red pad left; place on the red pad, the left one",
+        "pick; red pad right, green pad middle, blue pad left; place on the red pad, the middle one",
+        "pick; place on the red pad, the left one",
+    ]
+    truth = np.array(["blue pad, green pad, red pad"] * 3)
+    assert layouts(laid, truth) == (
+        "lists the pads right in 33%, none in 33%; the place follows its own list in 33%"
+    )
 
 
 def test_the_decision_probe_swaps_the_named_colour_for_the_next():

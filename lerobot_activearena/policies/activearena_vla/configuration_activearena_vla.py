@@ -76,6 +76,9 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # think=decision: the decided object also named by its place among its kind by azimuth ("place on
     # the blue pad, the right one"), so the span carries where to go, not only what was read.
     decision_place: bool = False
+    # with decision_place: the span first lists every object of that kind with its place ("blue pad right,
+    # green pad middle, red pad left"), which the current view shows, so the decided place is a copy
+    decision_layout: bool = False
     subtask_max_tokens: int = 32  # greedy <think> decoding budget (OFT's memory=subtask, FAST's think span)
     chunk_size: int = 16
     # Actions run per predicted chunk. Chunk memory is written every 16th step (the paper's); below 16
@@ -242,6 +245,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 f"--policy.decision_place names the decided object's place in the think=decision target; "
                 f"this policy has think={self.think!r}: set --policy.think=decision"
+            )
+        if self.decision_layout and not self.decision_place:
+            raise ValueError(
+                "--policy.decision_layout lists the places the decision_place word is copied from; "
+                "set --policy.decision_place=true with it"
             )
         if self.decision_weight <= 0 or self.decision_window < 1:
             raise ValueError(

@@ -80,22 +80,36 @@ class DatasetAnnotations:
         made = [d for frame, d in self.decisions[ep] if frame <= x]
         return made[-1] if made else None
 
-    def subtask_and_decision(self, index: int, place: bool = False) -> str:
+    def subtask_and_decision(self, index: int, place: bool = False, layout: bool = False) -> str:
         """The subtask text, with the decision in force appended: the ``think=decision`` target. With
         ``place``, the decision's object is also named by its place among the objects of its kind, as
-        the robot sees them by azimuth ("place on the blue pad, the right one")."""
+        the robot sees them by azimuth ("place on the blue pad, the right one"); with ``layout`` the
+        decision follows the places of all of them ("blue pad right, green pad middle, red pad left")."""
         decision = self.decision(index)
         if decision is None:
             return self.subtask(index)
-        if place:
-            decision = (
-                f"{decision}, the {self.place_of(int(self.cols['episode_index'][index]), decision)} one"
-            )
-        return f"{self.subtask(index)}; {decision}"
+        ep = int(self.cols["episode_index"][index])
+        text = f"{decision}, the {self.place_of(ep, decision)} one" if place else decision
+        if layout:
+            text = f"{self.layout_of(ep, decision)}; {text}"
+        return f"{self.subtask(index)}; {text}"
 
     def place_of(self, ep: int, decision: str) -> str:
         """Where the object a decision ends on ("place on the blue pad": blue_pad) lies among the objects
         of its category, by azimuth: right / middle / left of three, right / left of two."""
+        name, kin = self._kin(ep, decision)
+        return PLACE_WORDS[len(kin)][kin.index(name)]
+
+    def layout_of(self, ep: int, decision: str) -> str:
+        """Every object of the decided one's category with its place, right to left ("blue pad right,
+        green pad middle, red pad left")."""
+        _, kin = self._kin(ep, decision)
+        return ", ".join(
+            f"{name.replace('_', ' ')} {word}" for name, word in zip(kin, PLACE_WORDS[len(kin)], strict=True)
+        )
+
+    def _kin(self, ep: int, decision: str) -> tuple[str, list[str]]:
+        """The object a decision ends on, and the names of its category's objects by increasing azimuth."""
         name = "_".join(decision.split()[-2:])
         found = [p for p in self.placements[ep] if p["name"] == name]
         if not found:
@@ -103,15 +117,17 @@ class DatasetAnnotations:
                 f"episode {ep}'s decision {decision!r} names {name}, which is not among its sidecar's "
                 "placements: --policy.decision_place needs decisions that end on a placed object's name"
             )
-        kin = sorted(
-            (p["angle"], p["name"]) for p in self.placements[ep] if p["category"] == found[0]["category"]
-        )
-        words = PLACE_WORDS.get(len(kin))
-        if words is None:
+        kin = [
+            n
+            for _, n in sorted(
+                (p["angle"], p["name"]) for p in self.placements[ep] if p["category"] == found[0]["category"]
+            )
+        ]
+        if len(kin) not in PLACE_WORDS:
             raise ValueError(
                 f"--policy.decision_place names one of two or three objects, {name} has {len(kin)}"
             )
-        return words[[n for _, n in kin].index(name)]
+        return name, kin
 
     def subtask_keyframes(self, index: int) -> tuple[int, list[int]]:
         """The frame at global ``index``'s episode position x and its episode's subtask keyframes <= x."""

@@ -108,6 +108,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     decision_weight: float = 1.0
     decision_window: int = 16
     decision_place: bool = False  # think=decision: the decided object's place named too
+    decision_layout: bool = False  # ... after the places of all of its kind
     _ann: Any = field(default=None, init=False, repr=False)
     _onsets: Any = field(default=None, init=False, repr=False)
 
@@ -145,7 +146,9 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         if self._needs_subtask():
             comp["subtask"] = [self._ann.subtask(i) for i in idx]
         if self.think == "decision":
-            comp["think_target"] = [self._ann.subtask_and_decision(i, self.decision_place) for i in idx]
+            comp["think_target"] = [
+                self._ann.subtask_and_decision(i, self.decision_place, self.decision_layout) for i in idx
+            ]
         obs = dict(transition[TransitionKey.OBSERVATION])
         if self.memory in KEYFRAME_MEMORIES and self.history > 0:
             img = obs[IMAGE_KEY]
@@ -185,6 +188,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             "decision_weight": self.decision_weight,
             "decision_window": self.decision_window,
             "decision_place": self.decision_place,
+            "decision_layout": self.decision_layout,
             "dataset_root": self.dataset_root,
             "repo_id": self.repo_id,
             "memory": self.memory,
@@ -395,6 +399,7 @@ def make_activearena_vla_pre_post_processors(
         decision_weight=config.decision_weight,
         decision_window=config.decision_window,
         decision_place=config.decision_place,
+        decision_layout=config.decision_layout,
     )
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,
