@@ -2,6 +2,7 @@
 gradients, an overfit check, think text cannot reach the actions, no future frames in memory, the
 memory bank per write policy, save/load round trip, presets, and LeRobot's training and eval loops."""
 
+import dataclasses
 import json
 import shutil
 import subprocess
@@ -526,6 +527,12 @@ def test_save_and_reload_give_identical_actions(vlm, root, tmp_path):
         a = post(policy.predict_action_chunk(pre(dict(raw))))
         b = post2(loaded.predict_action_chunk(pre2(dict(raw))))
     assert torch.equal(a, b)
+    # a fine-tune whose command line changes the annotation is refused: the saved preprocessor would win
+    changed = dataclasses.replace(loaded.config, think="none", decision_weight=5.0)
+    with pytest.raises(
+        ValueError, match=r"think='none' \(saved: 'subtask'\), decision_weight=5.0 \(saved: 1.0\)"
+    ):
+        ActiveArenaOFTPolicy.from_pretrained(tmp_path, config=changed)
 
 
 def test_bad_config_values_are_named():

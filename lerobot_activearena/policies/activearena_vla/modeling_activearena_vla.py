@@ -46,6 +46,7 @@ from .processor_activearena_vla import (
     RAW_STATE,
     THINK_IDS,
     THINK_MASK,
+    check_saved_annotations,
     image_inputs,
     one_token_pixels,
     to_uint8,
@@ -108,6 +109,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         )
         self.pad_id = vc.text_config.pad_token_id or 0
         self.reset()
+
+    @classmethod
+    def from_pretrained(cls, pretrained_name_or_path, **kwargs):
+        policy = super().from_pretrained(pretrained_name_or_path, **kwargs)
+        check_saved_annotations(policy.config, pretrained_name_or_path)
+        return policy
 
     # ----- the action head: the hooks each head fills -----
     def build_action_head(self, width: int) -> None:
@@ -432,9 +439,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         if self.training and self.config.decision_weight != 1 and ACTION_WEIGHT not in batch:
             raise ValueError(
                 f"--policy.decision_weight={self.config.decision_weight}, but the batch carries no action "
-                "weights: the preprocessor was loaded from a checkpoint saved without them (lerobot-train "
-                "with --policy.pretrained_path keeps that checkpoint's preprocessor settings); set "
-                "decision_weight, decision_window and decision_place in its policy_preprocessor.json"
+                "weights: the annotation step that writes them was left out of the preprocessor"
             )
         if ACTION_WEIGHT in batch:  # --policy.decision_weight: the decision onsets weigh more
             weight = batch[ACTION_WEIGHT].to(per_sample)

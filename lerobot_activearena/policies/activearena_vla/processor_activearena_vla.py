@@ -89,6 +89,48 @@ def image_inputs(
     return pv.reshape(len(frames), -1, pv.shape[-1]), out["image_grid_thw"].cpu()
 
 
+# what the annotation step writes into training batches, set from the policy config when it is built
+ANNOTATION_SETTINGS = (
+    "memory",
+    "history",
+    "think",
+    "decision_weight",
+    "decision_window",
+    "decision_place",
+    "decision_layout",
+)
+
+
+def check_saved_annotations(config, checkpoint) -> None:
+    """Refuse a policy config whose annotation settings differ from those its checkpoint's saved
+    preprocessor will apply: lerobot-train fine-tuning (``--policy.pretrained_path``) loads that
+    preprocessor as saved, so the command line's settings would silently not reach the batches."""
+    import json
+    from pathlib import Path
+
+    path = Path(checkpoint) / "policy_preprocessor.json"
+    if not path.is_file():
+        return  # a hub id or a bare model folder: nothing saved to disagree with
+    saved = [
+        st.get("config", {})
+        for st in json.loads(path.read_text()).get("steps", [])
+        if str(st.get("registry_name", "")).endswith("_annotations")
+    ]
+    differ = [
+        f"{name}={getattr(config, name)!r} (saved: {step.get(name, ActiveArenaAnnotationStep.__dataclass_fields__[name].default)!r})"
+        for step in saved
+        for name in ANNOTATION_SETTINGS
+        if getattr(config, name)
+        != step.get(name, ActiveArenaAnnotationStep.__dataclass_fields__[name].default)
+    ]
+    if differ:
+        raise ValueError(
+            f"the policy config asks for {', '.join(differ)}, but {path} annotates training batches as "
+            "saved and lerobot-train loads it unchanged: set these in its annotation step's config (or "
+            "copy the checkpoint and edit the copy's), or leave them off the command line"
+        )
+
+
 # registry names keep their first (OFT) spelling: saved checkpoints refer to them
 @ProcessorStepRegistry.register(name="activearena_oft_annotations")
 @dataclass
