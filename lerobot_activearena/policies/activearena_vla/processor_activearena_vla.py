@@ -116,13 +116,13 @@ def check_saved_annotations(config, checkpoint) -> None:
         for st in json.loads(path.read_text()).get("steps", [])
         if str(st.get("registry_name", "")).endswith("_annotations")
     ]
-    differ = [
-        f"{name}={getattr(config, name)!r} (saved: {step.get(name, ActiveArenaAnnotationStep.__dataclass_fields__[name].default)!r})"
-        for step in saved
-        for name in ANNOTATION_SETTINGS
-        if getattr(config, name)
-        != step.get(name, ActiveArenaAnnotationStep.__dataclass_fields__[name].default)
-    ]
+    fields = ActiveArenaAnnotationStep.__dataclass_fields__  # a setting saved before it existed: its default
+    differ = []
+    for step in saved:
+        for name in ANNOTATION_SETTINGS:
+            asked, kept = getattr(config, name), step.get(name, fields[name].default)
+            if asked != kept:
+                differ.append(f"{name}={asked!r} (saved: {kept!r})")
     if differ:
         raise ValueError(
             f"the policy config asks for {', '.join(differ)}, but {path} annotates training batches as "
