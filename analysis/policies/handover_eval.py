@@ -34,6 +34,7 @@ import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
+from lerobot_activearena.sim.action import TORSO_YAW
 from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
 
@@ -64,16 +65,18 @@ def where_it_rests(env) -> dict:
 
 class ReleaseWatch:
     """A ``render_callback``: where (polar: m, deg) the inspected object was when a gripper last let
-    go of it, and where the destination its reading names is."""
+    go of it, which way the torso faced then (deg, the same polar frame: 90 is the home heading), and
+    where the destination its reading names is."""
 
     def __init__(self, env):
-        self.env, self.held, self.released_at = env, False, None
+        self.env, self.held, self.released_at, self.heading_at_release = env, False, None, None
 
     def __call__(self, vec) -> None:
         sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
         held = pick_offsets.held(sim, obj)
         if self.held and not held:
             self.released_at = predicates.polar(sim.data.body(obj.body).xpos[:2])
+            self.heading_at_release = 90.0 + float(np.degrees(sim.state()[TORSO_YAW]))
         self.held = held
 
     def row(self) -> dict:
@@ -82,16 +85,26 @@ class ReleaseWatch:
         dest = scene.obj(self.env.spec_task.read(scene, obj.attributes).destination)
         return {
             "released_at": self.released_at,
+            "heading_at_release": self.heading_at_release,
             "destination_at": predicates.polar(self.env.sim.data.body(dest.body).xpos[:2]),
         }
 
 
 def release_angles(rows: list[dict]) -> str:
     """How far round from the named destination the object was let go (median |angle difference|)."""
-    off = [abs(r["released_at"][1] - r["destination_at"][1]) for r in rows if r["released_at"]]
-    if not off:
+    let_go = [r for r in rows if r["released_at"]]
+    if not let_go:
         return "; never let go"
-    return f"; let go {np.median(off):.0f} deg round from the named one (median of {len(off)})"
+    off = [abs(r["released_at"][1] - r["destination_at"][1]) for r in let_go]
+    text = f"; let go {np.median(off):.0f} deg round from the named one (median of {len(off)})"
+    named = [r["destination_at"][1] for r in let_go]
+    if len(let_go) > 2 and np.ptp(named) > 0:
+        released = np.corrcoef([r["released_at"][1] for r in let_go], named)[0, 1]
+        heading = np.corrcoef([r["heading_at_release"] for r in let_go], named)[0, 1]
+        text += (
+            f", correlation with the named one's angle: release {released:.2f}, torso heading {heading:.2f}"
+        )
+    return text
 
 
 def missed_places(rows: list[dict]) -> str:

@@ -2,6 +2,8 @@
 
 from types import SimpleNamespace
 
+import numpy as np
+import pytest
 from helpers.analysis_scripts import load
 
 
@@ -60,6 +62,7 @@ def test_the_end_names_the_pad_the_reading_names_another_pad_or_none():
 
 
 def test_release_watch_notes_where_the_object_was_let_go_against_the_named_destination():
+    from lerobot_activearena.sim.action import TORSO_YAW
     from lerobot_activearena.tasks import predicates
 
     script, env, block, named = _block_scene()
@@ -77,5 +80,15 @@ def test_release_watch_notes_where_the_object_was_let_go_against_the_named_desti
     assert row["destination_at"] == predicates.polar(sim.data.body(named).xpos[:2])
     assert abs(row["released_at"][1] - row["destination_at"][1]) < 1.0  # let go over the named pad
     assert not watch.held
+    assert row["heading_at_release"] == pytest.approx(90.0 + np.degrees(sim.state()[TORSO_YAW]))
     far = dict(row, released_at=(0.4, row["destination_at"][1] + 30.0))
     assert script.release_angles([row, far, far]) == "; let go 30 deg round from the named one (median of 3)"
+    # over pads at different angles: how the release and the torso's heading follow the named one
+    turned = [
+        dict(row, destination_at=(0.4, a), released_at=(0.4, a + 5.0), heading_at_release=h)
+        for a, h in ((40.0, 90.0), (90.0, 80.0), (140.0, 100.0))
+    ]
+    assert script.release_angles(turned).endswith(
+        "let go 5 deg round from the named one (median of 3), correlation with the named one's angle: "
+        "release 1.00, torso heading 0.50"
+    )

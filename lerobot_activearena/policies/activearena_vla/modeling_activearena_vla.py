@@ -430,8 +430,23 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                     cache[(b, slot)] = {"vision": table.features(g, self.device)}
         return cache
 
+    def check_think_budget(self, batch: dict[str, Tensor]) -> None:
+        """Refuses a ``<think>`` target longer than ``subtask_max_tokens``: at evaluation the greedy decoding
+        stops there, so the policy would act on a span cut short of what it was trained to say."""
+        if THINK_MASK not in batch:
+            return
+        longest = int(batch[THINK_MASK].sum(-1).max()) - 2  # the target and </think>, as decoding counts them
+        if longest > self.config.subtask_max_tokens:
+            raise ValueError(
+                f"the <think> target has {longest} tokens with </think>, more than --policy.subtask_max_tokens="
+                f"{self.config.subtask_max_tokens}: at evaluation its decoding would be cut short. Set "
+                f"--policy.subtask_max_tokens to at least {longest}"
+            )
+
     @in_precision
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
+        if self.training:
+            self.check_think_budget(batch)
         h, kind, lm_loss = self.hidden_states(
             *self.training_args(batch), vision_cache=self.cached_memory(batch)
         )
