@@ -398,6 +398,28 @@ def test_the_think_first_pair_is_the_decision_pair_with_its_span_before_the_acti
         assert cfg.think_first and cfg.think == "decision"
 
 
+def test_the_layout_pair_is_the_think_first_pair_with_the_decision_levers():
+    """``oft_decision_*_think_first_layout``: the think-first pair with the decision frames weighed five
+    times over 24 frames, the pads listed and the decided place named in the span, the span's loss at
+    the action loss's weight and a decoding budget that holds the longer span."""
+    from lerobot.configs.train import TrainPipelineConfig
+
+    levers = {"decision_weight", "decision_window", "decision_place", "decision_layout", "lm_loss_weight"}
+    for memory in ("action_12", "no_0"):
+        name = f"oft_decision_{memory}_ws_grounded_block_readings_tuned_think_first"
+        first = json.loads((CONFIGS / "small" / f"{name}.json").read_text())
+        laid = json.loads((CONFIGS / "small" / f"{name}_layout.json").read_text())
+        assert {k for k in first if first[k] != laid[k]} == {"policy", "job_name"}
+        assert differing_policy_keys(laid, first) == levers | {"subtask_max_tokens"}
+        assert laid["job_name"] == f"small_{name}_layout"
+        cfg = TrainPipelineConfig.from_pretrained(CONFIGS / "small" / f"{name}_layout.json").policy
+        assert (cfg.decision_weight, cfg.decision_window, cfg.lm_loss_weight) == (5.0, 24, 1.0)
+        assert cfg.decision_place and cfg.decision_layout and cfg.subtask_max_tokens == 48
+    name = "oft_decision_{}_ws_grounded_block_readings_tuned_think_first_layout.json"
+    pair = [json.loads((CONFIGS / "small" / name.format(m)).read_text()) for m in ("action_12", "no_0")]
+    assert differing_policy_keys(*pair) == MEMORY_KEYS | {"memory_vision"}  # the memory alone
+
+
 def test_the_wms_preset_is_the_wos_chunk_12_one_with_state_tokens_on_its_memory_frames():
     """``_wms_``: the wos chunk-12 preset with the memory frames' state tokens back and none on the
     current frame (``state_frames=memory``); without a memory that is no state at all, so its
