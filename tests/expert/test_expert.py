@@ -407,3 +407,38 @@ def test_action_noise_perturbs_what_runs_and_records_the_experts_own_commands(ex
     assert not np.array_equal(first, ActionNoise(0.02, 1, task)(zero))
     with pytest.raises(ValueError, match="action-noise"):
         DemoVariation(action_noise=0.5)
+
+
+def test_the_block_patch_is_shown_where_the_camera_sees_it_frontally(monkeypatch):
+    """check_block_color's back patch is turned to the head camera at the frontal spot (``fine_print``):
+    at the CPU recipe's 192 x 256 it covers over twice the pixels it does turned below the head, where
+    the camera looks down on the vertical face and sees a sliver."""
+    import mujoco
+
+    from lerobot_activearena.episodes.rollout import run_expert_episode
+    from lerobot_activearena.sim import embodiment
+    from lerobot_activearena.tasks.inventory.check_block_color import CheckBlockColor
+
+    face = sample_scene(get_task("check_block_color"), 0, "id").obj("gray_block").functional.info_face.geom
+
+    def patch_pixels_at_the_reading() -> int:
+        pixels, renderer = {}, {}
+
+        def on_frame(t, sim, annotation, action):
+            if not renderer:
+                renderer["r"] = mujoco.Renderer(sim.model, 192, 256)
+                renderer["r"].enable_segmentation_rendering()
+            renderer["r"].update_scene(sim.data, camera=embodiment.HEAD_CAMERA)
+            seg = renderer["r"].render()
+            geom = (seg[..., 1] == mujoco.mjtObj.mjOBJ_GEOM) & (seg[..., 0] == sim.model.geom(face).id)
+            pixels[t] = int(geom.sum())
+
+        episode = run_expert_episode("check_block_color", 0, on_frame=on_frame)
+        assert episode.success, episode.failure
+        renderer["r"].close()
+        return pixels[episode.sidecar["expert_notes"]["inspections"][0]["frame"]]
+
+    frontal = patch_pixels_at_the_reading()
+    monkeypatch.setattr(CheckBlockColor, "fine_print", False)
+    below_the_head = patch_pixels_at_the_reading()
+    assert below_the_head > 0 and frontal > 2 * below_the_head, (frontal, below_the_head)

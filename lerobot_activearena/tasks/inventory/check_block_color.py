@@ -41,6 +41,7 @@ class CheckBlockColor(InspectAndPlaceTask):
     max_episode_steps = 296
     inspected = ("gray_block",)
     restore_before_placing = True
+    fine_print = True  # the patch is a few pixels at 192 x 256: turned where the camera sees it frontally
 
     def layout(self, draft):
         rng = draft.rng
