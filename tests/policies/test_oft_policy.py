@@ -1411,18 +1411,28 @@ def test_decision_place_names_where_the_decided_object_lies_among_its_kind(vlm, 
     placed, plain = tok(collate(ds, pre, [40])), tok(collate(ds, plain_pre, [40]))
     assert len(placed) > len(plain) and placed[: len(plain) - 2] == plain[:-2]  # the place follows
     laid_cfg, laid_policy, laid_pre, _, _ = _setup(
-        vlm, copy, memory="chunk", history=2, think="decision", decision_place=True, decision_layout=True
+        vlm,
+        copy,
+        memory="chunk",
+        history=2,
+        think="decision",
+        think_first=True,
+        decision_place=True,
+        decision_layout=True,
     )
     laid_batch = collate(ds, laid_pre, [40])
     laid = tok(laid_batch)
     assert len(laid) > len(placed) and laid[-len(placed) + len(plain) - 2 :] == placed[len(plain) - 2 :]
-    # a span longer than the decoding budget is refused in training, naming the budget it needs
+    # a span that evaluation decodes (think_first) and that is longer than the decoding budget is refused
+    # in training, naming the budget it needs; a span after the queries is never decoded
     needed = len(laid) - 2  # the target and </think>, without <think> and the end of turn
     laid_policy.train()
     laid_cfg.subtask_max_tokens = needed - 1
     with pytest.raises(ValueError, match=f"Set --policy.subtask_max_tokens to at least {needed}"):
         laid_policy.forward(laid_batch)
-    laid_cfg.subtask_max_tokens = needed
+    laid_cfg.think_first = False
+    assert torch.isfinite(laid_policy.forward(laid_batch)[0])
+    laid_cfg.think_first, laid_cfg.subtask_max_tokens = True, needed
     assert torch.isfinite(laid_policy.forward(laid_batch)[0])
     with pytest.raises(ValueError, match="set --policy.think=decision"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), think="subtask", decision_place=True)

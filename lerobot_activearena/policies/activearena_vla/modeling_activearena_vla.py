@@ -431,9 +431,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         return cache
 
     def check_think_budget(self, batch: dict[str, Tensor]) -> None:
-        """Refuses a ``<think>`` target longer than ``subtask_max_tokens``: at evaluation the greedy decoding
-        stops there, so the policy would act on a span cut short of what it was trained to say."""
-        if THINK_MASK not in batch:
+        """Refuses a ``<think>`` target longer than ``subtask_max_tokens`` where evaluation decodes it
+        (``think_first``, ``memory=subtask``): the greedy decoding stops there, so the policy would act
+        on (or remember by) a span cut short of what it was trained to say."""
+        decoded = self.think_first or self.config.memory == "subtask"
+        if THINK_MASK not in batch or not decoded:
             return
         longest = int(batch[THINK_MASK].sum(-1).max()) - 2  # the target and </think>, as decoding counts them
         if longest > self.config.subtask_max_tokens:
