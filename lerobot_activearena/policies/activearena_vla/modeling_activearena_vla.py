@@ -431,11 +431,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         return cache
 
     def check_think_budget(self, batch: dict[str, Tensor]) -> None:
-        """Refuses a ``<think>`` target longer than ``subtask_max_tokens`` where evaluation decodes it
-        (``think_first``, ``memory=subtask``): the greedy decoding stops there, so the policy would act
-        on (or remember by) a span cut short of what it was trained to say."""
-        decoded = self.think_first or self.config.memory == "subtask"
-        if THINK_MASK not in batch or not decoded:
+        """With ``think_first``, refuses a ``<think>`` target longer than ``subtask_max_tokens``: the
+        evaluation's greedy decoding stops there, so the actions would read a span cut short of what
+        they were trained on. (``memory=subtask`` decodes only to see the subtask change; a short
+        budget is its speed setting.)"""
+        if THINK_MASK not in batch or not self.think_first:
             return
         longest = int(batch[THINK_MASK].sum(-1).max()) - 2  # the target and </think>, as decoding counts them
         if longest > self.config.subtask_max_tokens:
