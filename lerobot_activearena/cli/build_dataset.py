@@ -79,6 +79,15 @@ def parser() -> argparse.ArgumentParser:
         "uniform angle in +/- this many rad and the arm reaches from there (default 0: the benchmark's expert)",
     )
     p.add_argument(
+        "--reading-variants",
+        type=int,
+        default=None,
+        help="counterfactual readings (IA tasks whose layout draws its reading with SceneDraft.draw_reading): "
+        "seed s plays scene s // N with its hidden reading shifted by s %% N, so every scene is demonstrated "
+        "with N readings and the decisions they lead to; a policy cannot tell them apart without reading "
+        "(default 1: the benchmark's scenes)",
+    )
+    p.add_argument(
         "--decision-period",
         type=int,
         default=None,
@@ -195,6 +204,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         decision_period=pick("decision_period"),  # an int, or the clear error of a recipe's 16.5
         press_arm=pick("press_arm"),
         face_jitter=float(pick("face_jitter")),
+        reading_variants=pick("reading_variants"),
     )
 
 

@@ -48,6 +48,7 @@ class BuildPlan:
     decision_period: int = 1  # chunk-aligned demonstrations (``ExpertContext``); 1: the benchmark's expert
     press_arm: str | None = None  # one-arm count presses (``ExpertContext``); None: the benchmark's expert
     face_jitter: float = 0.0  # off-centre demonstrations (``ExpertContext``), rad; 0: the benchmark's expert
+    reading_variants: int = 1  # counterfactual readings (``DemoVariation``); 1: the benchmark's scenes
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -95,6 +96,7 @@ class BuildPlan:
             decision_period=self.decision_period,
             press_arm=self.press_arm,
             face_jitter=self.face_jitter,
+            reading_variants=self.reading_variants,
         )
 
     def to_json(self) -> dict:

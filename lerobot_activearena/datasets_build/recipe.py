@@ -23,6 +23,7 @@ RECIPE_KEYS = {
     "decision_period": 1,  # chunk-aligned demonstrations: the search reacts every N frames
     "press_arm": None,  # one-arm demonstrations: the count-and-press tasks press with this arm
     "face_jitter": 0.0,  # off-centre demonstrations: the torso's facing turns off by up to this (rad)
+    "reading_variants": 1,  # counterfactual readings: each scene demonstrated with N hidden readings
 }
 
 

@@ -98,13 +98,16 @@ class DemoVariation:
     sigma in rad; ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad);
     ``decision_period``: ``ExpertContext``'s chunk-aligned search (1: every frame);
     ``press_arm``: ``ExpertContext``'s one arm for the count-and-press tasks' press (None: the arm on
-    the button's half of the fan)."""
+    the button's half of the fan); ``reading_variants`` N > 1: counterfactual readings, seed s plays
+    scene s // N with its hidden reading shifted by s % N (``sample_scene``), so each scene is
+    demonstrated with N readings and N decisions."""
 
     search_overshoot: float = 0.0
     action_noise: float = 0.0
     decision_period: int = 1
     press_arm: str | None = None
     face_jitter: float = 0.0
+    reading_variants: int = 1
 
     def __post_init__(self):
         if not 0.0 <= self.search_overshoot <= 1.0:
@@ -122,6 +125,11 @@ class DemoVariation:
             raise ValueError(
                 f"--decision-period is a number of frames >= 1 (1: the benchmark's expert), got "
                 f"{self.decision_period!r}"
+            )
+        if not isinstance(self.reading_variants, int) or self.reading_variants < 1:
+            raise ValueError(
+                f"--reading-variants is a number of readings per scene >= 1 (1: the benchmark's scenes), got "
+                f"{self.reading_variants!r}"
             )
         if self.press_arm not in PRESS_ARMS:
             raise ValueError(
@@ -251,6 +259,7 @@ def run_expert_episode(
     decision_period: int = 1,
     press_arm: str | None = None,
     face_jitter: float = 0.0,
+    reading_variants: int = 1,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
@@ -262,10 +271,11 @@ def run_expert_episode(
     to the view only every that many frames (``ExpertContext``; 1 = the benchmark's expert).
     ``press_arm``: the count-and-press tasks' press with that arm (``ExpertContext``; None = the
     benchmark's expert). ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad; 0 = the
-    benchmark's expert)."""
+    benchmark's expert). ``reading_variants`` N > 1: seed s plays scene s // N with its hidden reading
+    shifted by s % N (``DemoVariation``)."""
     t0 = time.perf_counter()
     task = get_task(task_name)
-    scene = sample_scene(task, seed, split)
+    scene = sample_scene(task, seed // reading_variants, split, reading_shift=seed % reading_variants)
     episode = Episode(task, scene, max_penetration=PENETRATION_LIMIT, image_size=image_size)
     sim = episode.sim
     driver = ExpertDriver(

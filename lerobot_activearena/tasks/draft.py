@@ -156,6 +156,8 @@ class SceneDraft:
         self.reach: dict[str, tuple[str, ...]] = {}  # object -> arms allowed to touch it
         self.placements: list[dict] = []  # (name, role, r, angle) of every registered object
         self.clutter_excluded: set[str] = set()  # asset families the clutter must not use
+        self.reading_shift = 0  # counterfactual scenes: ``draw_reading`` moves the drawn reading on by it
+        self.reading_drawn = False
 
         if self.workspace.two_level:  # the upper band's column stands on the lower fan
             a = math.radians(self.workspace.level(1).center_deg)
@@ -180,6 +182,16 @@ class SceneDraft:
         except ValueError as exc:  # off the fan: this draft cannot hold the layout
             raise SamplingError(str(exc)) from exc
         self.keep_clear(xy, radius, level)
+
+    def draw_reading(self, choices: tuple) -> object:
+        """Draw the hidden information (an IA task's reading) from ``choices``. ``reading_shift`` k > 0
+        gives the scene's counterfactual: the same draws, the reading k choices on, everything else
+        as it is (recorded as ``params['reading_shift']``)."""
+        drawn = int(self.rng.integers(0, len(choices)))
+        self.reading_drawn = True
+        if self.reading_shift:
+            self.params["reading_shift"] = self.reading_shift
+        return choices[(drawn + self.reading_shift) % len(choices)]
 
     def side(self) -> str:
         return "left" if self.rng.integers(0, 2) else "right"

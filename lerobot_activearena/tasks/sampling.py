@@ -100,20 +100,29 @@ def goal_holds_at_reset(task: Task, scene: TaskScene) -> list[str]:
     return ["the goal already holds at reset"] if checks and all(checks.values()) else []
 
 
-def sample_scene(task: Task, seed: int, split: str = "id") -> TaskScene:
+def sample_scene(task: Task, seed: int, split: str = "id", reading_shift: int = 0) -> TaskScene:
     """Sample the scene of (task, seed, split); retries with derived seeds until the design
-    principles hold (deterministic: the same inputs give the same scene)."""
+    principles hold (deterministic: the same inputs give the same scene). ``reading_shift`` k > 0:
+    the scene's counterfactual, its hidden reading k choices on (``SceneDraft.draw_reading``)."""
     if split not in SPLITS:
         raise ValueError(f"split must be one of {SPLITS}, got {split!r}")
+    if reading_shift < 0:
+        raise ValueError(f"reading_shift is a number of choices >= 0, got {reading_shift}")
     use_pinned_kernels()  # the same BLAS kernels on every x86-64 CPU (sim/blas_kernels.py)
     reasons = []
     for attempt in range(MAX_ATTEMPTS):
         draft = SceneDraft(split, derived_rng(task.name, seed, split, attempt), task.workspace)
+        draft.reading_shift = reading_shift
         try:
             task.layout(draft)
         except SamplingError as exc:
             reasons.append(str(exc))
             continue
+        if reading_shift and not draft.reading_drawn:
+            raise ValueError(
+                f"{task.name} draws no hidden reading (SceneDraft.draw_reading), so it has no counterfactual "
+                "scenes: build it with --reading-variants 1"
+            )
         draft.params["n_clutter"] = draft.add_clutter()
         model, info = draft.builder.compile()
         scene = TaskScene(

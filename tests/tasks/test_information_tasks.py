@@ -21,6 +21,20 @@ from lerobot_activearena.tasks.shapes.shaking import ShakeDetector, reversals
 from lerobot_activearena.tasks.success import SuccessMonitor
 
 
+def test_counterfactual_scenes_change_the_hidden_reading_and_nothing_else():
+    task = get_task("check_block_color")
+    scenes = [sample_scene(task, 7, "id", reading_shift=k) for k in range(3)]
+    assert len({s.params["patch_color"] for s in scenes}) == 3  # each reading once
+    assert [s.params.get("reading_shift", 0) for s in scenes] == [0, 1, 2]
+    assert scenes[0].params == sample_scene(task, 7, "id").params  # shift 0: the benchmark's scene
+    for s in scenes[1:]:
+        assert s.params["placements"] == scenes[0].params["placements"]  # every object where it was
+        assert s.objects == scenes[0].objects and s.hidden == scenes[0].hidden
+        assert s.search_targets[1] != scenes[0].search_targets[1]  # another pad to find and place on
+    with pytest.raises(ValueError, match="--reading-variants 1"):
+        sample_scene(get_task("click_bell_rotate_view"), 7, "id", reading_shift=1)
+
+
 def test_count_color_kinds_counts_distinct_colours_of_four_blocks():
     task = get_task("count_color_kinds_press_button")
     counts = set()

@@ -66,7 +66,7 @@ class CheckBlockColor(InspectAndPlaceTask):
                 margin=0.03,
                 arms=arms,
             )
-        patch = PAD_COLORS[int(rng.integers(0, 3))]
+        patch = draft.draw_reading(PAD_COLORS)
         draft.place(
             "patch_block",
             "gray_block",
