@@ -59,11 +59,9 @@ DECISIONS = {
 def decision_frames(root: Path, offset: int | None) -> tuple[list[int], list[dict]]:
     """Dataset indices of each episode's decision frame, and the episode's labels."""
     import json
+    from types import SimpleNamespace
 
     import pandas as pd
-
-    from lerobot_activearena.tasks.registry import get_task
-    from lerobot_activearena.tasks.sampling import sample_scene
 
     frame = pd.concat(pd.read_parquet(f) for f in sorted(root.glob("data/*/*.parquet")))
     episodes = [json.loads(line) for line in (root / "meta/activearena/episodes.jsonl").open()]
@@ -82,7 +80,13 @@ def decision_frames(root: Path, offset: int | None) -> tuple[list[int], list[dic
         if len(deciding) == 0:
             continue
         indices.append(int(g["index"].to_numpy()[min(deciding[0] + offset, len(g) - 1)]))
-        labels.append(labels_of(sample_scene(get_task(task), ep["seed"], ep["split"])))
+        # the scene as the sidecar records it (a counterfactual build's seed is not its scene's)
+        sidecar = json.loads(
+            (root / f"meta/activearena/sidecars/episode_{ep['episode_index']:06d}.json").read_text()
+        )
+        labels.append(
+            labels_of(SimpleNamespace(params={**sidecar["params"], "placements": sidecar["placements"]}))
+        )
     return indices, labels
 
 
