@@ -64,6 +64,12 @@ class TrainingScenes:
         self.ds = LeRobotDataset(
             repo_id, root=root, delta_timestamps=resolve_delta_timestamps(self.cfg, meta)
         )
+        build = json.loads((Path(root) / "meta/activearena/build.json").read_text())
+        if build["plan"].get("reading_variants", 1) > 1:
+            raise SystemExit(
+                f"{root} is a counterfactual build (--reading-variants): its episodes' scenes are not the env's "
+                "scene seeds, so they cannot be replayed here"
+            )
         lines = (Path(root) / "meta/activearena/episodes.jsonl").open()
         self.recorded = {e["episode_index"]: e for e in map(json.loads, lines)}
         self.size = image_size(checkpoint)
