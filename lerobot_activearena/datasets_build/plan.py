@@ -67,6 +67,12 @@ class BuildPlan:
         self.image_size = validate_head_size(*self.image_size)
         _ = self.variation  # validates its values
         self.tasks = [t for sel in self.tasks for t in task_names(sel)]
+        if self.reading_variants > 1:  # refused here, not seed by seed in the shards
+            from ..tasks import get_task
+            from ..tasks.sampling import sample_scene
+
+            for task in self.tasks:  # raises for a task that draws no reading
+                sample_scene(get_task(task), 0, self.split, reading_shift=1)
         self.shards = self._make_shards()
 
     def _make_shards(self) -> list[ShardSpec]:

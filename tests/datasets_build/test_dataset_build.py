@@ -368,7 +368,8 @@ def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, 
     default = getattr(DemoVariation(), key)
     assert getattr(plan, key) == default and key not in plan.to_json()  # old builds resume
     recipe = tmp_path / "r.json"
-    recipe.write_text(json.dumps({"repo_id": "a/b", "tasks": BELL, "episodes": 1, key: value}))
+    task = "check_block_color" if key == "reading_variants" else BELL  # a task with a reading to vary
+    recipe.write_text(json.dumps({"repo_id": "a/b", "tasks": task, "episodes": 1, key: value}))
     from_recipe = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x"]))
     assert getattr(from_recipe, key) == value and from_recipe.to_json()[key] == value
     assert getattr(from_recipe.variation, key) == value  # what the shards' expert runs with

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from helpers.params import expert_task_params
 
+from lerobot_activearena.datasets_build.plan import BuildPlan
 from lerobot_activearena.envs.gym_env import ActiveArenaEnv
 from lerobot_activearena.sim.action import LEFT_ARM, RIGHT_ARM
 from lerobot_activearena.sim.assets.handheld import DATE_RANGE
@@ -33,6 +34,8 @@ def test_counterfactual_scenes_change_the_hidden_reading_and_nothing_else():
         assert s.search_targets[1] != scenes[0].search_targets[1]  # another pad to find and place on
     with pytest.raises(ValueError, match="--reading-variants 1"):
         sample_scene(get_task("click_bell_rotate_view"), 7, "id", reading_shift=1)
+    with pytest.raises(ValueError, match="--reading-variants 1"):  # a build refuses it before any episode
+        BuildPlan(repo_id="a/b", split="id", tasks=["click_bell_rotate_view"], episodes=3, reading_variants=3)
 
 
 def test_count_color_kinds_counts_distinct_colours_of_four_blocks():
