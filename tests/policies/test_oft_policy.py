@@ -1514,3 +1514,42 @@ def test_decision_think_appends_the_read_decision_from_the_frame_it_was_read_on(
     assert len(span(decided, 0)) > len(span(late, 1))  # frame 40: the decision follows the subtask
     n = len(span(late, 1)) - 2  # the subtask span less its closing </think><|im_end|>
     assert span(decided, 0)[:n] == span(late, 1)[:n]  # the subtask first, then the decision
+
+
+def test_decision_token_weight_weighs_the_decision_clause_in_the_lm_loss(vlm, root, tmp_path):
+    """--policy.decision_token_weight: the targets after the span's last ";" (the decision clause) weigh
+    that much in the LM loss; a span without a decision is a plain mean."""
+    copy = tmp_path / "data"
+    shutil.copytree(root, copy)
+    side_path = copy / "meta/activearena/sidecars/episode_000000.json"
+    side = json.loads(side_path.read_text())
+    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
+    side_path.write_text(json.dumps(side))
+    _, policy, pre, _, ds = _setup(
+        vlm, copy, memory="chunk", history=2, think="decision", decision_token_weight=5.0
+    )
+    batch = collate(ds, pre, [40])  # frame 40: after the reading
+    ids, mask = batch[THINK_IDS], batch[THINK_MASK]
+    weights = policy.think_token_weights(ids, mask)[0][mask[0]]
+    heavy = ids[0][mask[0]][weights == 5.0].tolist()
+    assert policy.text_tokenizer.decode(heavy) == " place on the red pad</think><|im_end|>"
+    assert (weights[weights != 5.0] == 1.0).all()
+    early = collate(ds, pre, [10])  # nothing read yet: no decision clause
+    assert (policy.think_token_weights(early[THINK_IDS], early[THINK_MASK]) == 1.0).all()
+
+    policy.eval()
+
+    def lm_loss(weight: float) -> float:
+        policy.config.decision_token_weight = weight
+        with torch.no_grad():
+            return policy.forward(batch)[1]["lm_loss"]
+
+    # L(w) = (n_a a + w n_d d) / (n_a + w n_d): the clause's n_d targets at mean loss d, the n_a others at a
+    n_d, n_a = len(heavy), int(mask.sum()) - 1 - len(heavy)
+    plain, five = lm_loss(1.0), lm_loss(5.0)
+    d = (five * (n_a + 5 * n_d) - plain * (n_a + n_d)) / (4 * n_d)
+    a = (plain * (n_a + n_d) - n_d * d) / n_a
+    assert abs(plain - five) > 1e-4  # the weighting changes the loss
+    assert lm_loss(20.0) == pytest.approx((n_a * a + 20 * n_d * d) / (n_a + 20 * n_d), rel=1e-4)
+    with pytest.raises(ValueError, match="decision_token_weight weighs the decision clause"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), think="subtask", decision_token_weight=5.0)

@@ -79,6 +79,9 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # with decision_place: the span first lists every object of that kind with its place ("blue pad right,
     # green pad middle, red pad left"), which the current view shows, so the decided place is a copy
     decision_layout: bool = False
+    # think=decision: the LM-loss weight of the decision clause's tokens (after the span's last ";": the
+    # colour read and, with decision_place, the place) against the span's other tokens (1: a plain mean)
+    decision_token_weight: float = 1.0
     subtask_max_tokens: int = 32  # greedy <think> decoding budget (OFT's memory=subtask, FAST's think span)
     chunk_size: int = 16
     # Actions run per predicted chunk. Chunk memory is written every 16th step (the paper's); below 16
@@ -250,6 +253,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 "--policy.decision_layout lists the places the decision_place word is copied from; "
                 "set --policy.decision_place=true with it"
+            )
+        if self.decision_token_weight != 1 and (self.think != "decision" or self.decision_token_weight <= 0):
+            raise ValueError(
+                f"--policy.decision_token_weight weighs the decision clause of the think=decision target "
+                f"and must be > 0 (got {self.decision_token_weight} with think={self.think!r})"
             )
         if self.decision_weight <= 0 or self.decision_window < 1:
             raise ValueError(

@@ -380,7 +380,20 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         tgt = torch.zeros_like(span)
         tgt[:, 1:] = src[:, :-1]
         logits = self.vlm.lm_head(h[src]).float()
-        return h, kind, nn.functional.cross_entropy(logits, input_ids[tgt])
+        loss = nn.functional.cross_entropy(logits, input_ids[tgt], reduction="none")
+        weight = self.think_token_weights(input_ids, span)[tgt]
+        return h, kind, (loss * weight).sum() / weight.sum()
+
+    def think_token_weights(self, input_ids: Tensor, span: Tensor) -> Tensor:
+        """Per position, the LM-loss weight of the token there as a target: ``decision_token_weight``
+        after the span's last ";" (the decision clause of a ``think=decision`` target), 1 elsewhere."""
+        weight = torch.ones(input_ids.shape, device=input_ids.device)
+        if self.config.decision_token_weight == 1:
+            return weight
+        semicolon = self.text_tokenizer.convert_tokens_to_ids(";")
+        pos = torch.arange(input_ids.shape[1], device=input_ids.device).expand_as(input_ids)
+        last = torch.where(span & (input_ids == semicolon), pos, -1).max(1).values[:, None]
+        return weight.masked_fill(span & (last >= 0) & (pos > last), self.config.decision_token_weight)
 
     # ----- training -----
     def training_args(self, batch: dict[str, Tensor]) -> tuple:
