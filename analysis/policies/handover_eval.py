@@ -20,6 +20,14 @@ Does a policy place by what its memory holds? Hand over where placing starts (ch
 and with ``--memory-ablation blank`` (the memory frames gray from the handover on; before it the
 policy's actions are discarded anyway): a policy that reads the colour from memory puts the block
 on the named pad with its memory and on any pad without it.
+
+Is it the decision or the set-down that fails? A think-first ``think=decision`` policy (its actions
+read the span it decodes) can be played with ``--span true``: at every decision the span it decoded
+keeps its subtask, and the rest is replaced by what the scene's reading gives (the layout and the
+decision with its place, as its training targets write them). The decision is then right by
+construction; what fails is the acting on it. Use it with a handover after the reading. Every run
+prints how often the decoded span named the right decision at the decisions after the handover.
+``--video DIR`` writes each episode's head camera with the step, who acts and the span's decision.
 """
 
 from __future__ import annotations
@@ -34,6 +42,7 @@ import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
+from lerobot_activearena.policies.activearena_vla.dataset_annotations import decision_clause
 from lerobot_activearena.sim.action import TORSO_YAW
 from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
@@ -88,6 +97,68 @@ class ReleaseWatch:
             "heading_at_release": self.heading_at_release,
             "destination_at": predicates.polar(self.env.sim.data.body(dest.body).xpos[:2]),
         }
+
+
+class SpanWatch:
+    """Wraps a think-first policy's ``greedy_decode``: records, per decision, the env step and whether the
+    decoded span's text after its subtask is the scene's true one; with ``force`` it returns that true
+    text instead (the decoded subtask kept)."""
+
+    def __init__(self, policy, env, force: bool):
+        self.policy, self.env, self.force, self.decisions, self.last = policy, env, force, [], ""
+        self.decode, self.tokenizer = policy.greedy_decode, policy.text_tokenizer
+        self.start, self.end = policy.think_token_ids()
+        policy.greedy_decode = self
+
+    def truth(self) -> str:
+        task, scene = self.env.spec_task, self.env.scene
+        reading = task.read(scene, scene.obj(task.inspected[0]).attributes)
+        cfg = self.policy.config
+        return decision_clause(
+            scene.params["placements"], reading.text, cfg.decision_place, cfg.decision_layout
+        )
+
+    def __call__(self, encode_args, start, stop, *args, **kwargs):
+        tokens, logits, first = self.decode(encode_args, start, stop, *args, **kwargs)
+        if start != [self.start]:
+            return tokens, logits, first
+        truth, out = self.truth(), []
+        for t in tokens:
+            text = self.tokenizer.decode([i for i in t if i != self.end])
+            subtask, _, decided = text.partition("; ")
+            self.decisions.append((self.policy.step, decided.strip() == truth))
+            self.last = decided.strip()
+            if self.force:
+                forced = self.tokenizer(f"{subtask}; {truth}", add_special_tokens=False)["input_ids"]
+                t = (*forced, self.end)
+            out.append(tuple(t))
+        return out, logits, first
+
+    def right_after(self, step: int) -> tuple[int, int]:
+        """(decoded right, decisions) among those at or after env step ``step``; then forgets them."""
+        after = [right for t, right in self.decisions if t >= step]
+        self.decisions = []
+        return sum(after), len(after)
+
+
+class VideoWatch:
+    """A ``render_callback`` writing the head camera to ``path``, each frame captioned with its step,
+    who acts (expert before ``handover``, then the policy) and the last decoded span's decision."""
+
+    def __init__(self, env, path: Path, handover: int, spans: SpanWatch | None):
+        from lerobot_activearena.sim.video import Mp4Writer
+
+        self.env, self.handover, self.spans, self.t = env, handover, spans, 0
+        self.writer = Mp4Writer(path)
+
+    def __call__(self, vec) -> None:
+        from lerobot_activearena.sim.video import draw_annotations
+
+        lines = [f"step {self.t} {'expert' if self.t < self.handover else 'policy'}"]
+        if self.spans is not None and self.spans.last:
+            lines += [part.strip() for part in self.spans.last.split(";")]
+        self.writer.write(draw_annotations(self.env.render(), lines, []))
+        self.t += 1
 
 
 def release_angles(rows: list[dict]) -> str:
@@ -159,6 +230,14 @@ def main() -> None:
         help="rad added to the expert's torso yaw commands from step 8 on (its first turn is done by "
         "then): does the policy take over from a heading a little off the expert's",
     )
+    p.add_argument(
+        "--span",
+        choices=("decoded", "true"),
+        default="decoded",
+        help="a think-first think=decision policy: true replaces the decoded span's decision (and layout) "
+        "with the scene's at every decision",
+    )
+    p.add_argument("--video", type=Path, help="write each episode's head camera to DIR/EPISODE_POINT.mp4")
     p.add_argument("--out", type=Path, help="also write the per-episode records as JSON lines")
     args = p.parse_args()
 
@@ -196,6 +275,13 @@ def main() -> None:
             policy.config.n_action_steps = args.n_action_steps
         env = vec.envs[0].unwrapped
         places = isinstance(env.spec_task, InspectAndPlaceTask)
+        spans = None
+        if places and policy.config.think == "decision" and getattr(policy, "think_first", False):
+            spans = SpanWatch(policy, env, force=args.span == "true")
+        elif args.span != "decoded":
+            p.error(
+                f"--span {args.span}: {args.checkpoint} does not act on a think=decision span it decodes first"
+            )
         for ep in tqdm(episodes, desc="episodes"):
             seed = ep if as_given else env_cfg.seed_base + ep
             scene = ep if as_given else manifest_seed(args.task, args.split, ep)
@@ -204,13 +290,28 @@ def main() -> None:
             for point in points:
                 step = handover_step(point, subtasks)
                 watch = ReleaseWatch(env) if places else None
+                callbacks = [c for c in (watch,) if c is not None]
+                if args.video:
+                    name = f"{ep}_{point.replace(':', '').replace('+', '_')}.mp4"
+                    callbacks.append(VideoWatch(env, args.video / name, step, spans))
                 play_with_handover(
-                    policy, processors, vec, seed, step, render_callback=watch, adjust_expert=adjust
+                    policy,
+                    processors,
+                    vec,
+                    seed,
+                    step,
+                    render_callback=lambda v, cs=callbacks: [c(v) for c in cs],
+                    adjust_expert=adjust,
                 )
+                for c in callbacks:
+                    if isinstance(c, VideoWatch):
+                        c.writer.close()
                 log = sorted(logs.rglob("*.jsonl"))[0]
                 rec = json.loads(log.read_text().splitlines()[-1])
+                right = spans.right_after(step) if spans else (0, 0)
                 rows.append(
                     {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
+                    | {"span_right": right[0], "span_decisions": right[1]}
                     | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
                     | (where_it_rests(env) | watch.row() if places else {})
                 )
@@ -220,6 +321,8 @@ def main() -> None:
     memory = "" if args.memory_ablation == "none" else f", memory {args.memory_ablation}"
     if args.n_action_steps is not None:
         memory += f", {args.n_action_steps} actions a decision"
+    if args.span != "decoded":
+        memory += f", span {args.span}"
     if args.torso_offset:
         memory += f", the expert's torso {args.torso_offset:+.3f} rad off from step 8"
     which = f"scene seeds {args.scene_seeds}" if as_given else f"episodes {args.episode_indices}"
@@ -237,6 +340,12 @@ def main() -> None:
                 else ""
             )
         )
+        decisions = sum(r["span_decisions"] for r in mine)
+        if decisions:
+            print(
+                f"    the decoded span named the true decision at {sum(r['span_right'] for r in mine)} of "
+                f"{decisions} decisions after the handover"
+            )
 
 
 if __name__ == "__main__":

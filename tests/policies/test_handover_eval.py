@@ -92,3 +92,50 @@ def test_release_watch_notes_where_the_object_was_let_go_against_the_named_desti
         "let go 5 deg round from the named one (median of 3), correlation with the named one's angle: "
         "release 1.00, torso heading 0.50"
     )
+
+
+def test_span_watch_scores_the_decoded_decision_and_forces_the_true_one(tiny_vlm):
+    from transformers import AutoTokenizer
+
+    from lerobot_activearena.policies.activearena_vla.dataset_annotations import decision_clause
+
+    script, env, block, named = _block_scene()
+    tok = AutoTokenizer.from_pretrained(tiny_vlm)
+    start, end = tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>")
+    reading = env.spec_task.read(env.scene, block.attributes).text
+    truth = decision_clause(env.scene.params["placements"], reading, place=True, layout=True)
+    other = next(f"place on the {c} pad" for c in ("red", "green", "blue") if f"the {c} pad" not in reading)
+    wrong = decision_clause(env.scene.params["placements"], other, place=True, layout=True)
+    decoded = {"text": wrong}
+
+    def greedy_decode(encode_args, first, stop, *args, **kwargs):
+        ids = tok(f"place the block; {decoded['text']}", add_special_tokens=False)["input_ids"]
+        return [(*ids, end)], ["logits"], "first pass"
+
+    def make_policy():
+        return SimpleNamespace(
+            greedy_decode=greedy_decode,
+            text_tokenizer=tok,
+            think_token_ids=lambda: (start, end),
+            step=150,
+            config=SimpleNamespace(decision_place=True, decision_layout=True),
+        )
+
+    policy = make_policy()
+    watch = script.SpanWatch(policy, env, force=True)
+    assert policy.greedy_decode is watch  # the policy now decodes through the watch
+    tokens, logits, first = policy.greedy_decode(None, [start], end, 48)
+    assert tok.decode(tokens[0]) == f"place the block; {truth}</think>"  # the subtask kept, the rest true
+    assert (logits, first) == (["logits"], "first pass")
+    policy.step, decoded["text"] = 170, truth
+    policy.greedy_decode(None, [start], end, 48)
+    assert watch.last == truth
+    assert watch.right_after(160) == (1, 1)  # only the decision at step 170 counts, and it was right
+    assert watch.decisions == []
+
+    plain = script.SpanWatch(make_policy(), env, force=False)
+    decoded["text"] = wrong
+    tokens, _, _ = plain(None, [start], end, 48)
+    assert tok.decode(tokens[0]) == f"place the block; {wrong}</think>"  # decoded: left as it was
+    assert plain.right_after(0) == (0, 1)
+    assert truth != wrong

@@ -15,6 +15,49 @@ from .configuration_activearena_vla import IMAGE_KEY
 
 # an object's place among 2 or 3 of its kind, by increasing azimuth (counter-clockwise: right to left)
 PLACE_WORDS = {2: ("right", "left"), 3: ("right", "middle", "left")}
+
+
+def decided_kin(placements: list[dict], decision: str) -> tuple[str, list[str]]:
+    """The object a decision ends on ("place on the blue pad": blue_pad), and the names of its category's
+    objects by increasing azimuth (a scene's or a sidecar's ``placements``)."""
+    name = "_".join(decision.split()[-2:])
+    found = [p for p in placements if p["name"] == name]
+    if not found:
+        raise ValueError(
+            f"the decision {decision!r} names {name}, which is not among the scene's placements: "
+            "--policy.decision_place needs decisions that end on a placed object's name"
+        )
+    kin = [
+        n
+        for _, n in sorted(
+            (p["angle"], p["name"]) for p in placements if p["category"] == found[0]["category"]
+        )
+    ]
+    if len(kin) not in PLACE_WORDS:
+        raise ValueError(f"--policy.decision_place names one of two or three objects, {name} has {len(kin)}")
+    return name, kin
+
+
+def place_word(placements: list[dict], decision: str) -> str:
+    """Where the object a decision ends on lies among the objects of its category, by azimuth: right /
+    middle / left of three, right / left of two."""
+    name, kin = decided_kin(placements, decision)
+    return PLACE_WORDS[len(kin)][kin.index(name)]
+
+
+def decision_clause(placements: list[dict], decision: str, place: bool = False, layout: bool = False) -> str:
+    """A decision as the ``think=decision`` target writes it after the subtask. With ``place``, its object
+    is also named by its place among the objects of its kind, as the robot sees them by azimuth ("place
+    on the blue pad, the right one"); with ``layout`` it follows the places of all of them ("blue pad
+    right, green pad middle, red pad left; ...")."""
+    text = f"{decision}, the {place_word(placements, decision)} one" if place else decision
+    if layout:
+        _, kin = decided_kin(placements, decision)
+        listed = zip(kin, PLACE_WORDS[len(kin)], strict=True)
+        text = ", ".join(f"{n.replace('_', ' ')} {w}" for n, w in listed) + f"; {text}"
+    return text
+
+
 COLUMNS = ("episode_index", "frame_index", "subtask_index", "subtask_keyframe", "motion_keyframe")
 
 
@@ -81,53 +124,17 @@ class DatasetAnnotations:
         return made[-1] if made else None
 
     def subtask_and_decision(self, index: int, place: bool = False, layout: bool = False) -> str:
-        """The subtask text, with the decision in force appended: the ``think=decision`` target. With
-        ``place``, the decision's object is also named by its place among the objects of its kind, as
-        the robot sees them by azimuth ("place on the blue pad, the right one"); with ``layout`` the
-        decision follows the places of all of them ("blue pad right, green pad middle, red pad left")."""
+        """The subtask text, with the decision in force appended (``decision_clause``): the
+        ``think=decision`` target."""
         decision = self.decision(index)
         if decision is None:
             return self.subtask(index)
         ep = int(self.cols["episode_index"][index])
-        text = f"{decision}, the {self.place_of(ep, decision)} one" if place else decision
-        if layout:
-            text = f"{self.layout_of(ep, decision)}; {text}"
-        return f"{self.subtask(index)}; {text}"
+        return f"{self.subtask(index)}; {decision_clause(self.placements[ep], decision, place, layout)}"
 
     def place_of(self, ep: int, decision: str) -> str:
-        """Where the object a decision ends on ("place on the blue pad": blue_pad) lies among the objects
-        of its category, by azimuth: right / middle / left of three, right / left of two."""
-        name, kin = self._kin(ep, decision)
-        return PLACE_WORDS[len(kin)][kin.index(name)]
-
-    def layout_of(self, ep: int, decision: str) -> str:
-        """Every object of the decided one's category with its place, right to left ("blue pad right,
-        green pad middle, red pad left")."""
-        _, kin = self._kin(ep, decision)
-        return ", ".join(
-            f"{name.replace('_', ' ')} {word}" for name, word in zip(kin, PLACE_WORDS[len(kin)], strict=True)
-        )
-
-    def _kin(self, ep: int, decision: str) -> tuple[str, list[str]]:
-        """The object a decision ends on, and the names of its category's objects by increasing azimuth."""
-        name = "_".join(decision.split()[-2:])
-        found = [p for p in self.placements[ep] if p["name"] == name]
-        if not found:
-            raise ValueError(
-                f"episode {ep}'s decision {decision!r} names {name}, which is not among its sidecar's "
-                "placements: --policy.decision_place needs decisions that end on a placed object's name"
-            )
-        kin = [
-            n
-            for _, n in sorted(
-                (p["angle"], p["name"]) for p in self.placements[ep] if p["category"] == found[0]["category"]
-            )
-        ]
-        if len(kin) not in PLACE_WORDS:
-            raise ValueError(
-                f"--policy.decision_place names one of two or three objects, {name} has {len(kin)}"
-            )
-        return name, kin
+        """Where the object a decision ends on lies among the objects of its category (``place_word``)."""
+        return place_word(self.placements[ep], decision)
 
     def subtask_keyframes(self, index: int) -> tuple[int, list[int]]:
         """The frame at global ``index``'s episode position x and its episode's subtask keyframes <= x."""
