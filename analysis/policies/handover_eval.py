@@ -127,7 +127,7 @@ class SpanWatch:
             text = self.tokenizer.decode([i for i in t if i != self.end])
             subtask, _, decided = text.partition("; ")
             self.decisions.append((self.policy.step, decided.strip() == truth))
-            self.last = decided.strip()
+            self.last = decided.strip() if not self.force else f"{decided.strip()} -> forced: {truth}"
             if self.force:
                 forced = self.tokenizer(f"{subtask}; {truth}", add_special_tokens=False)["input_ids"]
                 t = (*forced, self.end)
@@ -137,7 +137,7 @@ class SpanWatch:
     def right_after(self, step: int) -> tuple[int, int]:
         """(decoded right, decisions) among those at or after env step ``step``; then forgets them."""
         after = [right for t, right in self.decisions if t >= step]
-        self.decisions = []
+        self.decisions, self.last = [], ""
         return sum(after), len(after)
 
 
@@ -156,7 +156,7 @@ class VideoWatch:
 
         lines = [f"step {self.t} {'expert' if self.t < self.handover else 'policy'}"]
         if self.spans is not None and self.spans.last:
-            lines += [part.strip() for part in self.spans.last.split(";")]
+            lines += [part.strip() for part in self.spans.last.replace(" -> ", ";").split(";")]
         self.writer.write(draw_annotations(self.env.render(), lines, []))
         self.t += 1
 

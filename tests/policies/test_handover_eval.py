@@ -129,7 +129,7 @@ def test_span_watch_scores_the_decoded_decision_and_forces_the_true_one(tiny_vlm
     assert (logits, first) == (["logits"], "first pass")
     policy.step, decoded["text"] = 170, truth
     policy.greedy_decode(None, [start], end, 48)
-    assert watch.last == truth
+    assert watch.last == f"{truth} -> forced: {truth}"
     assert watch.right_after(160) == (1, 1)  # only the decision at step 170 counts, and it was right
     assert watch.decisions == []
 
