@@ -1378,19 +1378,26 @@ def test_batched_vision_attention_equals_qwens_per_image_loop(tmp_path, sizes, m
         batch_vision_attention(other)
 
 
+def _with_red_pad_reading(root, tmp_path, episode: int = 0, **sidecar):
+    """A copy of the dataset whose ``episode`` read a hidden face at frame 20 and decided "place on the
+    red pad" (its sidecar's ``expert_notes``; ``sidecar`` sets further keys)."""
+    copy = tmp_path / "data"
+    shutil.copytree(root, copy)
+    side_path = copy / f"meta/activearena/sidecars/episode_{episode:06d}.json"
+    side = json.loads(side_path.read_text())
+    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
+    side_path.write_text(json.dumps(side | sidecar))
+    return copy
+
+
 def test_decision_place_names_where_the_decided_object_lies_among_its_kind(vlm, root, tmp_path):
     """--policy.decision_place: the think=decision target names the decided pad by its place among the
     pads by azimuth (larger angle: further left); --policy.decision_layout lists every pad's place before
     it; a decision that names no placed object is refused."""
-    copy = tmp_path / "data"
-    shutil.copytree(root, copy)
-    side_path = copy / "meta/activearena/sidecars/episode_000000.json"
-    side = json.loads(side_path.read_text())
-    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
     pads = {"blue_pad": 25.5, "green_pad": 83.0, "red_pad": 107.2}
-    side["placements"] = [{"name": n, "category": "color_pad", "r": 0.4, "angle": a} for n, a in pads.items()]
-    side["placements"].append({"name": "bell", "category": "bell", "r": 0.5, "angle": 200.0})
-    side_path.write_text(json.dumps(side))
+    placements = [{"name": n, "category": "color_pad", "r": 0.4, "angle": a} for n, a in pads.items()]
+    placements.append({"name": "bell", "category": "bell", "r": 0.5, "angle": 200.0})
+    copy = _with_red_pad_reading(root, tmp_path, placements=placements)
     ann = DatasetAnnotations(copy, REPO)
     assert (
         ann.subtask_and_decision(40, place=True) == f"{ann.subtask(40)}; place on the red pad, the left one"
@@ -1445,12 +1452,7 @@ def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vl
     episode's first reading weigh that much in the action loss; a build without readings is refused."""
     from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import ACTION_WEIGHT
 
-    copy = tmp_path / "data"
-    shutil.copytree(root, copy)
-    side_path = copy / "meta/activearena/sidecars/episode_000001.json"  # the count episode: 2 subtasks
-    side = json.loads(side_path.read_text())
-    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
-    side_path.write_text(json.dumps(side))
+    copy = _with_red_pad_reading(root, tmp_path, episode=1)  # the count episode: 2 subtasks
     ann = DatasetAnnotations(copy, REPO)
     onsets = ann.decision_onsets(window=8)
     frames, subtasks = ann.cols["frame_index"], ann.cols["subtask_index"]
@@ -1492,12 +1494,7 @@ def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vl
 def test_decision_think_appends_the_read_decision_from_the_frame_it_was_read_on(vlm, root, tmp_path):
     """think=decision: the subtask text, then from the inspection's frame on the decision the expert
     took from it (an inspect-and-place episode's ``expert_notes``); before it the plain subtask."""
-    copy = tmp_path / "data"
-    shutil.copytree(root, copy)
-    side_path = copy / "meta/activearena/sidecars/episode_000000.json"
-    side = json.loads(side_path.read_text())
-    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
-    side_path.write_text(json.dumps(side))
+    copy = _with_red_pad_reading(root, tmp_path)
     ann = DatasetAnnotations(copy, REPO)
     assert ann.decision(19) is None and ann.subtask_and_decision(19) == ann.subtask(19)
     assert ann.decision(20) == ann.decision(40) == "place on the red pad"
@@ -1519,12 +1516,7 @@ def test_decision_think_appends_the_read_decision_from_the_frame_it_was_read_on(
 def test_decision_token_weight_weighs_the_decision_clause_in_the_lm_loss(vlm, root, tmp_path):
     """--policy.decision_token_weight: the targets after the span's last ";" (the decision clause) weigh
     that much in the LM loss; a span without a decision is a plain mean."""
-    copy = tmp_path / "data"
-    shutil.copytree(root, copy)
-    side_path = copy / "meta/activearena/sidecars/episode_000000.json"
-    side = json.loads(side_path.read_text())
-    side["expert_notes"] = {"inspections": [{"object": "x", "frame": 20, "decision": "place on the red pad"}]}
-    side_path.write_text(json.dumps(side))
+    copy = _with_red_pad_reading(root, tmp_path)
     _, policy, pre, _, ds = _setup(
         vlm, copy, memory="chunk", history=2, think="decision", decision_token_weight=5.0
     )
