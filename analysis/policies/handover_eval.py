@@ -35,6 +35,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
+import re
 from collections import Counter
 from pathlib import Path
 
@@ -42,7 +43,7 @@ import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
-from lerobot_activearena.policies.activearena_vla.dataset_annotations import decision_clause
+from lerobot_activearena.policies.activearena_vla.dataset_annotations import decision_clause, pick_clause
 from lerobot_activearena.sim.action import TORSO_YAW
 from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
@@ -99,34 +100,58 @@ class ReleaseWatch:
         }
 
 
+WHERE = re.compile(r"(\w+) (\w+)(?:, the \w+ one)? at (\d+) cm, (\d+) deg")
+PLACE = re.compile(r" at \d+ cm, \d+ deg$")
+
+
+def where_error(text: str, placements: list[dict]) -> tuple[float, float] | None:
+    """How far the place a ``decision_where`` span gives ("gray block at 40 cm, 54 deg") is from where the
+    object it names lies: (|cm|, |deg|), or None where the span gives no place of a placed object."""
+    m = WHERE.search(text)
+    found = [p for p in placements if m and p["name"] == f"{m.group(1)}_{m.group(2)}"]
+    if not found:
+        return None
+    return abs(int(m.group(3)) - 100 * found[0]["r"]), abs(int(m.group(4)) - found[0]["angle"])
+
+
 class SpanWatch:
-    """Wraps a think-first policy's ``greedy_decode``: records, per decision, the env step and whether the
-    decoded span's text after its subtask is the scene's true one; with ``force`` it returns that true
-    text instead (the decoded subtask kept)."""
+    """Wraps a think-first policy's ``greedy_decode``: records, per decision, the env step, whether the
+    decoded span's text after its subtask is the scene's true one and (``decision_where``) how far the
+    place it gives is from the object it names; with ``force`` it returns that true text instead (the
+    decoded subtask kept). With ``decision_where`` the true text of a span that names the task's first
+    subtask (the pick) is where the inspected object lies, as training writes it."""
 
     def __init__(self, policy, env, force: bool):
         self.policy, self.env, self.force, self.decisions, self.last = policy, env, force, [], ""
         self.decode, self.tokenizer = policy.greedy_decode, policy.text_tokenizer
         self.start, self.end = policy.think_token_ids()
+        self.wheres: list[tuple[int, tuple[float, float]]] = []
         policy.greedy_decode = self
 
-    def truth(self) -> str:
+    def truth(self, subtask: str = "") -> str:
         task, scene = self.env.spec_task, self.env.scene
+        placements, cfg = scene.params["placements"], self.policy.config
+        if cfg.decision_where and subtask.strip() == task.subtasks[0].text:
+            return pick_clause(placements, task.inspected[0])
         reading = task.read(scene, scene.obj(task.inspected[0]).attributes)
-        cfg = self.policy.config
         return decision_clause(
-            scene.params["placements"], reading.text, cfg.decision_place, cfg.decision_layout
+            placements, reading.text, cfg.decision_place, cfg.decision_layout, cfg.decision_where
         )
 
     def __call__(self, encode_args, start, stop, *args, **kwargs):
         tokens, logits, first = self.decode(encode_args, start, stop, *args, **kwargs)
         if start != [self.start]:
             return tokens, logits, first
-        truth, out = self.truth(), []
+        out = []
         for t in tokens:
             text = self.tokenizer.decode([i for i in t if i != self.end])
             subtask, _, decided = text.partition("; ")
-            self.decisions.append((self.policy.step, decided.strip() == truth))
+            truth = self.truth(subtask)
+            # the decision is right where it names the true text; the place it gives is scored apart
+            self.decisions.append((self.policy.step, PLACE.sub("", decided.strip()) == PLACE.sub("", truth)))
+            off = where_error(decided, self.env.scene.params["placements"])
+            if off is not None:
+                self.wheres.append((self.policy.step, off))
             self.last = decided.strip() if not self.force else f"{decided.strip()} -> forced: {truth}"
             if self.force:
                 forced = self.tokenizer(f"{subtask}; {truth}", add_special_tokens=False)["input_ids"]
@@ -139,6 +164,12 @@ class SpanWatch:
         after = [right for t, right in self.decisions if t >= step]
         self.decisions, self.last = [], ""
         return sum(after), len(after)
+
+    def where_after(self, step: int) -> list[tuple[float, float]]:
+        """The decoded places' (|cm|, |deg|) errors at or after env step ``step``; then forgets them."""
+        after = [off for t, off in self.wheres if t >= step]
+        self.wheres = []
+        return after
 
 
 class VideoWatch:
@@ -309,9 +340,11 @@ def main() -> None:
                 log = sorted(logs.rglob("*.jsonl"))[0]
                 rec = json.loads(log.read_text().splitlines()[-1])
                 right = spans.right_after(step) if spans else (0, 0)
+                wheres = spans.where_after(step) if spans else []
                 rows.append(
                     {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
                     | {"span_right": right[0], "span_decisions": right[1]}
+                    | ({"span_where_errors": wheres} if wheres else {})
                     | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
                     | (where_it_rests(env) | watch.row() if places else {})
                 )
@@ -345,6 +378,12 @@ def main() -> None:
             print(
                 f"    the decoded span named the true decision at {sum(r['span_right'] for r in mine)} of "
                 f"{decisions} decisions after the handover"
+            )
+        wheres = np.array([off for r in mine for off in r.get("span_where_errors", [])])
+        if len(wheres):
+            print(
+                f"    the place the span gives is off by a median {np.median(wheres[:, 0]):.1f} cm and "
+                f"{np.median(wheres[:, 1]):.1f} deg from the object it names ({len(wheres)} decisions)"
             )
 
 

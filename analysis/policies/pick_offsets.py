@@ -43,7 +43,9 @@ def expert_arm(xy) -> str:
 def new_record(start_xy) -> dict:
     return {
         "expert_arm": expert_arm(start_xy),
+        "start_xy": np.asarray(start_xy, dtype=float)[:2],
         "nearest": dict.fromkeys(ARMS, 9.0),
+        "nearest_xy": dict.fromkeys(ARMS),
         "grasped": set(),
         "lift": 0.0,
         "rests_on": None,
@@ -53,7 +55,9 @@ def new_record(start_xy) -> dict:
 def update(r: dict, tcp: dict, centre, grasped: dict, lift: float) -> None:
     """One step: each arm's tool centre (``tcp``) against the object's centre, the arms holding it."""
     for arm in ARMS:
-        r["nearest"][arm] = min(r["nearest"][arm], float(np.linalg.norm(np.asarray(tcp[arm]) - centre)))
+        distance = float(np.linalg.norm(np.asarray(tcp[arm]) - centre))
+        if distance < r["nearest"][arm]:
+            r["nearest"][arm], r["nearest_xy"][arm] = distance, np.asarray(tcp[arm], dtype=float)[:2]
         if grasped[arm]:
             r["grasped"].add(arm)
     r["lift"] = max(r["lift"], lift)
@@ -68,8 +72,36 @@ def summary(r: dict) -> dict:
         "arm": arm,
         "expert_arm": r["expert_arm"],
         "nearest": r["nearest"][arm],
+        "start_xy": r["start_xy"],
+        "nearest_xy": r["nearest_xy"][arm],
         "stage": stage,
         "rests_on": r["rests_on"],
+    }
+
+
+def polar(xy) -> tuple[float, float]:
+    """(m, deg) of a table point from the robot's base: 90 deg is straight ahead."""
+    return float(np.hypot(*xy)), float(np.degrees(np.arctan2(xy[1], xy[0])))
+
+
+def where(xy) -> str:
+    r, deg = polar(xy)
+    return f"{r:.2f} m {deg:3.0f} deg"
+
+
+def reach_tracking(summaries: list[dict]) -> dict[str, float]:
+    """Does the hand go where the object is, or to where objects usually are? Over episodes, the
+    correlation of the hand's nearest point with the object's start (polar radius and angle), and the
+    hand's median miss against the object's median distance from the episodes' mean start (a hand
+    that goes to the average place misses by about the latter)."""
+    start = np.array([s["start_xy"] for s in summaries])
+    hand = np.array([s["nearest_xy"] for s in summaries])
+    sp, hp = np.array([polar(x) for x in start]), np.array([polar(x) for x in hand])
+    return {
+        "radius_corr": float(np.corrcoef(sp[:, 0], hp[:, 0])[0, 1]),
+        "angle_corr": float(np.corrcoef(sp[:, 1], hp[:, 1])[0, 1]),
+        "median_miss_m": float(np.median(np.linalg.norm(hand - start, axis=1))),
+        "median_from_mean_m": float(np.median(np.linalg.norm(start - start.mean(0), axis=1))),
     }
 
 
@@ -150,9 +182,10 @@ def main() -> None:
         task, record_step, eval_args, args.task, args.split, args.episode_indices, "pick_offsets"
     )
     stages, arms, ends = Counter(), Counter(), Counter()
-    holds = 0
+    holds, summaries = 0, []
     for rec in records:
         s = summary(STEPS[rec["scene_seed"]])
+        summaries.append(s)
         stages[s["stage"]] += 1
         arms["expert's arm" if s["arm"] == s["expert_arm"] else "the other arm"] += 1
         wanted = STEPS[rec["scene_seed"]]["destination"]
@@ -163,11 +196,19 @@ def main() -> None:
         end = "success" if rec["success"] else f"{rec['failure_state']}: {rec['failure_reason']}"
         print(
             f"episode {rec['episode']:3d}  expert arm {s['expert_arm']:5s}  nearest {s['arm']:5s} "
-            f"{100 * s['nearest']:5.1f} cm  furthest stage {s['stage']:5s}  "
+            f"{100 * s['nearest']:5.1f} cm  (object at {where(s['start_xy'])}, hand at {where(s['nearest_xy'])})  "
+            f"furthest stage {s['stage']:5s}  "
             f"rests on {rests} (wanted {wanted})  {placement(STEPS[rec['scene_seed']])}  {end}"
         )
     print(f"nearest arm: {dict(arms)}; furthest stage: {dict(stages)} of {len(records)} episodes")
     print(f"object rests at the end on: {dict(ends)}; still held at the end: {holds}")
+    if len(summaries) > 2:
+        t = reach_tracking(summaries)
+        print(
+            f"the hand's nearest point against the object's start: radius corr {t['radius_corr']:.2f}, angle "
+            f"corr {t['angle_corr']:.2f}; median miss {100 * t['median_miss_m']:.1f} cm (xy), the object a "
+            f"median {100 * t['median_from_mean_m']:.1f} cm from the episodes' mean start"
+        )
 
 
 if __name__ == "__main__":

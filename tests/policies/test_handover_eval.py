@@ -118,7 +118,7 @@ def test_span_watch_scores_the_decoded_decision_and_forces_the_true_one(tiny_vlm
             text_tokenizer=tok,
             think_token_ids=lambda: (start, end),
             step=150,
-            config=SimpleNamespace(decision_place=True, decision_layout=True),
+            config=SimpleNamespace(decision_place=True, decision_layout=True, decision_where=False),
         )
 
     policy = make_policy()
@@ -139,3 +139,47 @@ def test_span_watch_scores_the_decoded_decision_and_forces_the_true_one(tiny_vlm
     assert tok.decode(tokens[0]) == f"place the block; {wrong}</think>"  # decoded: left as it was
     assert plain.right_after(0) == (0, 1)
     assert truth != wrong
+
+
+def test_span_watch_with_decision_where_forces_the_pick_place_and_scores_the_place_apart(tiny_vlm):
+    """decision_where: a span that names the pick subtask is forced to where the block lies, one after
+    the reading to the decision with its pad's place; the decision counts as right whatever cm and deg
+    it gives, and how far those are off is kept apart."""
+    from transformers import AutoTokenizer
+
+    from lerobot_activearena.policies.activearena_vla.dataset_annotations import decision_clause, pick_clause
+
+    script, env, block, named = _block_scene()
+    placements = env.scene.params["placements"]
+    tok = AutoTokenizer.from_pretrained(tiny_vlm)
+    start, end = tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>")
+    reading = env.spec_task.read(env.scene, block.attributes).text
+    pick_text = env.spec_task.subtasks[0].text
+    decoded = {"text": f"{pick_text}; gray block at 1 cm, 2 deg"}
+
+    def greedy_decode(encode_args, first, stop, *args, **kwargs):
+        return [(*tok(decoded["text"], add_special_tokens=False)["input_ids"], end)], [], None
+
+    policy = SimpleNamespace(
+        greedy_decode=greedy_decode,
+        text_tokenizer=tok,
+        think_token_ids=lambda: (start, end),
+        step=10,
+        config=SimpleNamespace(decision_place=True, decision_layout=False, decision_where=True),
+    )
+    watch = script.SpanWatch(policy, env, force=True)
+    tokens, _, _ = policy.greedy_decode(None, [start], end, 64)
+    block_at = pick_clause(placements, "gray_block")
+    assert tok.decode(tokens[0]) == f"{pick_text}; {block_at}</think>"
+    truth = decision_clause(placements, reading, place=True, where_=True)
+    policy.step, decoded["text"] = 120, f"place the block; {script.PLACE.sub('', truth)} at 3 cm, 4 deg"
+    policy.greedy_decode(None, [start], end, 64)
+    pad = next(p for p in placements if p["name"] == named)
+    assert watch.right_after(0) == (2, 2)  # both name the right object, whatever place they give
+    (pick_cm, pick_deg), (pad_cm, pad_deg) = watch.where_after(0)
+    block_row = next(p for p in placements if p["name"] == "gray_block")
+    assert pick_cm == pytest.approx(100 * block_row["r"] - 1) and pick_deg == pytest.approx(
+        block_row["angle"] - 2
+    )
+    assert pad_cm == pytest.approx(100 * pad["r"] - 3) and pad_deg == pytest.approx(pad["angle"] - 4)
+    assert script.where_error("place the block", placements) is None

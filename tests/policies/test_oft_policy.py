@@ -24,7 +24,10 @@ from lerobot_activearena.cli.eval import main as activearena_eval
 from lerobot_activearena.episodes.rollout import run_expert_episode
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
 from lerobot_activearena.policies.activearena_oft.modeling_activearena_oft import ActiveArenaOFTPolicy
-from lerobot_activearena.policies.activearena_vla.dataset_annotations import DatasetAnnotations
+from lerobot_activearena.policies.activearena_vla.dataset_annotations import (
+    DatasetAnnotations,
+    decision_clause,
+)
 from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import STATE
 from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
     PIXELS,
@@ -1445,6 +1448,50 @@ def test_decision_place_names_where_the_decided_object_lies_among_its_kind(vlm, 
         ActiveArenaOFTConfig(vlm_path=str(vlm), think="subtask", decision_place=True)
     with pytest.raises(ValueError, match="set --policy.decision_place=true"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), think="decision", decision_layout=True)
+
+
+def test_decision_where_says_where_the_object_to_act_on_lies(vlm, root, tmp_path):
+    """--policy.decision_where: the pick's frames before the reading name where the inspected object
+    lies, the decision ends with where its pad lies (cm and degrees from the base, rounded); the frames
+    of later subtasks before the reading name nothing more; the annotation step writes it."""
+    placements = [
+        {"name": "blue_pad", "category": "color_pad", "r": 0.3579, "angle": 25.55},
+        {"name": "red_pad", "category": "color_pad", "r": 0.3675, "angle": 107.21},
+        {"name": "gray_block", "category": "patch_block", "r": 0.4022, "angle": 54.44},
+    ]
+    notes = {"inspections": [{"object": "gray_block", "frame": 20, "decision": "place on the red pad"}]}
+    copy = _with_red_pad_reading(root, tmp_path, placements=placements, expert_notes=notes)
+    ann = DatasetAnnotations(copy, REPO)
+    sub = ann.cols["subtask_index"]
+    first = min(ann.subtask_text[0])
+    picking = [i for i in range(20) if sub[i] == first]
+    assert picking, "the fixture's episode 0 starts with its first subtask"
+    for i in picking:
+        assert ann.subtask_and_decision(i, where_=True) == f"{ann.subtask(i)}; gray block at 40 cm, 54 deg"
+        assert ann.subtask_and_decision(i) == ann.subtask(i)
+    for i in [i for i in range(20) if sub[i] != first]:
+        assert ann.subtask_and_decision(i, where_=True) == ann.subtask(i)
+    assert ann.subtask_and_decision(40, place=True, where_=True) == (
+        f"{ann.subtask(40)}; place on the red pad, the left one at 37 cm, 107 deg"
+    )
+    assert ann.subtask_and_decision(40, place=True, layout=True, where_=True).endswith(
+        "blue pad right, red pad left; place on the red pad, the left one at 37 cm, 107 deg"
+    )
+    missing = [p for p in placements if p["name"] != "red_pad"]
+    with pytest.raises(ValueError, match="red_pad, which is not among"):
+        decision_clause(missing, "place on the red pad", where_=True)
+
+    _, policy, pre, _, ds = _setup(
+        vlm, copy, memory="chunk", history=2, think="decision", decision_where=True
+    )
+    batch = collate(ds, pre, [picking[0], 40])
+    spans = [
+        policy.text_tokenizer.decode(ids[mask].tolist())
+        for ids, mask in zip(batch[THINK_IDS], batch[THINK_MASK], strict=True)
+    ]
+    assert "gray block at 40 cm, 54 deg" in spans[0] and "red pad at 37 cm, 107 deg" in spans[1]
+    with pytest.raises(ValueError, match="set --policy.think=decision"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), think="subtask", decision_where=True)
 
 
 def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vlm, root, tmp_path):

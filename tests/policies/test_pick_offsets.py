@@ -81,3 +81,24 @@ def test_the_placement_names_the_miss_against_the_named_pad_and_the_nearest_othe
     r["held"] = True
     assert script.placement(r).endswith(", held")
     assert script.placement({"destination": "red_pad", "held": False}) == "no destination offset"
+
+
+def test_a_hand_that_goes_to_the_average_place_is_told_from_one_that_follows_the_object():
+    script = load("analysis/policies/pick_offsets.py")
+    starts = [[0.1, 0.35], [0.15, 0.45], [-0.1, 0.4], [-0.2, 0.3]]
+
+    def summaries(hand_at):
+        out = []
+        for start in starts:
+            r = script.new_record(start)
+            _step(script, r, left=[*hand_at(start), 0.06], right=[0.5, 0.0, 0.3], centre=[*start, 0.05])
+            out.append(script.summary(r))
+        return out
+
+    follows = script.reach_tracking(summaries(lambda s: [s[0] + 0.01, s[1] - 0.01]))
+    assert follows["radius_corr"] > 0.99 and follows["angle_corr"] > 0.99
+    assert follows["median_miss_m"] == pytest.approx(np.hypot(0.01, 0.01))
+    mean = np.mean(starts, axis=0)
+    average = script.reach_tracking(summaries(lambda s: list(mean + [0.01 * s[0], 0.0])))
+    assert average["median_miss_m"] > 0.5 * average["median_from_mean_m"] > 0.05
+    assert abs(average["radius_corr"]) < 0.9

@@ -79,6 +79,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # with decision_place: the span first lists every object of that kind with its place ("blue pad right,
     # green pad middle, red pad left"), which the current view shows, so the decided place is a copy
     decision_layout: bool = False
+    # think=decision: the span also says where the object to act on lies from the robot's base (the
+    # episode's recorded placement, to a centimetre and a degree): while the inspected object is picked,
+    # before any reading, "...; gray block at 40 cm, 54 deg"; after it, the decision ends "... at 36 cm,
+    # 26 deg". The actions read that span, so the reach is spelled out before it is made.
+    decision_where: bool = False
     # think=decision: the LM-loss weight of the decision clause's tokens (after the span's last ";": the
     # colour read and, with decision_place, the place) against the span's other tokens (1: a plain mean)
     decision_token_weight: float = 1.0
@@ -247,6 +252,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
         if self.decision_place and self.think != "decision":
             raise ValueError(
                 f"--policy.decision_place names the decided object's place in the think=decision target; "
+                f"this policy has think={self.think!r}: set --policy.think=decision"
+            )
+        if self.decision_where and self.think != "decision":
+            raise ValueError(
+                f"--policy.decision_where says where the object acted on lies in the think=decision target; "
                 f"this policy has think={self.think!r}: set --policy.think=decision"
             )
         if self.decision_layout and not self.decision_place:

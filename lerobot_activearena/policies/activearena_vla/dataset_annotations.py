@@ -45,14 +45,40 @@ def place_word(placements: list[dict], decision: str) -> str:
     return PLACE_WORDS[len(kin)][kin.index(name)]
 
 
-def decision_clause(placements: list[dict], decision: str, place: bool = False, layout: bool = False) -> str:
+def where(placements: list[dict], name: str) -> str:
+    """Where a placed object lies from the robot's base, as a span writes it: "at 40 cm, 54 deg" (the
+    scene's polar placement rounded to a centimetre and a degree; 90 deg is straight ahead)."""
+    found = [p for p in placements if p["name"] == name]
+    if not found:
+        raise ValueError(
+            f"{name} is not among the scene's placements ({[p['name'] for p in placements]}): "
+            "--policy.decision_where names where the object acted on lies, from the placements the "
+            "episode's sidecar records"
+        )
+    return f"at {round(100 * found[0]['r'])} cm, {round(found[0]['angle'])} deg"
+
+
+def pick_clause(placements: list[dict], name: str) -> str:
+    """The ``decision_where`` clause of the frames that pick the inspected object: "gray block at 40 cm,
+    54 deg"."""
+    return f"{name.replace('_', ' ')} {where(placements, name)}"
+
+
+def decision_clause(
+    placements: list[dict], decision: str, place: bool = False, layout: bool = False, where_: bool = False
+) -> str:
     """A decision as the ``think=decision`` target writes it after the subtask. With ``place``, its object
     is also named by its place among the objects of its kind, as the robot sees them by azimuth ("place
     on the blue pad, the right one"); with ``layout`` it follows the places of all of them ("blue pad
-    right, green pad middle, red pad left; ...")."""
-    text = f"{decision}, the {place_word(placements, decision)} one" if place else decision
+    right, green pad middle, red pad left; ..."); with ``where_`` it ends with where that object lies
+    ("... at 36 cm, 26 deg")."""
+    if not (place or layout or where_):
+        return decision
+    name, kin = decided_kin(placements, decision)
+    text = f"{decision}, the {PLACE_WORDS[len(kin)][kin.index(name)]} one" if place else decision
+    if where_:
+        text = f"{text} {where(placements, name)}"
     if layout:
-        _, kin = decided_kin(placements, decision)
         listed = zip(kin, PLACE_WORDS[len(kin)], strict=True)
         text = ", ".join(f"{n.replace('_', ' ')} {w}" for n, w in listed) + f"; {text}"
     return text
@@ -85,6 +111,7 @@ class DatasetAnnotations:
         self.subtask_text: dict[int, dict[int, str]] = {}
         self.instruction: dict[int, str] = {}
         self.decisions: dict[int, list[tuple[int, str]]] = {}  # (frame read on, decision), in order
+        self.inspected: dict[int, str | None] = {}  # the object the expert first inspected
         # the scene's objects on the table (name, category, angle)
         self.placements: dict[int, list[dict]] = {}
         for ep in self.ep_start:
@@ -92,11 +119,11 @@ class DatasetAnnotations:
             self.subtask_text[ep] = {int(s["id"]): s["text"] for s in side["subtasks"]}
             self.instruction[ep] = side["instruction"]
             self.placements[ep] = side.get("placements", [])
+            inspections = (side.get("expert_notes") or {}).get("inspections", [])
             self.decisions[ep] = sorted(
-                (int(e["frame"]), e["decision"])
-                for e in (side.get("expert_notes") or {}).get("inspections", [])
-                if e.get("decision")
+                (int(e["frame"]), e["decision"]) for e in inspections if e.get("decision")
             )
+            self.inspected[ep] = inspections[0].get("object") if inspections else None
 
     def decision_onsets(self, window: int) -> np.ndarray:
         """Per global frame: whether it is among the first ``window`` frames of a subtask that began at
@@ -123,14 +150,23 @@ class DatasetAnnotations:
         made = [d for frame, d in self.decisions[ep] if frame <= x]
         return made[-1] if made else None
 
-    def subtask_and_decision(self, index: int, place: bool = False, layout: bool = False) -> str:
+    def subtask_and_decision(
+        self, index: int, place: bool = False, layout: bool = False, where_: bool = False
+    ) -> str:
         """The subtask text, with the decision in force appended (``decision_clause``): the
-        ``think=decision`` target."""
+        ``think=decision`` target. With ``where_``, the frames of the episode's first subtask (the pick)
+        before any reading name where the inspected object lies ("...; gray block at 40 cm, 54 deg"),
+        and the decision ends with where its object lies."""
         decision = self.decision(index)
-        if decision is None:
-            return self.subtask(index)
         ep = int(self.cols["episode_index"][index])
-        return f"{self.subtask(index)}; {decision_clause(self.placements[ep], decision, place, layout)}"
+        if decision is None:
+            first = min(self.subtask_text[ep], default=None)
+            if where_ and self.inspected[ep] and int(self.cols["subtask_index"][index]) == first:
+                return f"{self.subtask(index)}; {pick_clause(self.placements[ep], self.inspected[ep])}"
+            return self.subtask(index)
+        return (
+            f"{self.subtask(index)}; {decision_clause(self.placements[ep], decision, place, layout, where_)}"
+        )
 
     def place_of(self, ep: int, decision: str) -> str:
         """Where the object a decision ends on lies among the objects of its category (``place_word``)."""

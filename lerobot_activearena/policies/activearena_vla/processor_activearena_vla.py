@@ -98,6 +98,7 @@ ANNOTATION_SETTINGS = (
     "decision_window",
     "decision_place",
     "decision_layout",
+    "decision_where",
 )
 
 
@@ -151,6 +152,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     decision_window: int = 16
     decision_place: bool = False  # think=decision: the decided object's place named too
     decision_layout: bool = False  # ... after the places of all of its kind
+    decision_where: bool = False  # ... and where the object acted on lies (cm, deg from the base)
     _ann: Any = field(default=None, init=False, repr=False)
     _onsets: Any = field(default=None, init=False, repr=False)
 
@@ -189,7 +191,10 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             comp["subtask"] = [self._ann.subtask(i) for i in idx]
         if self.think == "decision":
             comp["think_target"] = [
-                self._ann.subtask_and_decision(i, self.decision_place, self.decision_layout) for i in idx
+                self._ann.subtask_and_decision(
+                    i, self.decision_place, self.decision_layout, self.decision_where
+                )
+                for i in idx
             ]
         obs = dict(transition[TransitionKey.OBSERVATION])
         if self.memory in KEYFRAME_MEMORIES and self.history > 0:
@@ -231,6 +236,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             "decision_window": self.decision_window,
             "decision_place": self.decision_place,
             "decision_layout": self.decision_layout,
+            "decision_where": self.decision_where,
             "dataset_root": self.dataset_root,
             "repo_id": self.repo_id,
             "memory": self.memory,
@@ -442,6 +448,7 @@ def make_activearena_vla_pre_post_processors(
         decision_window=config.decision_window,
         decision_place=config.decision_place,
         decision_layout=config.decision_layout,
+        decision_where=config.decision_where,
     )
     inputs = ActiveArenaVLMInputsStep(
         vlm_path=config.vlm_path,
