@@ -104,14 +104,19 @@ WHERE = re.compile(r"(\w+) (\w+)(?:, the \w+ one)? at (\d+) cm, (\d+) deg")
 PLACE = re.compile(r" at \d+ cm, \d+ deg$")
 
 
-def where_error(text: str, placements: list[dict]) -> tuple[float, float] | None:
+def where_error(text: str, placements: list[dict]) -> tuple[str, float, float] | None:
     """How far the place a ``decision_where`` span gives ("gray block at 40 cm, 54 deg") is from where the
-    object it names lies: (|cm|, |deg|), or None where the span gives no place of a placed object."""
+    object it names lies: (its name, |cm|, |deg|), or None where the span gives no place of a placed
+    object."""
     m = WHERE.search(text)
     found = [p for p in placements if m and p["name"] == f"{m.group(1)}_{m.group(2)}"]
     if not found:
         return None
-    return abs(int(m.group(3)) - 100 * found[0]["r"]), abs(int(m.group(4)) - found[0]["angle"])
+    return (
+        found[0]["name"],
+        abs(int(m.group(3)) - 100 * found[0]["r"]),
+        abs(int(m.group(4)) - found[0]["angle"]),
+    )
 
 
 class SpanWatch:
@@ -125,7 +130,7 @@ class SpanWatch:
         self.policy, self.env, self.force, self.decisions, self.last = policy, env, force, [], ""
         self.decode, self.tokenizer = policy.greedy_decode, policy.text_tokenizer
         self.start, self.end = policy.think_token_ids()
-        self.wheres: list[tuple[int, tuple[float, float]]] = []
+        self.wheres: list[tuple[int, tuple[str, float, float]]] = []
         policy.greedy_decode = self
 
     def truth(self, subtask: str = "") -> str:
@@ -165,9 +170,10 @@ class SpanWatch:
         self.decisions, self.last = [], ""
         return sum(after), len(after)
 
-    def where_after(self, step: int) -> list[tuple[float, float]]:
-        """The decoded places' (|cm|, |deg|) errors at or after env step ``step``; then forgets them."""
-        after = [off for t, off in self.wheres if t >= step]
+    def where_after(self, step: int) -> list[tuple[int, str, float, float]]:
+        """The decoded places' (env step, object, |cm|, |deg|) errors at or after env step ``step``; then
+        forgets them."""
+        after = [(t, *off) for t, off in self.wheres if t >= step]
         self.wheres = []
         return after
 
@@ -379,11 +385,12 @@ def main() -> None:
                 f"    the decoded span named the true decision at {sum(r['span_right'] for r in mine)} of "
                 f"{decisions} decisions after the handover"
             )
-        wheres = np.array([off for r in mine for off in r.get("span_where_errors", [])])
-        if len(wheres):
+        wheres = [off for r in mine for off in r.get("span_where_errors", [])]
+        for name in sorted({w[1] for w in wheres}):
+            off = np.array([w[2:] for w in wheres if w[1] == name])
             print(
-                f"    the place the span gives is off by a median {np.median(wheres[:, 0]):.1f} cm and "
-                f"{np.median(wheres[:, 1]):.1f} deg from the object it names ({len(wheres)} decisions)"
+                f"    the place the span gives {name} is off by a median {np.median(off[:, 0]):.1f} cm and "
+                f"{np.median(off[:, 1]):.1f} deg ({len(off)} decisions)"
             )
 
 

@@ -176,7 +176,9 @@ def test_span_watch_with_decision_where_forces_the_pick_place_and_scores_the_pla
     policy.greedy_decode(None, [start], end, 64)
     pad = next(p for p in placements if p["name"] == named)
     assert watch.right_after(0) == (2, 2)  # both name the right object, whatever place they give
-    (pick_cm, pick_deg), (pad_cm, pad_deg) = watch.where_after(0)
+    (t_pick, block_name, pick_cm, pick_deg), (t_pad, pad_name, pad_cm, pad_deg) = watch.where_after(0)
+    assert (t_pick, t_pad) == (10, 120)
+    assert (block_name, pad_name) == ("gray_block", named)
     block_row = next(p for p in placements if p["name"] == "gray_block")
     assert pick_cm == pytest.approx(100 * block_row["r"] - 1) and pick_deg == pytest.approx(
         block_row["angle"] - 2
