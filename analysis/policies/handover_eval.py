@@ -25,8 +25,12 @@ Is it the decision or the set-down that fails? A think-first ``think=decision`` 
 read the span it decodes) can be played with ``--span true``: at every decision the span it decoded
 keeps its subtask, and the rest is replaced by what the scene's reading gives (the layout and the
 decision with its place, as its training targets write them). The decision is then right by
-construction; what fails is the acting on it. Use it with a handover after the reading. Every run
-prints how often the decoded span named the right decision at the decisions after the handover.
+construction; what fails is the acting on it. Use it with a handover after the reading: before it the
+forced decision also lands in the spans of the subtasks before the reading, which training never shows.
+With ``decision_where`` a span that names the pick subtask is forced to where the object lies instead,
+so a handover at ``start`` tests whether the reach follows the place the span gives (read it for the
+pick only). Every run prints how often the decoded span named the right decision at the decisions
+after the handover and, with ``decision_where``, how far the place it gave was off, per object.
 ``--video DIR`` writes each episode's head camera with the step, who acts and the span's decision.
 """
 
