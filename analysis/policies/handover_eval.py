@@ -39,7 +39,6 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
-import re
 from collections import Counter
 from pathlib import Path
 
@@ -47,7 +46,12 @@ import numpy as np
 
 from lerobot_activearena.cli.args import int_ranges
 from lerobot_activearena.eval.handover import handover_step, play_with_handover, torso_offset
-from lerobot_activearena.policies.activearena_vla.dataset_annotations import decision_clause, pick_clause
+from lerobot_activearena.policies.activearena_vla.dataset_annotations import (
+    WHERE_TAIL,
+    decision_clause,
+    pick_clause,
+    read_where,
+)
 from lerobot_activearena.sim.action import TORSO_YAW
 from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
@@ -104,23 +108,15 @@ class ReleaseWatch:
         }
 
 
-WHERE = re.compile(r"(\w+) (\w+)(?:, the \w+ one)? at (\d+) cm, (\d+) deg")
-PLACE = re.compile(r" at \d+ cm, \d+ deg$")
-
-
 def where_error(text: str, placements: list[dict]) -> tuple[str, float, float] | None:
     """How far the place a ``decision_where`` span gives ("gray block at 40 cm, 54 deg") is from where the
     object it names lies: (its name, |cm|, |deg|), or None where the span gives no place of a placed
     object."""
-    m = WHERE.search(text)
-    found = [p for p in placements if m and p["name"] == f"{m.group(1)}_{m.group(2)}"]
+    given = read_where(text)
+    found = [p for p in placements if given and p["name"] == given[0]]
     if not found:
         return None
-    return (
-        found[0]["name"],
-        abs(int(m.group(3)) - 100 * found[0]["r"]),
-        abs(int(m.group(4)) - found[0]["angle"]),
-    )
+    return found[0]["name"], abs(given[1] - 100 * found[0]["r"]), abs(given[2] - found[0]["angle"])
 
 
 class SpanWatch:
@@ -157,7 +153,9 @@ class SpanWatch:
             subtask, _, decided = text.partition("; ")
             truth = self.truth(subtask)
             # the decision is right where it names the true text; the place it gives is scored apart
-            self.decisions.append((self.policy.step, PLACE.sub("", decided.strip()) == PLACE.sub("", truth)))
+            self.decisions.append(
+                (self.policy.step, WHERE_TAIL.sub("", decided.strip()) == WHERE_TAIL.sub("", truth))
+            )
             off = where_error(decided, self.env.scene.params["placements"])
             if off is not None:
                 self.wheres.append((self.policy.step, off))

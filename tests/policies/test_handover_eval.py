@@ -172,7 +172,7 @@ def test_span_watch_with_decision_where_forces_the_pick_place_and_scores_the_pla
     block_at = pick_clause(placements, "gray_block")
     assert tok.decode(tokens[0]) == f"{pick_text}; {block_at}</think>"
     truth = decision_clause(placements, reading, place=True, where_=True)
-    policy.step, decoded["text"] = 120, f"place the block; {script.PLACE.sub('', truth)} at 3 cm, 4 deg"
+    policy.step, decoded["text"] = 120, f"place the block; {script.WHERE_TAIL.sub('', truth)} at 3 cm, 4 deg"
     policy.greedy_decode(None, [start], end, 64)
     pad = next(p for p in placements if p["name"] == named)
     assert watch.right_after(0) == (2, 2)  # both name the right object, whatever place they give

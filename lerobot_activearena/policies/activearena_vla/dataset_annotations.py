@@ -5,6 +5,7 @@ write policies pick a per-sample set of past frames that LeRobot's fixed delta i
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -56,6 +57,17 @@ def where(placements: list[dict], name: str) -> str:
             "episode's sidecar records"
         )
     return f"at {round(100 * found[0]['r'])} cm, {round(found[0]['angle'])} deg"
+
+
+# what ``where`` writes, and the object named before it ("gray block at 40 cm", "red pad, the left one at 37 cm")
+WHERE_TEXT = re.compile(r"(\w+) (\w+)(?:, the \w+ one)? at (\d+) cm, (\d+) deg")
+WHERE_TAIL = re.compile(r" at \d+ cm, \d+ deg$")  # the ``where`` a span ends with
+
+
+def read_where(text: str) -> tuple[str, int, int] | None:
+    """The object a ``decision_where`` span places and where: (name, cm, deg), or None without a place."""
+    m = WHERE_TEXT.search(text)
+    return (f"{m.group(1)}_{m.group(2)}", int(m.group(3)), int(m.group(4))) if m else None
 
 
 def pick_clause(placements: list[dict], name: str) -> str:
