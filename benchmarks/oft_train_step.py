@@ -578,11 +578,8 @@ def main() -> None:
     policy.reset()
     b = pre(dict(obs))
     lat = [timed(lambda: policy.select_action(b))[0]]
-    entry = {
-        "pixels": b[processor_activearena_vla.PIXELS][0],
-        "grid": b[processor_activearena_vla.GRID][0, -1],
-        "state": b["observation.state"][0],
-    }
+    pixels, grid = policy.memory_pixels(b)  # as the memory keeps a frame
+    entry = {"pixels": pixels[0], "grid": grid[0], "state": b["observation.state"][0]}
     full = 16 * args.history
     if kind == "activearena_plan":  # K + 1 stride frames stored, K of them retrieved into the bank
         policy._frames[0] = {16 * k: dict(entry, planner={}) for k in range(args.history + 1)}

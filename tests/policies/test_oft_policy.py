@@ -359,9 +359,9 @@ def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, me
         vlm, root, memory=memory, history=4, think="none", n_action_steps=n_action_steps
     )
     step = next(s for s in pre.steps if isinstance(s, ActiveArenaVLMInputsStep))
-    processed, real = [], modeling.image_inputs
+    processed, real = [], modeling.current_frame_inputs
     monkeypatch.setattr(
-        modeling, "image_inputs", lambda *a, **k: processed.append(policy.step) or real(*a, **k)
+        modeling, "current_frame_inputs", lambda *a, **k: processed.append(policy.step) or real(*a, **k)
     )
     runs = {}
     for defer in (True, False):
@@ -386,6 +386,42 @@ def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, me
         assert set(processed) == chunk_starts  # the writes (every 16th step) fall on chunk boundaries
     else:
         assert set(processed) - chunk_starts <= writes and {t for t, _ in bank} <= set(processed)
+
+
+def test_the_current_frame_at_more_tokens_keeps_the_memory_at_its_own_size(vlm, root, monkeypatch):
+    """current_image_pixels at evaluation: each decision reads the current frame at that size (4x the
+    memory frames' tokens here), the memory bank keeps the frames at image_max_pixels (a table policy's
+    memory tower reads them as it was trained), and the same observations give the same actions."""
+    from lerobot_activearena.policies.activearena_vla import modeling_activearena_vla as modeling
+
+    memory_pixels = 32 * 32 * 4  # the scripted 64 x 64 frames read at 2 x 2 tokens
+    _, policy, pre, _, _ = _setup(
+        vlm, root, memory="chunk", history=2, think="none", image_max_pixels=memory_pixels,
+        current_image_pixels=4 * memory_pixels,
+    )  # fmt: skip
+    seen = []
+    real = modeling.ActiveArenaVLAPolicy.assemble
+    monkeypatch.setattr(
+        modeling.ActiveArenaVLAPolicy,
+        "assemble",
+        lambda self, pixels, grid, valid, *a, **k: (
+            seen.append((pixels.shape, grid, valid)) or real(self, pixels, grid, valid, *a, **k)
+        ),
+    )
+    runs = []
+    for _ in range(2):
+        policy.reset()
+        actions = [policy.select_action(pre(obs)) for _t, obs, _ in _scripted_observations(40)]
+        runs.append((torch.stack(actions), policy.memory(0)))
+    assert torch.equal(runs[0][0], runs[1][0])
+    bank = runs[0][1]
+    assert [e["t"] for e in bank] == [16, 32] and all(int(e["grid"].prod()) == 16 for e in bank)
+    assert all(e["pixels"].shape[0] == 16 for e in bank)
+    for shape, grid, valid in seen[:3]:  # the decisions at steps 0, 16 and 32 of the first run
+        patches = grid[valid].prod(-1).tolist()
+        assert patches[-1] == 64 and all(n == 16 for n in patches[:-1])
+        assert shape[0] == sum(patches) if len(shape) == 2 else shape[0] * shape[1] == sum(patches)
+    assert [int(v.sum()) for _, _, v in seen[:3]] == [1, 2, 3]
 
 
 def test_subtask_memory_writes_where_the_predicted_subtask_changes(vlm, root, monkeypatch):
@@ -536,6 +572,9 @@ def test_save_and_reload_give_identical_actions(vlm, root, tmp_path):
         ValueError, match=r"think='none' \(saved: 'subtask'\), decision_weight=5.0 \(saved: 1.0\)"
     ):
         ActiveArenaOFTPolicy.from_pretrained(tmp_path, config=changed)
+    bigger = dataclasses.replace(loaded.config, current_image_pixels=4 * loaded.config.image_max_pixels)
+    with pytest.raises(ValueError, match=r"current_image_pixels=\d+ \(saved: None\)"):
+        ActiveArenaOFTPolicy.from_pretrained(tmp_path, config=bigger)
 
 
 def test_bad_config_values_are_named():
@@ -1106,7 +1145,8 @@ def test_blanked_memory_in_a_dataset_batch_grays_only_the_memory_frames(vlm, roo
     batch = collate(ds, pre, [70, 0])
     pixels, valid = batch[PIXELS], batch["observation.vlm.frame_valid"]
     assert valid.sum(1).tolist() == [3, 1] and len(pixels) == 4
-    blank = blank_memory_pixels(pixels, valid)
+    grid = batch["observation.vlm.image_grid_thw"]
+    blank = blank_memory_pixels(pixels, valid, grid)
     # packed in (sample, slot) order: sample 0's two memory frames and its current one, sample 1's current
     assert torch.count_nonzero(pixels[:2]) > 0 and torch.count_nonzero(blank[:2]) == 0
     assert torch.equal(blank[2:], pixels[2:])
@@ -1117,7 +1157,7 @@ def test_blanked_memory_in_a_dataset_batch_grays_only_the_memory_frames(vlm, roo
     assert not torch.allclose(real[0], blanked[0], atol=1e-4)
     assert torch.allclose(real[1], blanked[1], atol=1e-5)
     with pytest.raises(ValueError, match="vision cache"):
-        blank_memory_pixels(pixels[2:], valid)
+        blank_memory_pixels(pixels[2:], valid, grid)
 
 
 def test_small_presets_differ_only_in_their_memory():

@@ -10,11 +10,14 @@ import pytest
 import torch
 from helpers.params import DATASET_REPO as REPO
 from helpers.policy_runs import build_policy, collate, train_preset
+from safetensors import safe_open
 
 from lerobot_activearena.cli.cache_vision import main as cache_vision
 from lerobot_activearena.policies.activearena_oft.configuration_activearena_oft import ActiveArenaOFTConfig
+from lerobot_activearena.policies.activearena_vla.helpers import blank_memory_pixels
 from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
     FRAME_VALID,
+    GRID,
     MEMORY_INDEX,
     PIXELS,
 )
@@ -127,6 +130,40 @@ def test_a_frozen_memory_tower_lets_the_current_frames_tower_train_beside_the_ca
     assert [g["lr"] for g in groups] == [cached_cfg.optimizer_lr, 1e-5, cached_cfg.head_lr]
     assert {id(p) for p in groups[1]["params"]} == {id(p) for p in cached.vlm.model.visual.parameters()}
     assert not {id(p) for g in groups for p in g["params"]} & {id(p) for p in copy}
+
+
+def test_the_current_frame_at_more_tokens_reads_its_memory_from_the_same_table(
+    tiny_vlm, bell_count_dataset, table
+):
+    """current_image_pixels: the current frame read at 4x the memory frames' pixels (4x their tokens),
+    the memory frames at image_max_pixels, so the table made at that size still holds them: decoding
+    the memory from the dataset's images (the frames packed at two sizes) and reading it from the table
+    give one loss, and the current frame's tokens differ from those of one size for all."""
+    bigger = {"current_image_pixels": 4 * PIXELS_96, "freeze_vision": False, "memory_vision": "frozen"}
+    live, live_pre, _, live_ds = build_policy(_config(tiny_vlm, **bigger), bell_count_dataset)
+    cached, cached_pre, _, cached_ds = build_policy(
+        _config(tiny_vlm, vision_cache=str(table), **bigger), bell_count_dataset
+    )
+    indices = [3, 70, len(live_ds) - 40]
+    a, b = collate(live_ds, live_pre, indices), collate(cached_ds, cached_pre, indices)
+    tokens_a, tokens_b = a[GRID].prod(-1), b[GRID].prod(-1)
+    assert torch.equal(tokens_a[a[FRAME_VALID]], tokens_b[b[FRAME_VALID]])
+    with safe_open(str(table), "pt") as f:
+        table_tokens = int(torch.tensor(json.loads(f.metadata()["meta"])["grid"]).prod())
+    assert (tokens_b[:, :-1] == table_tokens).all() and (tokens_b[:, -1] == 4 * table_tokens).all()
+    # the live batch packs its frames of two sizes as one (patches, dim) run
+    assert a[PIXELS].dim() == 2 and len(a[PIXELS]) == int(tokens_a[a[FRAME_VALID]].sum())
+    assert b[PIXELS].shape[:2] == (3, 4 * table_tokens)
+    blank = blank_memory_pixels(a[PIXELS], a[FRAME_VALID], a[GRID])  # the memory rows gray, the current kept
+    sizes = tokens_a[a[FRAME_VALID]].tolist()
+    current = a[FRAME_VALID].nonzero()[:, 1] == a[FRAME_VALID].shape[1] - 1
+    for row, blank_row, is_current in zip(a[PIXELS].split(sizes), blank.split(sizes), current, strict=True):
+        assert torch.equal(blank_row, row) if is_current else not blank_row.any()
+    loss_a, _ = live.forward(a)
+    loss_b, _ = cached.forward(b)
+    assert torch.allclose(loss_a, loss_b, atol=1e-5)
+    _, plain_pre, _, plain_ds = build_policy(_config(tiny_vlm, vision_cache=str(table)), bell_count_dataset)
+    assert (collate(plain_ds, plain_pre, indices)[GRID].prod(-1) == table_tokens).all()
 
 
 def test_a_cache_of_another_tower_or_image_size_is_refused(tiny_vlm, bell_count_dataset, table):

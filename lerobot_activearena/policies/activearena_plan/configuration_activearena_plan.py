@@ -37,5 +37,10 @@ class ActiveArenaPlanConfig(ActiveArenaOFTConfig):
                 f"activearena_plan plans at every chunk on the stride-{STRIDE} grid: n_action_steps must be "
                 f"{STRIDE}, got {self.n_action_steps}"
             )
+        if self.current_image_pixels is not None:
+            raise ValueError(
+                "activearena_plan's planner and executor read every frame at one size: leave "
+                "--policy.current_image_pixels unset"
+            )
         if self.planner_path and Path(self.planner_path).expanduser().is_dir():
             self.planner_path = str(Path(self.planner_path).expanduser().resolve())

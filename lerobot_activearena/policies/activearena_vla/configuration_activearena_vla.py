@@ -97,6 +97,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     image_max_pixels: int = (
         HEAD_WIDTH * HEAD_HEIGHT
     )  # the head camera's native size: 192 visual tokens per image
+    # The current frame's pixel budget, read at exactly this many pixels (upscaled where the image is
+    # smaller: 196,608 reads a 192 x 256 frame at 384 x 512, 4x the tokens); the memory frames keep
+    # image_max_pixels (and a vision cache made at it). None: the current frame as the memory's.
+    current_image_pixels: int | None = None
     # Where the dataset's annotations are read at training time (subtask text, keyframe columns);
     # filled by lerobot-train from the dataset, unused at evaluation.
     dataset_root: str | None = None

@@ -148,18 +148,40 @@ def blank_entry(entry: dict) -> dict:
     return entry["blank"]
 
 
-def blank_memory_pixels(pixels: Tensor, valid: Tensor) -> Tensor:
-    """``blank_entry`` for a dataset batch: the pixel values (one row a present frame, packed in
-    (sample, slot) order) of every frame before a sample's last slot (its memory frames) set to gray
-    (zeros); the current frames' kept."""
-    slots = valid.cpu().nonzero()[:, 1]
-    if len(slots) != len(pixels):
+def blank_memory_pixels(pixels: Tensor, valid: Tensor, grid: Tensor) -> Tensor:
+    """``blank_entry`` for a dataset batch: the pixel values (every present frame's, packed in
+    (sample, slot) order; ``grid`` (batch, slots, 3)) of every frame before a sample's last slot (its
+    memory frames) set to gray (zeros); the current frames' kept."""
+    valid = valid.cpu()
+    slots = valid.nonzero()[:, 1]
+    try:
+        rows = frame_rows(pixels, grid.cpu()[valid])
+    except ValueError as err:
         raise ValueError(
-            f"the batch packs the pixels of {len(pixels)} frames, frame_valid marks {len(slots)}: blanking "
+            f"the batch's pixel values do not fit the {len(slots)} frames frame_valid marks ({err}): blanking "
             "needs every present frame's (a batch read through a vision cache has only the current frame's)"
+        ) from err
+    last = valid.shape[1] - 1
+    return pack_frames(
+        [r if s == last else torch.zeros_like(r) for r, s in zip(rows, slots.tolist(), strict=True)]
+    )
+
+
+def frame_rows(pixels: Tensor, grid: Tensor) -> list[Tensor]:
+    """``pixels`` (either PIXELS layout) as one (patches, dim) tensor per frame of the (frames, 3) grid."""
+    rows = list(pixels) if pixels.dim() == 3 else list(torch.split(pixels, grid.prod(-1).tolist()))
+    if len(rows) != len(grid) or any(len(r) != int(g.prod()) for r, g in zip(rows, grid, strict=False)):
+        raise ValueError(
+            f"pixel values of {sum(len(r) for r in rows)} patches do not fit the grids {grid.tolist()}"
         )
-    current = (slots == valid.shape[1] - 1).to(pixels)
-    return pixels * current.view(-1, *[1] * (pixels.dim() - 1))
+    return rows
+
+
+def pack_frames(rows: list[Tensor]) -> Tensor:
+    """Per-frame (patches, dim) pixel values in PIXELS' layout: stacked where all have one size."""
+    if len({tuple(r.shape) for r in rows}) == 1:
+        return torch.stack(rows)
+    return torch.cat(rows)
 
 
 def stack_frames(entries: list[list[dict]], slots: int, with_state: bool = True):
@@ -170,7 +192,7 @@ def stack_frames(entries: list[list[dict]], slots: int, with_state: bool = True)
     the backbone reuses an entry's ``vision`` features or stores them there."""
     first = entries[0][-1]
     batch_size = len(entries)
-    pixels = torch.stack([e["pixels"] for row in entries for e in row])
+    pixels = pack_frames([e["pixels"] for row in entries for e in row])
     grid = first["grid"].new_ones((batch_size, slots, 3))
     valid = torch.zeros(batch_size, slots, dtype=torch.bool)
     state = None

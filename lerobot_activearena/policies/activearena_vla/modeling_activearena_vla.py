@@ -39,6 +39,7 @@ from .processor_activearena_vla import (
     FRAMES,
     GRID,
     MEMORY_INDEX,
+    MEMORY_PIXELS,
     PIXELS,
     PREFIX_IDS,
     PROMPT_IDS,
@@ -47,8 +48,8 @@ from .processor_activearena_vla import (
     THINK_IDS,
     THINK_MASK,
     check_saved_annotations,
-    image_inputs,
-    one_token_pixels,
+    current_frame_inputs,
+    memory_frame_inputs,
     to_uint8,
 )
 from .state_encoder import StateEncoder
@@ -245,12 +246,19 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 (kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype)
             )
         pixel_frames = [i for i, k in enumerate(images) if not without_pixels or k not in without_pixels]
-        if len(pixels) != len(pixel_frames):
+        if pixels.dim() == 3 and len(pixels) != len(pixel_frames):
             raise ValueError(
                 f"pixel values for {len(pixels)} frames, but frame_valid marks {len(pixel_frames)} present "
                 "that need them: pixel_values holds the present frames only, packed in (sample, frame) order"
             )
-        pv = pixels.flatten(0, 1).to(dev, self.vlm.dtype)  # (patches of all frames, dim)
+        pv = pixels.reshape(-1, pixels.shape[-1])  # (patches of all frames, dim)
+        needed = int(thw[pixel_frames].prod(-1).sum()) if pixel_frames else 0
+        if len(pv) != needed:
+            raise ValueError(
+                f"pixel values of {len(pv)} patches, but the grids of the {len(pixel_frames)} frames that need "
+                f"them hold {needed}: pixel_values holds the present frames only, packed in (sample, frame) order"
+            )
+        pv = pv.to(dev, self.vlm.dtype)
         return {
             "input_ids": input_ids,
             "kind": kind,
@@ -430,11 +438,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 self.memory_tower if self.memory_tower is not None else self.vlm.model.visual,
                 self.config.image_max_pixels,
             )
-        table, grid = self._vision_table, batch[GRID][:, -1].cpu()
+        table, grid = self._vision_table, batch[GRID][:, :-1].cpu()  # the memory slots'
         if not bool((grid == table.grid).all()):
             raise ValueError(
-                f"the vision cache's frames have grid {table.grid.tolist()}, this batch's current frames "
-                f"{grid[0].tolist()}: the cache was made from images of another size"
+                f"the vision cache's frames have grid {table.grid.tolist()}, this batch's memory frames "
+                f"{grid[0, 0].tolist()}: the cache was made from images of another size"
             )
         cache = {}
         for b, row in enumerate(batch[MEMORY_INDEX].cpu().tolist()):
@@ -567,7 +575,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             state = state[:, None] if state is not None and state.dim() == 2 else state
             pixels, grid, valid = batch[PIXELS], batch[GRID], batch[FRAME_VALID]
             if self.config.memory_ablation == "blank":
-                pixels = blank_memory_pixels(pixels, valid)
+                pixels = blank_memory_pixels(pixels, valid, grid)
         else:
             if self._bank is None:
                 self.start_episode(batch)
@@ -582,8 +590,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         if self.config.fixed_view:  # placeholders: the postprocessor sets torso and head to home
             pred = nn.functional.pad(pred, (0, self.config.action_dim - pred.shape[-1]))
         # the current frames' features, for a memory write at this step (none where a memory tower
-        # of its own reads the memory: that tower encodes the frame at its first use as memory)
-        if cache is not None and self.memory_tower is None:
+        # of its own reads the memory, or the memory keeps frames at another size: those are encoded
+        # at their first use as memory)
+        if cache is not None and self.memory_tower is None and self.config.current_image_pixels is None:
             self._current_vision = {
                 b: entry.get("vision") for (b, slot), entry in cache.items() if slot == valid.shape[1] - 1
             }
@@ -684,26 +693,42 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             tokens.append(tuple(row[: row.index(stop) + 1] if stop in row else row))
         return tokens, step_logits, first
 
-    def ensure_pixels(self, batch: dict[str, Tensor]) -> None:
-        """An env batch's pixel values and grids (``PIXELS``, ``GRID``), from its ``FRAMES`` through the
-        backbone's image processor, at the first step that reads them (the preprocessor defers them)."""
-        if PIXELS in batch or FRAMES not in batch:
-            return
+    @property
+    def image_processor(self):
+        """The backbone's image processor (loaded at first use)."""
         if not hasattr(self, "_image_processor"):
             from transformers import AutoProcessor
 
             processor = load_from_vlm_path(AutoProcessor.from_pretrained, self.config.vlm_path, "processor")
             self._image_processor = processor.image_processor
-        images = self._image_processor
+        return self._image_processor
+
+    def ensure_pixels(self, batch: dict[str, Tensor]) -> None:
+        """An env batch's pixel values and grids (``PIXELS``, ``GRID``), from its ``FRAMES`` through the
+        backbone's image processor, at the first step that reads them (the preprocessor defers them)."""
+        if PIXELS in batch or FRAMES not in batch:
+            return
         frames = to_uint8(batch[FRAMES].images.to(self.device))
-        pv, grid = image_inputs(
-            images,
-            frames,
-            self.config.image_max_pixels,
-            one_token_pixels(images),
-            self.device,
-        )
+        pv, grid = current_frame_inputs(self.image_processor, frames, self.config, self.device)
         batch[PIXELS], batch[GRID] = pv, grid[:, None]
+
+    def memory_pixels(self, batch: dict[str, Tensor]) -> tuple[Tensor, Tensor]:
+        """An env batch's (B, patches, dim) pixel values and (B, 3) grids as its memory keeps them:
+        the current frame's, or with ``current_image_pixels`` the frames at ``image_max_pixels``."""
+        self.ensure_pixels(batch)
+        if self.config.current_image_pixels is None:
+            return batch[PIXELS], batch[GRID][:, -1]
+        if MEMORY_PIXELS not in batch:
+            if FRAMES not in batch:
+                raise ValueError(
+                    "with --policy.current_image_pixels the memory keeps the env frames at image_max_pixels, "
+                    "but this batch carries only the current frame's pixels: keep the preprocessor's "
+                    "defer_env_frames on"
+                )
+            frames = to_uint8(batch[FRAMES].images.to(self.device))
+            pv, grid = memory_frame_inputs(self.image_processor, frames, self.config, self.device)
+            batch[MEMORY_PIXELS] = (pv, grid)
+        return batch[MEMORY_PIXELS]
 
     @torch.no_grad()
     def select_action(self, batch: dict[str, Tensor], **kwargs) -> Tensor:
@@ -739,12 +764,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         if self.config.uses_history:
             for b in range(batch[FRAME_VALID].shape[0]):
                 if self.writes_frame(b):  # vision features: this step's, else computed at first use
-                    self.ensure_pixels(batch)
+                    pixels, grid = self.memory_pixels(batch)
                     self._bank[b].append(
                         {
                             "t": self._t,
-                            "pixels": batch[PIXELS][b],  # one frame a sample
-                            "grid": batch[GRID][b, -1],
+                            "pixels": pixels[b],  # one frame a sample
+                            "grid": grid[b],
                             "state": batch[OBS_STATE][b] if OBS_STATE in batch else None,
                             "vision": self._current_vision.get(b),
                         }

@@ -25,16 +25,20 @@ from ...sim.action import HEAD_PITCH, TORSO_YAW
 from ...sim.embodiment import HOME_HEAD_PITCH, HOME_TORSO_YAW
 from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 from .configuration_activearena_vla import IMAGE_KEY, ActiveArenaVLAConfig
+from .helpers import pack_frames
 from .vlm_loading import load_from_vlm_path
 
 VLM = "observation.vlm."
-# PIXELS holds the present frames only, packed in (sample, frame) order: (frames present, patches, dim);
+# PIXELS holds the present frames only, packed in (sample, frame) order: (frames present, patches, dim)
+# where every frame has one size, else (all their patches, dim) (--policy.current_image_pixels);
 # FRAME_VALID (batch, frames) says which they are, GRID (batch, frames, 3) gives every slot's grid.
 PIXELS, GRID, FRAME_VALID = VLM + "pixel_values", VLM + "image_grid_thw", VLM + "frame_valid"
 PREFIX_IDS, PROMPT_IDS, PROMPT_MASK = VLM + "prefix_ids", VLM + "prompt_ids", VLM + "prompt_mask"
 THINK_IDS, THINK_MASK, RAW_STATE = VLM + "think_ids", VLM + "think_mask", VLM + "raw_state"
 # training with a vision cache: (batch, history) global indices of the memory frames, -1 where padded
 MEMORY_INDEX = VLM + "memory_index"
+# evaluation with --policy.current_image_pixels: (pixels, grids) of the env frames at the memory's size
+MEMORY_PIXELS = VLM + "memory_pixels"
 # training with --policy.decision_weight: (batch,) each sample's action-loss weight
 ACTION_WEIGHT = VLM + "action_weight"
 FRAMES = VLM + "frames"  # an env step's current frames (EnvFrames), until the policy needs their pixels
@@ -89,6 +93,34 @@ def image_inputs(
     return pv.reshape(len(frames), -1, pv.shape[-1]), out["image_grid_thw"].cpu()
 
 
+def current_frame_inputs(
+    image_processor, frames: torch.Tensor, config, device: torch.device
+) -> tuple[torch.Tensor, torch.Tensor]:
+    """``image_inputs`` of env frames as the policy ``config`` reads its current frame: at exactly
+    ``current_image_pixels`` where set (upscaled where the image is smaller), else as its memory."""
+    budget = getattr(config, "current_image_pixels", None)
+    low = one_token_pixels(image_processor) if budget is None else budget
+    return image_inputs(image_processor, frames, budget or config.image_max_pixels, low, device)
+
+
+def memory_frame_inputs(
+    image_processor, frames: torch.Tensor, config, device: torch.device
+) -> tuple[torch.Tensor, torch.Tensor]:
+    """``image_inputs`` of env frames as the policy ``config`` keeps them in its memory."""
+    return image_inputs(
+        image_processor, frames, config.image_max_pixels, one_token_pixels(image_processor), device
+    )
+
+
+def frame_grid(image_processor, height: int, width: int, max_pixels: int, min_pixels: int) -> torch.Tensor:
+    """The (3,) grid ``image_inputs`` gives a ``height`` x ``width`` image (Qwen's smart resize)."""
+    from transformers.models.qwen2_vl.image_processing_qwen2_vl import smart_resize
+
+    patch = image_processor.patch_size
+    h, w = smart_resize(height, width, patch * image_processor.merge_size, min_pixels, max_pixels)
+    return torch.tensor([1, h // patch, w // patch])
+
+
 # what the annotation step writes into training batches, set from the policy config when it is built
 ANNOTATION_SETTINGS = (
     "memory",
@@ -100,6 +132,8 @@ ANNOTATION_SETTINGS = (
     "decision_layout",
     "decision_where",
 )
+# what the inputs step reads from the policy config: checked alike
+INPUT_SETTINGS = ("current_image_pixels",)
 
 
 def check_saved_annotations(config, checkpoint) -> None:
@@ -112,23 +146,25 @@ def check_saved_annotations(config, checkpoint) -> None:
     path = Path(checkpoint) / "policy_preprocessor.json"
     if not path.is_file():
         return  # a hub id or a bare model folder: nothing saved to disagree with
-    saved = [
-        st.get("config", {})
-        for st in json.loads(path.read_text()).get("steps", [])
-        if str(st.get("registry_name", "")).endswith("_annotations")
-    ]
-    fields = ActiveArenaAnnotationStep.__dataclass_fields__  # a setting saved before it existed: its default
+    steps = json.loads(path.read_text()).get("steps", [])
     differ = []
-    for step in saved:
-        for name in ANNOTATION_SETTINGS:
-            asked, kept = getattr(config, name), step.get(name, fields[name].default)
-            if asked != kept:
-                differ.append(f"{name}={asked!r} (saved: {kept!r})")
+    for suffix, step_type, names in (
+        ("_annotations", ActiveArenaAnnotationStep, ANNOTATION_SETTINGS),
+        ("_vlm_inputs", ActiveArenaVLMInputsStep, INPUT_SETTINGS),
+    ):
+        fields = step_type.__dataclass_fields__  # a setting saved before it existed: its default
+        for st in steps:
+            if not str(st.get("registry_name", "")).endswith(suffix):
+                continue
+            for name in names:
+                asked, kept = getattr(config, name), st.get("config", {}).get(name, fields[name].default)
+                if asked != kept:
+                    differ.append(f"{name}={asked!r} (saved: {kept!r})")
     if differ:
         raise ValueError(
-            f"the policy config asks for {', '.join(differ)}, but {path} annotates training batches as "
-            "saved and lerobot-train loads it unchanged: set these in its annotation step's config (or "
-            "copy the checkpoint and edit the copy's), or leave them off the command line"
+            f"the policy config asks for {', '.join(differ)}, but {path} prepares training batches as "
+            "saved and lerobot-train loads it unchanged: set these in its step's config (or copy the "
+            "checkpoint and edit the copy's), or leave them off the command line"
         )
 
 
@@ -263,6 +299,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
     prompt_template: str = PROMPT  # the prompt after the images; {instruction}: the task (or subtask)
     subtask_prompt: bool = False  # training: the prompt names the annotated subtask, not the task
     image_max_pixels: int = HEAD_WIDTH * HEAD_HEIGHT
+    current_image_pixels: int | None = None  # the current frame's size (config's); None: as the memory's
     # Where the image processor runs: the policy's device, so on a GPU the resizing and patching of
     # the 13 frames per sample happen there and do not hold up the training loop's CPU.
     device: str = "cpu"
@@ -283,6 +320,11 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             raise ValueError(
                 f"image_max_pixels={self.image_max_pixels} is below one token of {self.vlm_path!r} "
                 f"({self._min_pixels} pixels); raise --policy.image_max_pixels"
+            )
+        if self.current_image_pixels is not None and self.current_image_pixels < self._min_pixels:
+            raise ValueError(
+                f"current_image_pixels={self.current_image_pixels} is below one token of {self.vlm_path!r} "
+                f"({self._min_pixels} pixels); raise --policy.current_image_pixels"
             )
 
     @property
@@ -323,8 +365,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
                 )
             obs[MEMORY_INDEX] = memory_index
         # Padded history frames (before the episode start) are never read: only present frames go
-        # through the image processor, and only theirs are kept (all frames share one size and grid).
-        keep = valid.flatten()
+        # through the image processor, and only theirs are kept.
         device = self._device()
         if self.defer_env_frames and n_frames == 1 and transition.get(TransitionKey.ACTION) is None:
             # an env step: the policy turns the frames into pixels only at the steps that read them
@@ -332,18 +373,12 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             # neither copy them to the device nor convert them
             obs[FRAMES] = EnvFrames(img[:, 0].detach())
         else:
-            frames = to_uint8(img.detach().to(device).flatten(0, 1)[keep.to(device)])
-            pv, grid = image_inputs(
-                self._processor.image_processor, frames, self.image_max_pixels, self._min_pixels, device
+            obs[PIXELS], obs[GRID] = self._pixels(img, valid, device)
+        if memory_index is not None:  # history slots first, at the memory's (the cache's) size
+            memory_grid = frame_grid(self._processor.image_processor, *img.shape[-2:], *self.memory_budget)
+            obs[GRID] = torch.cat(
+                [memory_grid.repeat(batch_size, memory_index.shape[1], 1), obs[GRID]], dim=1
             )
-            grids = grid
-            if not bool(keep.all()):
-                grids = grid[:1].repeat(batch_size * n_frames, 1)
-                grids[keep] = grid
-            obs[PIXELS] = pv
-            obs[GRID] = grids.reshape(batch_size, n_frames, 3)
-        if memory_index is not None:  # history slots first (every frame has the current one's grid)
-            obs[GRID] = obs[GRID].repeat(1, memory_index.shape[1] + 1, 1)
             valid = torch.cat([memory_index >= 0, valid], dim=1)
         obs[FRAME_VALID] = valid
         if OBS_STATE in obs:
@@ -376,6 +411,41 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
         return out
 
+    def _pixels(self, img: torch.Tensor, valid: torch.Tensor, device) -> tuple[torch.Tensor, torch.Tensor]:
+        """PIXELS and GRID of (batch, frames, C, H, W) float images: the present frames', the last slot
+        (the current frame) at ``current_image_pixels`` where set, the others at ``image_max_pixels``."""
+        images = self._processor.image_processor
+        current = torch.zeros_like(valid)
+        current[:, -1] = True
+        groups = [(~current, self.memory_budget), (current, self.current_budget)]
+        if self.current_budget == self.memory_budget:  # one size: the frames through one call
+            groups = [(torch.ones_like(valid), self.memory_budget)]
+        grids = torch.zeros(*valid.shape, 3, dtype=torch.long)
+        rows: dict[tuple[int, int], torch.Tensor] = {}
+        for where, (high, low) in groups:
+            present = where & valid
+            if not bool(present.any()):
+                continue
+            frames = to_uint8(img.detach().to(device)[present.to(device)])
+            pv, grid = image_inputs(images, frames, high, low, device)
+            for (b, j), p, g in zip(present.nonzero().tolist(), pv, grid, strict=True):
+                rows[(b, j)], grids[b, j] = p, g
+        # a padded slot (before the episode start) is never read: it gets its sample's current grid
+        grids = torch.where(valid[..., None], grids, grids[:, -1:])
+        return pack_frames([rows[k] for k in sorted(rows)]), grids
+
+    @property
+    def memory_budget(self) -> tuple[int, int]:
+        """The (max, min) pixels the memory frames are read at."""
+        return self.image_max_pixels, self._min_pixels
+
+    @property
+    def current_budget(self) -> tuple[int, int]:
+        """The (max, min) pixels the current frame is read at: exactly current_image_pixels where set."""
+        if self.current_image_pixels is None:
+            return self.memory_budget
+        return self.current_image_pixels, self.current_image_pixels
+
     def _device(self) -> torch.device:
         """The configured device, or the CPU where it does not exist (a CUDA checkpoint evaluated on a
         CPU machine with --policy.device=cpu)."""
@@ -392,6 +462,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
             "prompt_template": self.prompt_template,
             "subtask_prompt": self.subtask_prompt,
             "image_max_pixels": self.image_max_pixels,
+            "current_image_pixels": self.current_image_pixels,
             "device": self.device,
             "defer_env_frames": self.defer_env_frames,
         }
@@ -457,6 +528,7 @@ def make_activearena_vla_pre_post_processors(
         prompt_template=prompt_template,
         subtask_prompt=subtask_prompt,
         image_max_pixels=config.image_max_pixels,
+        current_image_pixels=config.current_image_pixels,
         device=config.device or "cpu",
     )
     return make_policy_processor_pipelines(
