@@ -238,6 +238,29 @@ def test_memory_state_frames_give_the_memory_its_poses_and_the_current_frame_non
     assert not torch.allclose(chunk(every, moved_now), chunk(every, state))
 
 
+def test_memory_state_dropout_shows_the_current_state_on_the_memory_frames_in_training_only(vlm, root):
+    """memory_state_dropout=1: in training every memory frame's state token reads the current state (the
+    loss of a batch whose memory states are set so); 0 keeps their own; evaluation always reads them."""
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=4, memory_state_dropout=1.0)
+    batch = collate(ds, pre, [len(ds) - 10, 70])
+    assert int(batch["observation.vlm.frame_valid"][0, :-1].sum()) >= 2
+    state = batch["observation.state"]
+    flat = {**batch, "observation.state": state[:, -1:].expand_as(state).clone()}
+    policy.train()
+    dropped = policy.forward(dict(batch))[0]
+    policy.config.memory_state_dropout = 0.0
+    assert torch.allclose(dropped, policy.forward(dict(flat))[0], atol=1e-6)
+    assert not torch.allclose(dropped, policy.forward(dict(batch))[0], atol=1e-4)
+    policy.config.memory_state_dropout = 1.0
+    policy.eval()
+    with torch.no_grad():
+        assert not torch.allclose(policy.forward(dict(batch))[0], policy.forward(dict(flat))[0], atol=1e-4)
+    with pytest.raises(ValueError, match="memory_state_dropout"):
+        ActiveArenaOFTConfig(memory="none", history=0, memory_state_dropout=0.5, device="cpu")
+    with pytest.raises(ValueError, match="probability"):
+        ActiveArenaOFTConfig(memory_state_dropout=1.5, device="cpu")
+
+
 def _encode_args(batch):
     return (
         batch[PIXELS],

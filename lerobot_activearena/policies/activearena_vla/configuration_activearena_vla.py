@@ -44,6 +44,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # Which images get a state token: all | memory (the memory frames' poses only, none for the current
     # frame: the policy can recall where it saw a thing without copying where it is now).
     state_frames: str = "all"
+    # Training: the chance that a sample's memory frames carry its current state in place of their own,
+    # so their state tokens show no motion so far and the actions must place the reach from the images
+    # (against copying the trend of the states); evaluation always reads the true states. 0: never.
+    memory_state_dropout: float = 0.0
     # Keep the vision tower as it was loaded (no gradient, not optimised): a grounded tower as a fixed
     # feature extractor. With it, ``vision_cache`` (a table from activearena-cache-vision) gives the chunk
     # memory's history frames their features at training time by frame index: LeRobot then decodes only
@@ -224,6 +228,15 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
         if not 1 <= self.n_action_steps <= self.chunk_size:
             raise ValueError(
                 f"n_action_steps ({self.n_action_steps}) must be in 1..chunk_size ({self.chunk_size})"
+            )
+        if not 0.0 <= self.memory_state_dropout <= 1.0:
+            raise ValueError(
+                f"--policy.memory_state_dropout is a probability in [0, 1], got {self.memory_state_dropout}"
+            )
+        if self.memory_state_dropout and not (self.use_state and self.uses_history):
+            raise ValueError(
+                "--policy.memory_state_dropout replaces the memory frames' states: it needs use_state=true and "
+                f"a memory (got use_state={self.use_state}, memory={self.memory}, history={self.history})"
             )
         if self.state_frames not in ("all", "memory"):
             raise ValueError(f"--policy.state_frames must be all or memory, got {self.state_frames!r}")

@@ -409,6 +409,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         state = batch.get(OBS_STATE) if self.state_encoder is not None else None
         if state is not None and state.dim() == 2:
             state = state[:, None]
+        if state is not None and self.training and self.config.memory_state_dropout > 0:
+            dropped = torch.rand(len(state), device=state.device) < self.config.memory_state_dropout
+            state = torch.where(dropped[:, None, None], state[:, -1:].expand_as(state), state)
         think = batch.get(THINK_IDS) if self.config.think != "none" else None
         self.ensure_pixels(batch)
         return (
