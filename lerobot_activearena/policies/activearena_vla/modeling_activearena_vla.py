@@ -246,11 +246,6 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 (kind == STATE)[..., None], self.state_encoder(rows, slots).to(embeds.dtype)
             )
         pixel_frames = [i for i, k in enumerate(images) if not without_pixels or k not in without_pixels]
-        if pixels.dim() == 3 and len(pixels) != len(pixel_frames):
-            raise ValueError(
-                f"pixel values for {len(pixels)} frames, but frame_valid marks {len(pixel_frames)} present "
-                "that need them: pixel_values holds the present frames only, packed in (sample, frame) order"
-            )
         pv = pixels.reshape(-1, pixels.shape[-1])  # (patches of all frames, dim)
         needed = int(thw[pixel_frames].prod(-1).sum()) if pixel_frames else 0
         if len(pv) != needed:

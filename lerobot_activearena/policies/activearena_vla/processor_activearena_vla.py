@@ -93,23 +93,33 @@ def image_inputs(
     return pv.reshape(len(frames), -1, pv.shape[-1]), out["image_grid_thw"].cpu()
 
 
+def pixel_budgets(
+    image_max_pixels: int, current_image_pixels: int | None, min_pixels: int
+) -> tuple[tuple[int, int], tuple[int, int]]:
+    """The (max, min) pixels the memory frames and the current frame are read at: the current one at
+    exactly ``current_image_pixels`` where set (upscaled where the image is smaller), else as the memory's."""
+    memory = (image_max_pixels, min_pixels)
+    return memory, memory if current_image_pixels is None else (current_image_pixels, current_image_pixels)
+
+
 def current_frame_inputs(
     image_processor, frames: torch.Tensor, config, device: torch.device
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """``image_inputs`` of env frames as the policy ``config`` reads its current frame: at exactly
-    ``current_image_pixels`` where set (upscaled where the image is smaller), else as its memory."""
-    budget = getattr(config, "current_image_pixels", None)
-    low = one_token_pixels(image_processor) if budget is None else budget
-    return image_inputs(image_processor, frames, budget or config.image_max_pixels, low, device)
+    """``image_inputs`` of env frames as the policy ``config`` reads its current frame."""
+    budgets = pixel_budgets(
+        config.image_max_pixels, config.current_image_pixels, one_token_pixels(image_processor)
+    )
+    return image_inputs(image_processor, frames, *budgets[1], device)
 
 
 def memory_frame_inputs(
     image_processor, frames: torch.Tensor, config, device: torch.device
 ) -> tuple[torch.Tensor, torch.Tensor]:
     """``image_inputs`` of env frames as the policy ``config`` keeps them in its memory."""
-    return image_inputs(
-        image_processor, frames, config.image_max_pixels, one_token_pixels(image_processor), device
+    budgets = pixel_budgets(
+        config.image_max_pixels, config.current_image_pixels, one_token_pixels(image_processor)
     )
+    return image_inputs(image_processor, frames, *budgets[0], device)
 
 
 def frame_grid(image_processor, height: int, width: int, max_pixels: int, min_pixels: int) -> torch.Tensor:
@@ -375,7 +385,7 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         else:
             obs[PIXELS], obs[GRID] = self._pixels(img, valid, device)
         if memory_index is not None:  # history slots first, at the memory's (the cache's) size
-            memory_grid = frame_grid(self._processor.image_processor, *img.shape[-2:], *self.memory_budget)
+            memory_grid = frame_grid(self._processor.image_processor, *img.shape[-2:], *self.budgets[0])
             obs[GRID] = torch.cat(
                 [memory_grid.repeat(batch_size, memory_index.shape[1], 1), obs[GRID]], dim=1
             )
@@ -415,36 +425,33 @@ class ActiveArenaVLMInputsStep(ProcessorStep):
         """PIXELS and GRID of (batch, frames, C, H, W) float images: the present frames', the last slot
         (the current frame) at ``current_image_pixels`` where set, the others at ``image_max_pixels``."""
         images = self._processor.image_processor
+        memory_budget, current_budget = self.budgets
         current = torch.zeros_like(valid)
         current[:, -1] = True
-        groups = [(~current, self.memory_budget), (current, self.current_budget)]
-        if self.current_budget == self.memory_budget:  # one size: the frames through one call
-            groups = [(torch.ones_like(valid), self.memory_budget)]
+        groups = [(~current, memory_budget), (current, current_budget)]
+        if current_budget == memory_budget:  # one size: the frames through one call
+            groups = [(torch.ones_like(valid), memory_budget)]
         grids = torch.zeros(*valid.shape, 3, dtype=torch.long)
-        rows: dict[tuple[int, int], torch.Tensor] = {}
+        parts = []
         for where, (high, low) in groups:
             present = where & valid
             if not bool(present.any()):
                 continue
             frames = to_uint8(img.detach().to(device)[present.to(device)])
             pv, grid = image_inputs(images, frames, high, low, device)
-            for (b, j), p, g in zip(present.nonzero().tolist(), pv, grid, strict=True):
-                rows[(b, j)], grids[b, j] = p, g
+            grids[present] = grid
+            parts.append((present.nonzero().tolist(), pv))
         # a padded slot (before the episode start) is never read: it gets its sample's current grid
         grids = torch.where(valid[..., None], grids, grids[:, -1:])
+        if len(parts) == 1:  # already in (sample, slot) order
+            return parts[0][1], grids
+        rows = {tuple(key): p for keys, pv in parts for key, p in zip(keys, pv, strict=True)}
         return pack_frames([rows[k] for k in sorted(rows)]), grids
 
     @property
-    def memory_budget(self) -> tuple[int, int]:
-        """The (max, min) pixels the memory frames are read at."""
-        return self.image_max_pixels, self._min_pixels
-
-    @property
-    def current_budget(self) -> tuple[int, int]:
-        """The (max, min) pixels the current frame is read at: exactly current_image_pixels where set."""
-        if self.current_image_pixels is None:
-            return self.memory_budget
-        return self.current_image_pixels, self.current_image_pixels
+    def budgets(self) -> tuple[tuple[int, int], tuple[int, int]]:
+        """The (max, min) pixels the memory frames and the current frame are read at (``pixel_budgets``)."""
+        return pixel_budgets(self.image_max_pixels, self.current_image_pixels, self._min_pixels)
 
     def _device(self) -> torch.device:
         """The configured device, or the CPU where it does not exist (a CUDA checkpoint evaluated on a
