@@ -382,9 +382,9 @@ def test_env_frames_become_pixels_only_where_the_policy_reads_them(vlm, root, me
         vlm, root, memory=memory, history=4, think="none", n_action_steps=n_action_steps
     )
     step = next(s for s in pre.steps if isinstance(s, ActiveArenaVLMInputsStep))
-    processed, real = [], modeling.current_frame_inputs
+    processed, real = [], modeling.frame_inputs
     monkeypatch.setattr(
-        modeling, "current_frame_inputs", lambda *a, **k: processed.append(policy.step) or real(*a, **k)
+        modeling, "frame_inputs", lambda *a, **k: processed.append(policy.step) or real(*a, **k)
     )
     runs = {}
     for defer in (True, False):

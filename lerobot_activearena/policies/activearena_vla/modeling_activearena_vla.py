@@ -48,8 +48,7 @@ from .processor_activearena_vla import (
     THINK_IDS,
     THINK_MASK,
     check_saved_annotations,
-    current_frame_inputs,
-    memory_frame_inputs,
+    frame_inputs,
     to_uint8,
 )
 from .state_encoder import StateEncoder
@@ -707,7 +706,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         if PIXELS in batch or FRAMES not in batch:
             return
         frames = to_uint8(batch[FRAMES].images.to(self.device))
-        pv, grid = current_frame_inputs(self.image_processor, frames, self.config, self.device)
+        pv, grid = frame_inputs(self.image_processor, frames, self.config, self.device)
         batch[PIXELS], batch[GRID] = pv, grid[:, None]
 
     def memory_pixels(self, batch: dict[str, Tensor]) -> tuple[Tensor, Tensor]:
@@ -724,7 +723,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                     "defer_env_frames on"
                 )
             frames = to_uint8(batch[FRAMES].images.to(self.device))
-            pv, grid = memory_frame_inputs(self.image_processor, frames, self.config, self.device)
+            pv, grid = frame_inputs(self.image_processor, frames, self.config, self.device, memory=True)
             batch[MEMORY_PIXELS] = (pv, grid)
         return batch[MEMORY_PIXELS]
 

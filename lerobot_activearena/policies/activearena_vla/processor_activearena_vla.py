@@ -102,24 +102,15 @@ def pixel_budgets(
     return memory, memory if current_image_pixels is None else (current_image_pixels, current_image_pixels)
 
 
-def current_frame_inputs(
-    image_processor, frames: torch.Tensor, config, device: torch.device
+def frame_inputs(
+    image_processor, frames: torch.Tensor, config, device: torch.device, memory: bool = False
 ) -> tuple[torch.Tensor, torch.Tensor]:
-    """``image_inputs`` of env frames as the policy ``config`` reads its current frame."""
+    """``image_inputs`` of env frames as the policy ``config`` reads its current frame (``memory``: as
+    it keeps them in its memory)."""
     budgets = pixel_budgets(
         config.image_max_pixels, config.current_image_pixels, one_token_pixels(image_processor)
     )
-    return image_inputs(image_processor, frames, *budgets[1], device)
-
-
-def memory_frame_inputs(
-    image_processor, frames: torch.Tensor, config, device: torch.device
-) -> tuple[torch.Tensor, torch.Tensor]:
-    """``image_inputs`` of env frames as the policy ``config`` keeps them in its memory."""
-    budgets = pixel_budgets(
-        config.image_max_pixels, config.current_image_pixels, one_token_pixels(image_processor)
-    )
-    return image_inputs(image_processor, frames, *budgets[0], device)
+    return image_inputs(image_processor, frames, *budgets[0 if memory else 1], device)
 
 
 def frame_grid(image_processor, height: int, width: int, max_pixels: int, min_pixels: int) -> torch.Tensor:
