@@ -12,8 +12,11 @@ annotates with subtask K, e.g. the count task's press once the blocks are counte
 training build's own scenes instead. Prints, per handover point, the successes and failure states
 (DM / CO / CR), and on an inspect-and-place task what the object rests on at the end: the
 destination its reading names, another support, or none (of those on none: how many a gripper still
-holds, how far the others end from the named destination), and how far round from the named
-destination it was let go.
+holds, how far the others end from the named destination), how far round from the named
+destination it was let go, and the policy's reach from the handover on (does the hand's nearest point
+to the object follow its distance from the base and its angle round the fan, as ``pick_offsets.py``).
+Hand over where the expert has turned to the object and not yet moved an arm (check_block_color:
+``subtask:1+6``) to see whether the policy reaches to the object from the expert's view.
 
 Does a policy place by what its memory holds? Hand over where placing starts (check_block_color:
 ``subtask:4``, the block picked, its patch shown and turned away again) with the memory as it is
@@ -53,6 +56,7 @@ from lerobot_activearena.policies.activearena_vla.dataset_annotations import (
     read_where,
 )
 from lerobot_activearena.sim.action import TORSO_YAW
+from lerobot_activearena.sim.embodiment import ARMS, TCP_SITES
 from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
 
@@ -117,6 +121,60 @@ def where_error(text: str, placements: list[dict]) -> tuple[str, float, float] |
     if not found:
         return None
     return found[0]["name"], abs(given[1] - 100 * found[0]["r"]), abs(given[2] - found[0]["angle"])
+
+
+class ReachWatch:
+    """A ``render_callback``: the policy's pick of the inspected object from the handover on (the
+    nearest either tool centre came to it, where, and how far the pick got), as ``pick_offsets.py``
+    records it for a whole episode."""
+
+    def __init__(self, env, handover: int):
+        self.env, self.handover, self.t, self.record = env, handover, 0, None
+
+    def __call__(self, vec) -> None:
+        self.t += 1
+        if self.t <= self.handover:
+            return
+        sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
+        centre = predicates.centre_point(sim, obj)
+        if self.record is None:
+            self.record = pick_offsets.new_record(centre[:2])
+        pick_offsets.update(
+            self.record,
+            {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS},
+            centre,
+            {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
+            float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
+        )
+
+    def row(self) -> dict:
+        if self.record is None:
+            return {}
+        s = pick_offsets.summary(self.record)
+        return {
+            "reach_nearest_cm": 100 * s["nearest"],
+            "reach_stage": s["stage"],
+            "object_start_xy": s["start_xy"].tolist(),
+            "hand_nearest_xy": s["nearest_xy"].tolist(),
+        }
+
+
+def reach_line(rows: list[dict]) -> str:
+    """The policy's reach over episodes (``pick_offsets.reach_tracking``) and how far its picks got."""
+    mine = [r for r in rows if "hand_nearest_xy" in r]
+    if len(mine) < 3:
+        return ""
+    summaries = [
+        {"start_xy": np.array(r["object_start_xy"]), "nearest_xy": np.array(r["hand_nearest_xy"])}
+        for r in mine
+    ]
+    t = pick_offsets.reach_tracking(summaries)
+    stages = Counter(r["reach_stage"] for r in mine)
+    return (
+        f"    reach from the handover: distance / angle correlation {t['radius_corr']:.2f} / "
+        f"{t['angle_corr']:.2f}, median miss {100 * t['median_miss_m']:.1f} cm (objects "
+        f"{100 * t['median_from_mean_m']:.1f} cm from their mean); furthest stage {dict(stages)}"
+    )
 
 
 class SpanWatch:
@@ -329,7 +387,8 @@ def main() -> None:
             for point in points:
                 step = handover_step(point, subtasks)
                 watch = ReleaseWatch(env) if places else None
-                callbacks = [c for c in (watch,) if c is not None]
+                reach = ReachWatch(env, step) if places else None
+                callbacks = [c for c in (watch, reach) if c is not None]
                 if args.video:
                     name = f"{ep}_{point.replace(':', '').replace('+', '_')}.mp4"
                     callbacks.append(VideoWatch(env, args.video / name, step, spans))
@@ -354,7 +413,7 @@ def main() -> None:
                     | {"span_right": right[0], "span_decisions": right[1]}
                     | ({"span_where_errors": wheres} if wheres else {})
                     | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
-                    | (where_it_rests(env) | watch.row() if places else {})
+                    | (where_it_rests(env) | watch.row() | reach.row() if places else {})
                 )
     if args.out:
         args.out.parent.mkdir(parents=True, exist_ok=True)
@@ -381,6 +440,8 @@ def main() -> None:
                 else ""
             )
         )
+        if places and reach_line(mine):
+            print(reach_line(mine))
         decisions = sum(r["span_decisions"] for r in mine)
         if decisions:
             print(

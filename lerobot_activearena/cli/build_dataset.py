@@ -79,6 +79,15 @@ def parser() -> argparse.ArgumentParser:
         "uniform angle in +/- this many rad and the arm reaches from there (default 0: the benchmark's expert)",
     )
     p.add_argument(
+        "--turn-error",
+        type=float,
+        default=None,
+        help="turn-recovery demonstrations: the torso yaw executed in an episode's first 16 frames is off the "
+        "expert's command by a uniform angle in +/- this many rad (at most 0.4), the heading a policy's first "
+        "chunk lands at; the dataset records the expert's commands, which turn back (default 0: the "
+        "benchmark's expert)",
+    )
+    p.add_argument(
         "--reading-variants",
         type=int,
         default=None,
@@ -205,6 +214,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         press_arm=pick("press_arm"),
         face_jitter=float(pick("face_jitter")),
         reading_variants=pick("reading_variants"),
+        turn_error=float(pick("turn_error")),
     )
 
 

@@ -49,6 +49,7 @@ class BuildPlan:
     press_arm: str | None = None  # one-arm count presses (``ExpertContext``); None: the benchmark's expert
     face_jitter: float = 0.0  # off-centre demonstrations (``ExpertContext``), rad; 0: the benchmark's expert
     reading_variants: int = 1  # counterfactual readings (``DemoVariation``); 1: the benchmark's scenes
+    turn_error: float = 0.0  # turn-recovery demonstrations (``TurnError``), rad; 0: the benchmark's expert
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -103,6 +104,7 @@ class BuildPlan:
             press_arm=self.press_arm,
             face_jitter=self.face_jitter,
             reading_variants=self.reading_variants,
+            turn_error=self.turn_error,
         )
 
     def to_json(self) -> dict:

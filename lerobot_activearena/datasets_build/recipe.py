@@ -24,6 +24,7 @@ RECIPE_KEYS = {
     "press_arm": None,  # one-arm demonstrations: the count-and-press tasks press with this arm
     "face_jitter": 0.0,  # off-centre demonstrations: the torso's facing turns off by up to this (rad)
     "reading_variants": 1,  # counterfactual readings: each scene demonstrated with N hidden readings
+    "turn_error": 0.0,  # turn-recovery demonstrations: the first chunk's torso off by up to this (rad)
 }
 
 

@@ -19,7 +19,7 @@ import numpy as np
 from ..annotations.writer import AnnotationWriter
 from ..expert.context import MAX_FACE_JITTER, PRESS_ARMS, ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
-from ..sim.action import GRIPPER_INDICES
+from ..sim.action import GRIPPER_INDICES, TORSO_YAW
 from ..sim.health import PENETRATION_LIMIT
 from ..sim.perception import PerceptionMemory
 from ..sim.scene import HEAD_SIZE
@@ -100,7 +100,7 @@ class DemoVariation:
     ``press_arm``: ``ExpertContext``'s one arm for the count-and-press tasks' press (None: the arm on
     the button's half of the fan); ``reading_variants`` N > 1: counterfactual readings, seed s plays
     scene s // N with its hidden reading shifted by s % N (``sample_scene``), so each scene is
-    demonstrated with N readings and N decisions."""
+    demonstrated with N readings and N decisions; ``turn_error``: ``TurnError``'s largest angle in rad."""
 
     search_overshoot: float = 0.0
     action_noise: float = 0.0
@@ -108,6 +108,7 @@ class DemoVariation:
     press_arm: str | None = None
     face_jitter: float = 0.0
     reading_variants: int = 1
+    turn_error: float = 0.0
 
     def __post_init__(self):
         if not 0.0 <= self.search_overshoot <= 1.0:
@@ -121,6 +122,8 @@ class DemoVariation:
             raise ValueError(
                 f"--face-jitter is an angle in [0, {MAX_FACE_JITTER}] rad, got {self.face_jitter}"
             )
+        if not 0.0 <= self.turn_error <= MAX_TURN_ERROR:
+            raise ValueError(f"--turn-error is an angle in [0, {MAX_TURN_ERROR}] rad, got {self.turn_error}")
         if not isinstance(self.decision_period, int) or self.decision_period < 1:
             raise ValueError(
                 f"--decision-period is a number of frames >= 1 (1: the benchmark's expert), got "
@@ -169,6 +172,33 @@ class ActionNoise:
         else:
             self.offset = self.decay * self.offset + self.scale * step * self.mask
         return np.asarray(action, float) + self.offset
+
+
+MAX_TURN_ERROR = 0.4  # rad: about the largest heading error of a small policy's first chunk
+TURN_ERROR_STEPS = 16  # the first chunk of a policy that plays 16 actions a decision
+
+
+class TurnError:
+    """Turn-recovery demonstrations: during an episode's first ``steps`` frames the torso yaw the
+    simulator executes is off the expert's command by one uniform angle in +/- ``angle`` rad, the
+    heading a policy's first chunk (decided from the home view, nothing in memory) lands at; from
+    frame ``steps`` on the expert's own commands run. The dataset records the expert's commands, so
+    the frame where the error ends shows the torso and the view off the path with the command that
+    turns back, which the benchmark's expert (always on its heading by then) never shows. Drawn from
+    its own stream, seeded by the scene seed: deterministic, and the scene's sampling is not touched."""
+
+    def __init__(self, angle: float, seed: int, task: str, steps: int = TURN_ERROR_STEPS):
+        if not 0.0 < angle <= MAX_TURN_ERROR:
+            raise ValueError(f"turn_error is an angle in (0, {MAX_TURN_ERROR}] rad, got {angle}")
+        rng = np.random.default_rng([int(seed), zlib.crc32(f"turn_error/{task}".encode())])
+        self.offset, self.steps, self.t = float(rng.uniform(-angle, angle)), steps, 0
+
+    def __call__(self, action: np.ndarray) -> np.ndarray:
+        out = np.array(action, dtype=float)
+        if self.t < self.steps:
+            out[TORSO_YAW] += self.offset
+        self.t += 1
+        return out
 
 
 class ExpertDriver:
@@ -260,6 +290,7 @@ def run_expert_episode(
     press_arm: str | None = None,
     face_jitter: float = 0.0,
     reading_variants: int = 1,
+    turn_error: float = 0.0,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
@@ -272,7 +303,8 @@ def run_expert_episode(
     ``press_arm``: the count-and-press tasks' press with that arm (``ExpertContext``; None = the
     benchmark's expert). ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad; 0 = the
     benchmark's expert). ``reading_variants`` N > 1: seed s plays scene s // N with its hidden reading
-    shifted by s % N (``DemoVariation``)."""
+    shifted by s % N (``DemoVariation``). ``turn_error``: ``TurnError``'s largest angle in rad (0 = none):
+    ``actions`` stay the expert's, ``states`` are where the turned torso took the robot."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed // reading_variants, split, reading_shift=seed % reading_variants)
@@ -289,6 +321,7 @@ def run_expert_episode(
         face_jitter=face_jitter,
     )
     perturb = ActionNoise(action_noise, seed, task.name) if action_noise else None
+    turn = TurnError(turn_error, seed, task.name) if turn_error else None
     frames, actions, states = [], [], []
     failure = None
     for t in range(task.max_episode_steps + 1):
@@ -306,9 +339,13 @@ def run_expert_episode(
         if on_frame is not None:
             on_frame(t, sim, frame, action)
         executed = action
-        if perturb is not None:  # the noise stays within the joint limits; the expert's command is as it is
+        if perturb is not None or turn is not None:  # within the joint limits; the command is as it is
             low, high = np.minimum(sim.action_low, action), np.maximum(sim.action_high, action)
-            executed = np.clip(perturb(action, driver.ctx.precise), low, high)
+            if perturb is not None:
+                executed = perturb(executed, driver.ctx.precise)
+            if turn is not None:
+                executed = turn(executed)
+            executed = np.clip(executed, low, high)
         episode.step(executed)
         if episode.physics_problem:
             failure = episode.failure_reason

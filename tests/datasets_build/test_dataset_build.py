@@ -359,6 +359,7 @@ def test_bad_arguments_get_clear_errors():
         ("press_arm", "left", "right", "both"),
         ("face_jitter", 0.1, "0.15", 0.5),
         ("reading_variants", 3, "2", 0),
+        ("turn_error", 0.3, "0.2", 0.5),
     ],
 )
 def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, value, flag, bad):

@@ -409,6 +409,37 @@ def test_action_noise_perturbs_what_runs_and_records_the_experts_own_commands(ex
         DemoVariation(action_noise=0.5)
 
 
+def test_turn_error_turns_the_first_chunk_off_the_heading_and_records_the_turn_back():
+    """Turn-recovery demonstrations: in the first 16 frames the executed torso yaw is off the expert's
+    command by the episode's one drawn angle; from frame 16 the expert's commands run, the torso comes
+    back to them within a few frames, and the pick still succeeds. Deterministic per seed."""
+    from lerobot_activearena.episodes.rollout import (
+        TURN_ERROR_STEPS,
+        DemoVariation,
+        TurnError,
+        run_expert_episode,
+    )
+    from lerobot_activearena.sim.action import TORSO_YAW
+
+    task = "check_block_color"
+    offsets = [TurnError(0.35, seed, task).offset for seed in range(40)]
+    assert max(np.abs(offsets)) <= 0.35 and min(offsets) < -0.2 and max(offsets) > 0.2  # both ways
+    seed = int(np.argmax(np.abs(offsets)))
+    turned = run_expert_episode(task, seed, "id", turn_error=0.35)
+    again = run_expert_episode(task, seed, "id", turn_error=0.35)
+    assert turned.success
+    np.testing.assert_array_equal(turned.states, again.states)
+    states, actions = np.asarray(turned.states), np.asarray(turned.actions)
+    lag = states[1:, TORSO_YAW] - actions[:-1, TORSO_YAW]  # where the torso is against the command before
+    end = TURN_ERROR_STEPS
+    np.testing.assert_allclose(lag[end - 6 : end - 1], offsets[seed], atol=0.02)  # turned and holding
+    assert np.abs(lag[end + 8 : end + 40]).max() < 0.01  # back on the expert's heading
+    with pytest.raises(ValueError, match="--turn-error"):
+        DemoVariation(turn_error=0.5)
+    with pytest.raises(ValueError, match="turn_error"):
+        TurnError(0.0, 0, task)
+
+
 def test_the_block_patch_is_shown_where_the_camera_sees_it_frontally(monkeypatch):
     """check_block_color's back patch is turned to the head camera at the frontal spot (``fine_print``):
     at the CPU recipe's 192 x 256 it covers over twice the pixels it does turned below the head, where
