@@ -16,7 +16,10 @@ holds, how far the others end from the named destination), how far round from th
 destination it was let go, and the policy's reach from the handover on (does the hand's nearest point
 to the object follow its distance from the base and its angle round the fan, as ``pick_offsets.py``).
 Hand over where the expert has turned to the object and not yet moved an arm (check_block_color:
-``subtask:1+6``) to see whether the policy reaches to the object from the expert's view.
+``subtask:1+6 --replan``) to see whether the policy reaches to the object from the expert's view.
+``--replan``: the policy decides at the handover; without it a handover between the policy's
+decisions (every 16 steps) first plays the rest of the chunk it decided before the handover (at
+``subtask:1+6``, the chunk of step 0, from the home view).
 
 Does a policy place by what its memory holds? Hand over where placing starts (check_block_color:
 ``subtask:4``, the block picked, its patch shown and turned away again) with the memory as it is
@@ -334,6 +337,12 @@ def main() -> None:
         help="a think-first think=decision policy: true replaces the decoded span's decision (and layout) "
         "with the scene's at every decision",
     )
+    p.add_argument(
+        "--replan",
+        action="store_true",
+        help="the policy decides a new chunk at the handover (default: a handover between its decisions first "
+        "plays the rest of the chunk it decided before, from the expert's earlier state)",
+    )
     p.add_argument("--video", type=Path, help="write each episode's head camera to DIR/EPISODE_POINT.mp4")
     p.add_argument("--out", type=Path, help="also write the per-episode records as JSON lines")
     args = p.parse_args()
@@ -400,6 +409,7 @@ def main() -> None:
                     step,
                     render_callback=lambda v, cs=callbacks: [c(v) for c in cs],
                     adjust_expert=adjust,
+                    replan=args.replan,
                 )
                 for c in callbacks:
                     if isinstance(c, VideoWatch):
@@ -410,6 +420,7 @@ def main() -> None:
                 wheres = spans.where_after(step) if spans else []
                 rows.append(
                     {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
+                    | ({"replan": True} if args.replan else {})
                     | {"span_right": right[0], "span_decisions": right[1]}
                     | ({"span_where_errors": wheres} if wheres else {})
                     | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
@@ -423,6 +434,8 @@ def main() -> None:
         memory += f", {args.n_action_steps} actions a decision"
     if args.span != "decoded":
         memory += f", span {args.span}"
+    if args.replan:
+        memory += ", a new decision at the handover"
     if args.torso_offset:
         memory += f", the expert's torso {args.torso_offset:+.3f} rad off from step 8"
     which = f"scene seeds {args.scene_seeds}" if as_given else f"episodes {args.episode_indices}"

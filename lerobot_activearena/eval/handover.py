@@ -49,11 +49,15 @@ def play_with_handover(
     handover: int,
     render_callback=None,
     adjust_expert: Callable[[int, np.ndarray], np.ndarray] | None = None,
+    replan: bool = False,
 ) -> None:
     """One episode through LeRobot's rollout loop on ``vec`` (one env with ``expert_channel``), the
     expert's action executed before step ``handover``; ``render_callback(vec)`` after every step.
     ``adjust_expert(t, actions)``: what runs instead of the expert's (1, 18) actions at step t (e.g. the
-    torso turned off its heading: where the policy takes over from)."""
+    torso turned off its heading: where the policy takes over from). ``replan``: the policy decides a new
+    chunk at the handover; otherwise a handover between its decisions (every ``n_action_steps`` steps)
+    first plays the rest of the chunk it decided before the handover, from where the expert had the
+    robot then."""
     from lerobot.scripts import lerobot_eval
 
     real_reset, real_step = vec.reset, vec.step
@@ -71,6 +75,8 @@ def play_with_handover(
                 actions = adjust_expert(state["t"], actions.copy())
         out = real_step(actions)
         state.update(t=state["t"] + 1, expert=out[0]["environment_state"].copy())
+        if replan and state["t"] == handover:
+            policy.replan()
         return out
 
     vec.reset, vec.step = reset, step

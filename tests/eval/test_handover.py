@@ -58,13 +58,33 @@ def test_the_expert_drives_until_the_handover_and_the_policy_after():
             records.append(json.loads(sorted(logs.rglob("*.jsonl"))[0].read_text().splitlines()[-1]))
             yaws.append(yaw)
         assert vec.step.__func__ is type(vec).step  # the env's own step is back after each episode
-        turned, called = [], []
+        turned, called, decided = [], [], {False: [], True: []}
         off = off_by(0.06, 8, called)
-        play_with_handover(
-            policy, processors, vec, seed, 20, render_callback=torso_yaw(turned), adjust_expert=off
-        )
+        predict = policy.predict_action_chunk
+        for replan, yaw in (
+            (False, turned),
+            (True, []),
+        ):  # the env steps at which a chunk is decided (the callback also runs at the reset)
+            policy.predict_action_chunk = lambda b, at=decided[replan], y=yaw: (
+                at.append(len(y) - 1) or predict(b)
+            )
+            play_with_handover(
+                policy,
+                processors,
+                vec,
+                seed,
+                20,
+                render_callback=torso_yaw(yaw),
+                adjust_expert=None if replan else off,
+                replan=replan,
+            )
+        policy.predict_action_chunk = predict
+        n = policy.config.n_action_steps
     plain = yaws[0]
     assert called == list(range(20))  # the expert's steps only, the policy's after
+    assert 20 % n and all(t % n == 0 for t in decided[False])  # a decision every n steps from step 0
+    assert 20 in decided[True] and 20 + n in decided[True]  # replan: a new chunk at the handover
+    assert [t for t in decided[True] if t < 20] == [t for t in decided[False] if t < 20]
     assert turned[:8] == plain[:8]  # the expert's own commands before step 8
     assert abs(turned[19] - plain[19]) > 0.03  # then a torso turned elsewhere
     expert, policy_alone = records

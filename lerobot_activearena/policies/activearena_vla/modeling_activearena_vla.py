@@ -738,6 +738,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         self._t += 1
         return self._queue.popleft()
 
+    def replan(self) -> None:
+        """Drop the actions queued from the last decision: the next ``select_action`` decides a new chunk
+        from its own observation (the memory bank is kept)."""
+        self._queue.clear()
+
     def observe(self, batch: dict[str, Tensor]) -> None:
         """Bookkeeping of an env step's observation before any chunk is predicted: start the episode's
         memories, keep the raw state (the motion write policy reads the states so far)."""
