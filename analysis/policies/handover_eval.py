@@ -129,26 +129,41 @@ def where_error(text: str, placements: list[dict]) -> tuple[str, float, float] |
 class ReachWatch:
     """A ``render_callback``: the policy's pick of the inspected object from the handover on (the
     nearest either tool centre came to it, where, and how far the pick got), as ``pick_offsets.py``
-    records it for a whole episode."""
+    records it for a whole episode; and the torso's heading against the expert's own episode
+    (``expert_states``) at the end of the policy's first chunk (``chunk`` steps after the handover)
+    and where the hand came nearest, with the hand's angle round from the heading there."""
 
-    def __init__(self, env, handover: int):
+    def __init__(self, env, handover: int, expert_states, chunk: int):
         self.env, self.handover, self.t, self.record = env, handover, 0, None
+        self.expert, self.chunk, self.nearest, self.headings = expert_states, chunk, 9.0, {}
+
+    def _heading_off(self, t: int, yaw: float) -> float | None:
+        return float(np.degrees(yaw - self.expert[t][TORSO_YAW])) if t < len(self.expert) else None
 
     def __call__(self, vec) -> None:
-        self.t += 1
-        if self.t <= self.handover:
+        t, self.t = self.t, self.t + 1  # the first call follows the reset: frame t's state
+        if t < self.handover:
             return
         sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
-        centre = predicates.centre_point(sim, obj)
+        centre, yaw = predicates.centre_point(sim, obj), float(sim.state()[TORSO_YAW])
         if self.record is None:
             self.record = pick_offsets.new_record(centre[:2])
+        tcp = {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS}
         pick_offsets.update(
             self.record,
-            {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS},
+            tcp,
             centre,
             {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
             float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
         )
+        if t == self.handover + self.chunk:
+            self.headings["heading_off_after_first_chunk_deg"] = self._heading_off(t, yaw)
+        near = min(float(np.linalg.norm(p - centre)) for p in tcp.values())
+        if near < self.nearest:
+            self.nearest = near
+            self.headings["heading_off_at_nearest_deg"] = self._heading_off(t, yaw)
+            hand = min(tcp.values(), key=lambda p: np.linalg.norm(p - centre))
+            self.headings["hand_from_heading_deg"] = predicates.polar(hand[:2])[1] - np.degrees(yaw)
 
     def row(self) -> dict:
         if self.record is None:
@@ -159,7 +174,10 @@ class ReachWatch:
             "reach_stage": s["stage"],
             "object_start_xy": s["start_xy"].tolist(),
             "hand_nearest_xy": s["nearest_xy"].tolist(),
-        }
+        } | self.headings
+
+
+TURN_TOLERANCE_DEG = float(np.degrees(0.12))  # the demonstrations' largest off-centre turn (--face-jitter)
 
 
 def reach_line(rows: list[dict]) -> str:
@@ -173,11 +191,22 @@ def reach_line(rows: list[dict]) -> str:
     ]
     t = pick_offsets.reach_tracking(summaries)
     stages = Counter(r["reach_stage"] for r in mine)
-    return (
+    text = (
         f"    reach from the handover: distance / angle correlation {t['radius_corr']:.2f} / "
         f"{t['angle_corr']:.2f}, median miss {100 * t['median_miss_m']:.1f} cm (objects "
         f"{100 * t['median_from_mean_m']:.1f} cm from their mean); furthest stage {dict(stages)}"
     )
+    off = [r.get("heading_off_after_first_chunk_deg") for r in mine]
+    off = np.abs([o for o in off if o is not None])
+    if len(off):
+        far = [r for r in mine if abs(r.get("heading_off_at_nearest_deg") or 0.0) > TURN_TOLERANCE_DEG]
+        text += (
+            f"\n    torso heading after the policy's first chunk: {np.median(off):.1f} deg from the expert's "
+            f"(median), over {TURN_TOLERANCE_DEG:.1f} in {int((off > TURN_TOLERANCE_DEG).sum())} of {len(off)}; "
+            f"{len(far)} still that far off where the hand came nearest, "
+            f"missing by {np.median([r['reach_nearest_cm'] for r in far]) if far else float('nan'):.1f} cm (median)"
+        )
+    return text
 
 
 class SpanWatch:
@@ -396,7 +425,8 @@ def main() -> None:
             for point in points:
                 step = handover_step(point, subtasks)
                 watch = ReleaseWatch(env) if places else None
-                reach = ReachWatch(env, step) if places else None
+                chunk = policy.config.n_action_steps
+                reach = ReachWatch(env, step, expert.states, chunk) if places else None
                 callbacks = [c for c in (watch, reach) if c is not None]
                 if args.video:
                     name = f"{ep}_{point.replace(':', '').replace('+', '_')}.mp4"
