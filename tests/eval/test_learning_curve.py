@@ -3,6 +3,8 @@
 import subprocess
 import sys
 
+import pytest
+import torch
 from lerobot.configs.types import FeatureType, PolicyFeature
 from lerobot.policies.act.configuration_act import ACTConfig
 
@@ -61,3 +63,30 @@ def test_open_loop_scoring_reads_the_scored_builds_annotations_not_the_training_
     comp = out[TransitionKey.COMPLEMENTARY_DATA]
     assert MEMORY_INDEX not in comp
     assert isinstance(comp["subtask"][0], str) and comp["subtask"][0]
+
+
+def test_the_annotation_step_refuses_frames_of_another_build(bell_count_dataset):
+    """A checkpoint fine-tuned on another build keeps its saved annotation step, which reads the build
+    it was trained on: frames whose episode (or index) that build does not have there are refused,
+    not annotated with another episode's subtasks."""
+    from helpers.params import DATASET_REPO
+    from lerobot.lerobot_types import TransitionKey
+
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
+        ActiveArenaAnnotationStep,
+    )
+
+    step = ActiveArenaAnnotationStep(
+        dataset_root=str(bell_count_dataset), repo_id=DATASET_REPO, memory="chunk", history=4, think="subtask"
+    )
+
+    def batch(index, episode):
+        comp = {"index": torch.tensor(index), "episode_index": torch.tensor(episode)}
+        return {TransitionKey.OBSERVATION: {}, TransitionKey.COMPLEMENTARY_DATA: comp}
+
+    out = step(batch([0, 1], [0, 0]))  # the first episode's first frames: annotated
+    assert len(out[TransitionKey.COMPLEMENTARY_DATA]["subtask"]) == 2
+    frames = len(step._ann.cols["episode_index"])
+    for index, episode in (([0, 1], [0, 1]), ([frames], [1])):
+        with pytest.raises(ValueError, match="dataset_root and repo_id"):
+            step(batch(index, episode))

@@ -223,6 +223,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
 
             self._ann = DatasetAnnotations(self.dataset_root, self.repo_id)
         idx = torch.as_tensor(index).reshape(-1).tolist()
+        self._check_frames(idx, comp.get("episode_index"))
         comp = dict(comp)
         if self._needs_subtask():
             comp["subtask"] = [self._ann.subtask(i) for i in idx]
@@ -254,6 +255,24 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         out = dict(transition)
         out[TransitionKey.OBSERVATION], out[TransitionKey.COMPLEMENTARY_DATA] = obs, comp
         return out
+
+    def _check_frames(self, idx: list[int], episodes) -> None:
+        """The batch's frames must be the annotated dataset's (its ``episode_index`` at each ``index``):
+        fine-tuning on another build loads the checkpoint's saved step, which reads the build that
+        checkpoint was trained on."""
+        ours = self._ann.cols["episode_index"]
+        theirs = None if episodes is None else torch.as_tensor(episodes).reshape(-1).tolist()
+        if max(idx) < len(ours) and (
+            theirs is None or all(ours[i] == e for i, e in zip(idx, theirs, strict=True))
+        ):
+            return
+        raise ValueError(
+            f"the training frames are not those of {self.dataset_root}, whose annotations this step reads: "
+            "a checkpoint fine-tuned on another build (--policy.pretrained_path) keeps the annotation step "
+            "it was saved with; copy the checkpoint and set dataset_root and repo_id in its "
+            "policy_preprocessor.json's annotation step to the training dataset's (--dataset.root, "
+            "--dataset.repo_id)"
+        )
 
     def _action_weights(self, idx: list[int]) -> torch.Tensor:
         if self._onsets is None:
