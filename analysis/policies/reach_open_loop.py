@@ -37,12 +37,13 @@ FACE_JITTER_DEG = float(np.degrees(0.12))  # the off-centre demonstrations' larg
 
 
 class ToolCentres:
-    """Forward kinematics of the robot alone: an 18-dim action's joint targets to each tool centre."""
+    """Forward kinematics of the robot alone (the expert's IK model): an 18-dim action's joint targets
+    to each tool centre."""
 
     def __init__(self):
-        spec = mujoco.MjSpec()
-        embodiment.add_robot(spec)
-        self.model = spec.compile()
+        from lerobot_activearena.expert.ik import ArmIK
+
+        self.model = ArmIK().model
         self.data = mujoco.MjData(self.model)
         adr = lambda j: self.model.joint(j).qposadr[0]  # noqa: E731
         self.arm_adr = {s: [adr(j) for j in embodiment.ARM_JOINTS[s]] for s in embodiment.ARMS}
