@@ -17,7 +17,9 @@ distance). If the open-loop distance tracks the expert's from leads where the st
 the closed-loop one does not (``pick_offsets.py``), the reach drifts off the expert's states; if it
 does not track it there, the policy never learnt the distance from the image. First, rows with
 ``from_frame``: the torso heading the chunk predicted from each episode's frame 0 (the first
-decision: the home view, nothing in memory) and frame 16 ends at, against the expert's.
+decision: the home view, nothing in memory) and frame 16 ends at, against the expert's; on a
+``--turn-error`` build (its torso turned off in the first 16 frames) also how far back towards the
+expert's heading the frame-16 chunk turns. ``--max-episodes N`` scores the first N episodes only.
 """
 
 from __future__ import annotations
@@ -107,7 +109,7 @@ def predict(scorer, frames) -> np.ndarray:
         return post(policy.predict_action_chunk(pre(policy_inputs(batch, cfg)))).cpu().numpy()
 
 
-def predicted_points(scorer, leads=LEADS):
+def predicted_points(scorer, leads=LEADS, max_episodes=None):
     """Per lead: (predicted, expert, state) pairs of the picking arm's tool centres (episodes, 3) and
     the torso's yaw (episodes,)."""
     columns = scorer[-1].hf_dataset.with_format("numpy")
@@ -115,7 +117,7 @@ def predicted_points(scorer, leads=LEADS):
     episodes = np.asarray(columns["episode_index"])
     fk = ToolCentres()
     out = {lead: ([], [], [], [], [], []) for lead in leads}
-    for _, g, arm in grasps(actions, episodes):
+    for _, g, arm in grasps(actions, episodes)[:max_episodes]:
         frames = [g - lead for lead in leads if g - lead >= 0 and episodes[g - lead] == episodes[g]]
         chunk = predict(scorer, frames)
         for row, i in enumerate(frames):
@@ -130,30 +132,37 @@ def predicted_points(scorer, leads=LEADS):
     }
 
 
-def first_turns(scorer, start_frames=(0, 16), jitter_deg=FACE_JITTER_DEG) -> list[dict]:
+def first_turns(scorer, start_frames=(0, 16), jitter_deg=FACE_JITTER_DEG, max_episodes=None) -> list[dict]:
     """The torso's heading at the end of the chunk predicted from each episode's frame ``f`` (0: the
     first decision, from the home view with nothing in memory; 16: the next, the expert's turn done)
     against the expert's then: correlation, median and largest error, and how many episodes it ends
-    further off than the demonstrations' off-centre turns (``jitter_deg``) ever put the torso."""
+    further off than the demonstrations' off-centre turns (``jitter_deg``) ever put the torso. Where
+    the frame's own torso is further off than that (a ``--turn-error`` build's frame 16): how many, and
+    how far back towards the expert's heading the chunk turns (median fraction: 0 holds, 1 is back)."""
     columns = scorer[-1].hf_dataset.with_format("numpy")
     actions, frame_index = np.asarray(columns["action"]), np.asarray(columns["frame_index"])
+    states = np.asarray(columns["observation.state"])
     rows = []
     for f in start_frames:
-        frames = np.flatnonzero(frame_index == f)
+        frames = np.flatnonzero(frame_index == f)[:max_episodes]
         chunk = predict(scorer, frames)
         last = chunk.shape[1] - 1
         pred, true = np.degrees(chunk[:, last, TORSO_YAW]), np.degrees(actions[frames + last, TORSO_YAW])
         err = np.abs(pred - true)
-        rows.append(
-            {
-                "from_frame": int(f),
-                "episodes": len(frames),
-                "torso_corr": float(np.corrcoef(pred, true)[0, 1]),
-                "torso_error_deg": float(np.median(err)),
-                "torso_error_max_deg": float(err.max()),
-                f"over_{jitter_deg:.1f}_deg": int((err > jitter_deg).sum()),
-            }
-        )
+        row = {
+            "from_frame": int(f),
+            "episodes": len(frames),
+            "torso_corr": float(np.corrcoef(pred, true)[0, 1]),
+            "torso_error_deg": float(np.median(err)),
+            "torso_error_max_deg": float(err.max()),
+            f"over_{jitter_deg:.1f}_deg": int((err > jitter_deg).sum()),
+        }
+        state = np.degrees(states[frames, TORSO_YAW])
+        off = np.abs(state - true) > jitter_deg
+        if f > 0 and off.any():
+            back = (state - pred)[off] / (state - true)[off]
+            row |= {"state_off_episodes": int(off.sum()), "turned_back_fraction": float(np.median(back))}
+        rows.append(row)
     return rows
 
 
@@ -163,6 +172,7 @@ def main() -> None:
     p.add_argument("--repo-id", required=True)
     p.add_argument("--root", type=Path, required=True)
     p.add_argument("--memory-ablation", choices=["none", "blank"], default="none")
+    p.add_argument("--max-episodes", type=int, help="the first N episodes only")
     args = p.parse_args()
     from lerobot_activearena.eval.protocol import register_policy_types
 
@@ -172,9 +182,10 @@ def main() -> None:
     for ckpt in args.checkpoints:
         scorer = scoring_policy(ckpt, args.repo_id, args.root, args.memory_ablation)
         head = {"checkpoint": str(ckpt), "memory_ablation": args.memory_ablation}
-        for row in first_turns(scorer):
+        for row in first_turns(scorer, max_episodes=args.max_episodes):
             print(json.dumps(head | row), flush=True)
-        for lead, (pred, true, state) in sorted(predicted_points(scorer).items(), reverse=True):
+        points = predicted_points(scorer, max_episodes=args.max_episodes)
+        for lead, (pred, true, state) in sorted(points.items(), reverse=True):
             row = head | {"lead": lead, "episodes": len(true[0])} | tracking(pred, true, state)
             print(json.dumps(row), flush=True)
 
