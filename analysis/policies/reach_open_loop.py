@@ -132,7 +132,9 @@ def predicted_points(scorer, leads=LEADS, max_episodes=None):
     }
 
 
-def first_turns(scorer, start_frames=(0, 16), jitter_deg=FACE_JITTER_DEG, max_episodes=None) -> list[dict]:
+def first_turns(
+    scorer, start_frames=(0, 16), jitter_deg=FACE_JITTER_DEG, max_episodes=None, headings=None
+) -> list[dict]:
     """The torso's heading at the end of the chunk predicted from each episode's frame ``f`` (0: the
     first decision, from the home view with nothing in memory; 16: the next, the expert's turn done)
     against the expert's then: correlation, median and largest error, and how many episodes it ends
@@ -163,7 +165,47 @@ def first_turns(scorer, start_frames=(0, 16), jitter_deg=FACE_JITTER_DEG, max_ep
             back = (state - pred)[off] / (state - true)[off]
             row |= {"state_off_episodes": int(off.sum()), "turned_back_fraction": float(np.median(back))}
         rows.append(row)
+        if headings is not None:  # frame f's dataset indices, predicted and expert headings (deg)
+            headings[f] = (frames, pred, true)
     return rows
+
+
+def draw_first_views(scorer, frames, pred, true, root: Path, out: Path, n: int = 4) -> None:
+    """The frame-0 head images of the ``n`` episodes whose first chunk ends furthest from the expert's
+    heading and the ``n`` nearest, captioned with the first inspected object's place and both
+    headings, a 3 x 4 grid (the 12 tokens of a 192 x 256 frame) drawn over them."""
+    from PIL import Image, ImageDraw
+
+    ds = scorer[-1]
+    episodes = np.asarray(ds.hf_dataset.with_format("numpy")["episode_index"])
+    order = np.argsort(-np.abs(pred - true))
+    tiles = []
+    for j in [*order[:n], *order[-n:]]:
+        image = ds[int(frames[j])]["observation.images.head"]
+        image = image[-1] if image.dim() == 4 else image
+        tile = Image.fromarray((image.permute(1, 2, 0).numpy() * 255).astype(np.uint8))
+        ep = int(episodes[frames[j]])
+        side = json.loads((root / f"meta/activearena/sidecars/episode_{ep:06d}.json").read_text())
+        inspected = (side.get("expert_notes") or {}).get("inspections", [{}])[0].get("object")
+        place = next((q for q in side["placements"] if q["name"] == inspected), None)
+        draw = ImageDraw.Draw(tile)
+        w, h = tile.size
+        for x in range(w // 4, w, w // 4):
+            draw.line([x, 0, x, h], fill=(255, 255, 255))
+        for y in range(h // 3, h, h // 3):
+            draw.line([0, y, w, y], fill=(255, 255, 255))
+        draw.rectangle([0, 0, w, 24], fill=(0, 0, 0))
+        where = f"{place['angle']:.0f} deg, {100 * place['r']:.0f} cm" if place else "?"
+        name = str(inspected).replace("_", " ")
+        draw.text((3, 1), f"episode {ep}: {name} at {where}", fill=(255, 255, 255))
+        draw.text((3, 12), f"torso: expert {true[j]:+.0f}, policy {pred[j]:+.0f} deg", fill=(255, 255, 0))
+        tiles.append(tile)
+    w, h = tiles[0].size
+    sheet = Image.new("RGB", (w * n, h * 2))
+    for k, tile in enumerate(tiles):
+        sheet.paste(tile, ((k % n) * w, (k // n) * h))
+    out.parent.mkdir(parents=True, exist_ok=True)
+    sheet.save(out)
 
 
 def main() -> None:
@@ -173,6 +215,11 @@ def main() -> None:
     p.add_argument("--root", type=Path, required=True)
     p.add_argument("--memory-ablation", choices=["none", "blank"], default="none")
     p.add_argument("--max-episodes", type=int, help="the first N episodes only")
+    p.add_argument(
+        "--first-views",
+        type=Path,
+        help="draw the frame-0 views of the 4 worst and 4 best first turns (one checkpoint) to this PNG",
+    )
     args = p.parse_args()
     from lerobot_activearena.eval.protocol import register_policy_types
 
@@ -182,8 +229,12 @@ def main() -> None:
     for ckpt in args.checkpoints:
         scorer = scoring_policy(ckpt, args.repo_id, args.root, args.memory_ablation)
         head = {"checkpoint": str(ckpt), "memory_ablation": args.memory_ablation}
-        for row in first_turns(scorer, max_episodes=args.max_episodes):
+        headings = {}
+        for row in first_turns(scorer, max_episodes=args.max_episodes, headings=headings):
             print(json.dumps(head | row), flush=True)
+        if args.first_views:
+            draw_first_views(scorer, *headings[0], args.root, args.first_views)
+            print(f"first views -> {args.first_views}", flush=True)
         points = predicted_points(scorer, max_episodes=args.max_episodes)
         for lead, (pred, true, state) in sorted(points.items(), reverse=True):
             row = head | {"lead": lead, "episodes": len(true[0])} | tracking(pred, true, state)
