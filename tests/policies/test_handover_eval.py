@@ -185,3 +185,29 @@ def test_span_watch_with_decision_where_forces_the_pick_place_and_scores_the_pla
     )
     assert pad_cm == pytest.approx(100 * pad["r"] - 3) and pad_deg == pytest.approx(pad["angle"] - 4)
     assert script.where_error("place the block", placements) is None
+
+
+def test_the_reach_line_counts_headings_off_and_the_misses_they_cost():
+    """From the per-episode rows: the reach's correlations, and how many first chunks left the torso
+    further off the expert's heading than the demonstrations' off-centre turns, how many were still
+    that far off where the hand came nearest and how far those missed."""
+    script = load("analysis/policies/handover_eval.py")
+    rows = []
+    for k, off in enumerate([1.0, -2.0, 15.0, 20.0, 3.0]):
+        angle = np.radians(50.0 + 20 * k)
+        start = [0.38 * np.cos(angle), 0.38 * np.sin(angle)]
+        rows.append(
+            {
+                "object_start_xy": start,
+                "hand_nearest_xy": [start[0] + 0.01 * k, start[1]],
+                "reach_stage": "lift" if abs(off) < 5 else "reach",
+                "reach_nearest_cm": 2.0 if abs(off) < 5 else 10.0 + k,
+                "heading_off_after_first_chunk_deg": off,
+                "heading_off_at_nearest_deg": off if k != 3 else 1.0,  # episode 3 turned back
+            }
+        )
+    line = script.reach_line(rows)
+    assert "over 6.9 in 2 of 5" in line
+    assert "1 still that far off where the hand came nearest, missing by 12.0 cm" in line
+    assert "furthest stage {'lift': 3, 'reach': 2}" in line
+    assert script.reach_line(rows[:2]) == ""  # too few episodes to correlate
