@@ -135,7 +135,7 @@ class ReachWatch:
 
     def __init__(self, env, handover: int, expert_states, chunk: int):
         self.env, self.handover, self.t, self.record = env, handover, 0, None
-        self.expert, self.chunk, self.nearest, self.headings = expert_states, chunk, 9.0, {}
+        self.expert, self.chunk, self.headings = expert_states, chunk, {}
 
     def _heading_off(self, t: int, yaw: float) -> float | None:
         return float(np.degrees(yaw - self.expert[t][TORSO_YAW])) if t < len(self.expert) else None
@@ -148,22 +148,21 @@ class ReachWatch:
         centre, yaw = predicates.centre_point(sim, obj), float(sim.state()[TORSO_YAW])
         if self.record is None:
             self.record = pick_offsets.new_record(centre[:2])
-        tcp = {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS}
+        before = min(self.record["nearest"].values())
         pick_offsets.update(
             self.record,
-            tcp,
+            {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS},
             centre,
             {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
             float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
         )
         if t == self.handover + self.chunk:
             self.headings["heading_off_after_first_chunk_deg"] = self._heading_off(t, yaw)
-        near = min(float(np.linalg.norm(p - centre)) for p in tcp.values())
-        if near < self.nearest:
-            self.nearest = near
+        arm = min(ARMS, key=self.record["nearest"].get)
+        if self.record["nearest"][arm] < before:  # the hand came nearer than ever: where, and the heading
             self.headings["heading_off_at_nearest_deg"] = self._heading_off(t, yaw)
-            hand = min(tcp.values(), key=lambda p: np.linalg.norm(p - centre))
-            self.headings["hand_from_heading_deg"] = predicates.polar(hand[:2])[1] - np.degrees(yaw)
+            hand = self.record["nearest_xy"][arm]
+            self.headings["hand_from_heading_deg"] = predicates.polar(hand)[1] - np.degrees(yaw)
 
     def row(self) -> dict:
         if self.record is None:
