@@ -1601,6 +1601,32 @@ def test_decision_weight_weighs_the_frames_where_the_expert_acts_on_a_reading(vl
         ActiveArenaOFTConfig(vlm_path=str(vlm), decision_weight=0.0)
 
 
+def test_opening_weight_weighs_every_episodes_first_frames(vlm, root, tmp_path):
+    """--policy.opening_weight: every episode's first opening_window frames weigh that much in the
+    action loss, multiplying decision_weight's at a decision onset; no readings needed without it."""
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import ACTION_WEIGHT
+
+    ann = DatasetAnnotations(root, REPO)
+    first, late = int(ann.ep_start[1]), int(ann.ep_start[1]) + 5  # episode 1's frames 0 and 5
+    _, policy, pre, _, ds = _setup(
+        vlm, root, memory="chunk", history=2, think="none", opening_weight=3.0, opening_window=5
+    )
+    batch = collate(ds, pre, [first, late - 1, late])
+    assert batch[ACTION_WEIGHT].tolist() == [3.0, 3.0, 1.0]
+    copy = _with_red_pad_reading(root, tmp_path, episode=1)
+    onset = int(np.flatnonzero(DatasetAnnotations(copy, REPO).decision_onsets(window=8))[0])
+    _, _, both, _, both_ds = _setup(
+        vlm, copy, memory="chunk", history=2, think="none", decision_weight=5.0, decision_window=8,
+        opening_weight=3.0, opening_window=onset - first + 1,
+    )
+    assert collate(both_ds, both, [onset, first, late])[ACTION_WEIGHT].tolist() == [15.0, 3.0, 3.0]
+    policy.train()
+    with pytest.raises(ValueError, match="opening_weight=3.0, but the batch carries no action"):
+        policy.forward({k: v for k, v in batch.items() if k != ACTION_WEIGHT})
+    with pytest.raises(ValueError, match="opening_weight must be > 0"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), opening_weight=0.0)
+
+
 def test_decision_think_appends_the_read_decision_from_the_frame_it_was_read_on(vlm, root, tmp_path):
     """think=decision: the subtask text, then from the inspection's frame on the decision the expert
     took from it (an inspect-and-place episode's ``expert_notes``); before it the plain subtask."""

@@ -77,6 +77,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # state show where the arm is heading; there only the memory (or the span it decoded) does.
     decision_weight: float = 1.0
     decision_window: int = 16
+    # The action loss of every episode's first ``opening_window`` frames (the first turn towards the
+    # object, decided from the home view, and on a ``--turn-error`` build the turn back), weighted
+    # ``opening_weight`` times the others (1: unweighted); it multiplies decision_weight's.
+    opening_weight: float = 1.0
+    opening_window: int = 32
     # think=decision: the decided object also named by its place among its kind by azimuth ("place on
     # the blue pad, the right one"), so the span carries where to go, not only what was read.
     decision_place: bool = False
@@ -290,6 +295,11 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 f"--policy.decision_weight must be > 0 and --policy.decision_window >= 1 (got "
                 f"{self.decision_weight}, {self.decision_window})"
+            )
+        if self.opening_weight <= 0 or self.opening_window < 1:
+            raise ValueError(
+                f"--policy.opening_weight must be > 0 and --policy.opening_window >= 1 (got "
+                f"{self.opening_weight}, {self.opening_window})"
             )
         # A local folder is stored absolute, so a checkpoint reloads from any working directory.
         for name in ("vlm_path", "dataset_root", "vision_cache"):

@@ -471,12 +471,14 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             *self.training_args(batch), vision_cache=self.cached_memory(batch)
         )
         per_sample, info = self.action_loss(h, kind, batch)
-        if self.training and self.config.decision_weight != 1 and ACTION_WEIGHT not in batch:
+        weighted = self.config.decision_weight != 1 or self.config.opening_weight != 1
+        if self.training and weighted and ACTION_WEIGHT not in batch:
             raise ValueError(
-                f"--policy.decision_weight={self.config.decision_weight}, but the batch carries no action "
+                f"--policy.decision_weight={self.config.decision_weight} / --policy.opening_weight="
+                f"{self.config.opening_weight}, but the batch carries no action "
                 "weights: the annotation step that writes them was left out of the preprocessor"
             )
-        if ACTION_WEIGHT in batch:  # --policy.decision_weight: the decision onsets weigh more
+        if ACTION_WEIGHT in batch:  # decision_weight / opening_weight
             weight = batch[ACTION_WEIGHT].to(per_sample)
             per_sample = per_sample * weight * (len(weight) / weight.sum())
         loss = per_sample.mean() if reduction == "mean" else per_sample

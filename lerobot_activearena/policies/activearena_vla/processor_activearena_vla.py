@@ -129,6 +129,8 @@ ANNOTATION_SETTINGS = (
     "think",
     "decision_weight",
     "decision_window",
+    "opening_weight",
+    "opening_window",
     "decision_place",
     "decision_layout",
     "decision_where",
@@ -187,6 +189,9 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     # the action-loss weight of the frames where the expert starts acting on a reading (1: none)
     decision_weight: float = 1.0
     decision_window: int = 16
+    # the action-loss weight of every episode's first frames (1: none)
+    opening_weight: float = 1.0
+    opening_window: int = 32
     decision_place: bool = False  # think=decision: the decided object's place named too
     decision_layout: bool = False  # ... after the places of all of its kind
     decision_where: bool = False  # ... and where the object acted on lies (cm, deg from the base)
@@ -205,8 +210,11 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             or self.think == "decision"
             or (self.memory in KEYFRAME_MEMORIES and self.history > 0)
             or self._cached_chunk()
-            or self.decision_weight != 1
+            or self._weighted()
         )
+
+    def _weighted(self) -> bool:
+        return self.decision_weight != 1 or self.opening_weight != 1
 
     def __call__(self, transition):
         comp = transition.get(TransitionKey.COMPLEMENTARY_DATA) or {}
@@ -244,7 +252,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             )
             if states is not None:
                 obs[OBS_STATE] = states
-        if self.decision_weight != 1:
+        if self._weighted():
             comp[ACTION_WEIGHT] = self._action_weights(idx)
         if self._cached_chunk():
             comp[MEMORY_INDEX], states = self._ann.memory_index_batch(
@@ -275,6 +283,12 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         )
 
     def _action_weights(self, idx: list[int]) -> torch.Tensor:
+        weight = torch.ones(len(idx))
+        if self.opening_weight != 1:
+            opening = torch.as_tensor(self._ann.cols["frame_index"][idx] < self.opening_window)
+            weight = torch.where(opening, self.opening_weight, weight)
+        if self.decision_weight == 1:
+            return weight
         if self._onsets is None:
             self._onsets = self._ann.decision_onsets(self.decision_window)
             if not self._onsets.any():
@@ -284,12 +298,14 @@ class ActiveArenaAnnotationStep(ProcessorStep):
                     "train an inspection task's build, or leave decision_weight at 1"
                 )
         onset = torch.as_tensor(self._onsets[idx])
-        return torch.where(onset, self.decision_weight, 1.0).float()
+        return torch.where(onset, self.decision_weight * weight, weight).float()
 
     def get_config(self) -> dict[str, Any]:
         return {
             "decision_weight": self.decision_weight,
             "decision_window": self.decision_window,
+            "opening_weight": self.opening_weight,
+            "opening_window": self.opening_window,
             "decision_place": self.decision_place,
             "decision_layout": self.decision_layout,
             "decision_where": self.decision_where,
@@ -534,6 +550,8 @@ def make_activearena_vla_pre_post_processors(
         cached_memory=bool(config.vision_cache),
         decision_weight=config.decision_weight,
         decision_window=config.decision_window,
+        opening_weight=config.opening_weight,
+        opening_window=config.opening_window,
         decision_place=config.decision_place,
         decision_layout=config.decision_layout,
         decision_where=config.decision_where,
