@@ -88,6 +88,13 @@ def parser() -> argparse.ArgumentParser:
         "benchmark's expert)",
     )
     p.add_argument(
+        "--turn-error-subtask",
+        type=int,
+        default=None,
+        help="with --turn-error: the first 16 frames of this subtask (its number in the task's list, >= 2; "
+        "check_block_color's place: 4) are turned off too, by a second draw (default 0: the first chunk only)",
+    )
+    p.add_argument(
         "--reading-variants",
         type=int,
         default=None,
@@ -215,6 +222,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         face_jitter=float(pick("face_jitter")),
         reading_variants=pick("reading_variants"),
         turn_error=float(pick("turn_error")),
+        turn_error_subtask=pick("turn_error_subtask"),
     )
 
 

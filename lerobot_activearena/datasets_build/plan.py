@@ -15,7 +15,7 @@ from pathlib import Path
 from ..episodes.rollout import DemoVariation
 from ..sim.head_camera import validate_head_size
 from ..sim.scene import HEAD_SIZE
-from ..tasks import task_names
+from ..tasks import get_task, task_names
 from ..tasks.base import SPLITS
 
 
@@ -50,6 +50,9 @@ class BuildPlan:
     face_jitter: float = 0.0  # off-centre demonstrations (``ExpertContext``), rad; 0: the benchmark's expert
     reading_variants: int = 1  # counterfactual readings (``DemoVariation``); 1: the benchmark's scenes
     turn_error: float = 0.0  # turn-recovery demonstrations (``TurnError``), rad; 0: the benchmark's expert
+    turn_error_subtask: int = (
+        0  # ... also at the start of this subtask (``TurnError``); 0: the first chunk only
+    )
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -68,8 +71,14 @@ class BuildPlan:
         self.image_size = validate_head_size(*self.image_size)
         _ = self.variation  # validates its values
         self.tasks = [t for sel in self.tasks for t in task_names(sel)]
+        if self.turn_error_subtask:
+            short = [t for t in self.tasks if len(get_task(t).subtasks) < self.turn_error_subtask]
+            if short:
+                raise ValueError(
+                    f"--turn-error-subtask {self.turn_error_subtask}: {short} have fewer subtasks; "
+                    "give a subtask number every task of the build has"
+                )
         if self.reading_variants > 1:  # refused here, not seed by seed in the shards
-            from ..tasks import get_task
             from ..tasks.sampling import sample_scene
 
             for task in self.tasks:  # raises for a task that draws no reading
@@ -105,6 +114,7 @@ class BuildPlan:
             face_jitter=self.face_jitter,
             reading_variants=self.reading_variants,
             turn_error=self.turn_error,
+            turn_error_subtask=self.turn_error_subtask,
         )
 
     def to_json(self) -> dict:

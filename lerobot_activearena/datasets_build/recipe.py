@@ -25,6 +25,7 @@ RECIPE_KEYS = {
     "face_jitter": 0.0,  # off-centre demonstrations: the torso's facing turns off by up to this (rad)
     "reading_variants": 1,  # counterfactual readings: each scene demonstrated with N hidden readings
     "turn_error": 0.0,  # turn-recovery demonstrations: the first chunk's torso off by up to this (rad)
+    "turn_error_subtask": 0,  # ... and the first chunk of this subtask's too (0: the first chunk only)
 }
 
 

@@ -100,7 +100,8 @@ class DemoVariation:
     ``press_arm``: ``ExpertContext``'s one arm for the count-and-press tasks' press (None: the arm on
     the button's half of the fan); ``reading_variants`` N > 1: counterfactual readings, seed s plays
     scene s // N with its hidden reading shifted by s % N (``sample_scene``), so each scene is
-    demonstrated with N readings and N decisions; ``turn_error``: ``TurnError``'s largest angle in rad."""
+    demonstrated with N readings and N decisions; ``turn_error``: ``TurnError``'s largest angle in rad;
+    ``turn_error_subtask`` K >= 2: ``TurnError`` also turns the first frames of subtask K (0: none)."""
 
     search_overshoot: float = 0.0
     action_noise: float = 0.0
@@ -109,6 +110,7 @@ class DemoVariation:
     face_jitter: float = 0.0
     reading_variants: int = 1
     turn_error: float = 0.0
+    turn_error_subtask: int = 0
 
     def __post_init__(self):
         if not 0.0 <= self.search_overshoot <= 1.0:
@@ -124,6 +126,12 @@ class DemoVariation:
             )
         if not 0.0 <= self.turn_error <= MAX_TURN_ERROR:
             raise ValueError(f"--turn-error is an angle in [0, {MAX_TURN_ERROR}] rad, got {self.turn_error}")
+        if self.turn_error_subtask and (self.turn_error_subtask < 2 or not self.turn_error):
+            raise ValueError(
+                "--turn-error-subtask K turns the torso off at the start of subtask K >= 2 (subtask 1 starts the "
+                f"episode, which --turn-error turns) and needs --turn-error > 0, got K={self.turn_error_subtask} "
+                f"with --turn-error {self.turn_error}"
+            )
         if not isinstance(self.decision_period, int) or self.decision_period < 1:
             raise ValueError(
                 f"--decision-period is a number of frames >= 1 (1: the benchmark's expert), got "
@@ -185,18 +193,26 @@ class TurnError:
     frame ``steps`` on the expert's own commands run. The dataset records the expert's commands, so
     the frame where the error ends shows the torso and the view off the path with the command that
     turns back, which the benchmark's expert (always on its heading by then) never shows. Drawn from
-    its own stream, seeded by the scene seed: deterministic, and the scene's sampling is not touched."""
+    its own stream, seeded by the scene seed: deterministic, and the scene's sampling is not touched.
+    ``subtask`` K: the first ``steps`` frames of subtask K are turned off too, by a second draw (the
+    place's turn of an inspect-and-place task, decided from what the memory holds)."""
 
-    def __init__(self, angle: float, seed: int, task: str, steps: int = TURN_ERROR_STEPS):
+    def __init__(self, angle: float, seed: int, task: str, steps: int = TURN_ERROR_STEPS, subtask: int = 0):
         if not 0.0 < angle <= MAX_TURN_ERROR:
             raise ValueError(f"turn_error is an angle in (0, {MAX_TURN_ERROR}] rad, got {angle}")
         rng = np.random.default_rng([int(seed), zlib.crc32(f"turn_error/{task}".encode())])
         self.offset, self.steps, self.t = float(rng.uniform(-angle, angle)), steps, 0
+        self.subtask, self.subtask_offset = subtask, float(rng.uniform(-angle, angle))
+        self.subtask_start: int | None = None
 
-    def __call__(self, action: np.ndarray) -> np.ndarray:
+    def __call__(self, action: np.ndarray, subtask: int = 0) -> np.ndarray:
         out = np.array(action, dtype=float)
+        if self.subtask and subtask == self.subtask and self.subtask_start is None:
+            self.subtask_start = self.t
         if self.t < self.steps:
             out[TORSO_YAW] += self.offset
+        elif self.subtask_start is not None and self.t - self.subtask_start < self.steps:
+            out[TORSO_YAW] += self.subtask_offset
         self.t += 1
         return out
 
@@ -291,6 +307,7 @@ def run_expert_episode(
     face_jitter: float = 0.0,
     reading_variants: int = 1,
     turn_error: float = 0.0,
+    turn_error_subtask: int = 0,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
@@ -304,7 +321,8 @@ def run_expert_episode(
     benchmark's expert). ``face_jitter``: ``ExpertContext``'s off-centre demonstrations (rad; 0 = the
     benchmark's expert). ``reading_variants`` N > 1: seed s plays scene s // N with its hidden reading
     shifted by s % N (``DemoVariation``). ``turn_error``: ``TurnError``'s largest angle in rad (0 = none):
-    ``actions`` stay the expert's, ``states`` are where the turned torso took the robot."""
+    ``actions`` stay the expert's, ``states`` are where the turned torso took the robot;
+    ``turn_error_subtask`` K: also the first frames of subtask K (``TurnError``)."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed // reading_variants, split, reading_shift=seed % reading_variants)
@@ -321,7 +339,12 @@ def run_expert_episode(
         face_jitter=face_jitter,
     )
     perturb = ActionNoise(action_noise, seed, task.name) if action_noise else None
-    turn = TurnError(turn_error, seed, task.name) if turn_error else None
+    if turn_error_subtask and not 2 <= turn_error_subtask <= len(task.subtasks):
+        raise ValueError(
+            f"--turn-error-subtask {turn_error_subtask}: {task.name}'s subtasks are 1-{len(task.subtasks)} "
+            "and subtask 1 starts the episode"
+        )
+    turn = TurnError(turn_error, seed, task.name, subtask=turn_error_subtask) if turn_error else None
     frames, actions, states = [], [], []
     failure = None
     for t in range(task.max_episode_steps + 1):
@@ -344,7 +367,7 @@ def run_expert_episode(
             if perturb is not None:
                 executed = perturb(executed, driver.ctx.precise)
             if turn is not None:
-                executed = turn(executed)
+                executed = turn(executed, driver.ctx.intent.subtask)
             executed = np.clip(executed, low, high)
         episode.step(executed)
         if episode.physics_problem:

@@ -383,6 +383,24 @@ def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, 
         BuildPlan(repo_id="a/b", split="id", tasks=[BELL], episodes=1, **{key: bad})
 
 
+def test_turn_error_subtask_is_a_recipe_key_and_a_flag_checked_against_the_tasks(tmp_path):
+    """The place's turn error rides with --turn-error in the plan (an old build's plan omits it) and
+    is refused for a task without that subtask."""
+    recipe = tmp_path / "r.json"
+    task = "check_block_color"
+    recipe.write_text(json.dumps({"repo_id": "a/b", "tasks": task, "episodes": 1, "turn_error": 0.3}))
+    plain = make_plan(_parse_build_args(["--recipe", str(recipe), "--root", "/x"]))
+    assert plain.turn_error_subtask == 0 and "turn_error_subtask" not in plain.to_json()
+    flagged = make_plan(
+        _parse_build_args(["--recipe", str(recipe), "--root", "/x", "--turn-error-subtask", "4"])
+    )
+    assert flagged.variation.turn_error_subtask == 4 and flagged.to_json()["turn_error_subtask"] == 4
+    plain.save(tmp_path / "plan.json")
+    assert not flagged.same_as(tmp_path / "plan.json")
+    with pytest.raises(ValueError, match="fewer subtasks"):
+        BuildPlan(repo_id="a/b", split="id", tasks=[BELL], episodes=1, turn_error=0.3, turn_error_subtask=2)
+
+
 def test_bad_recipes_get_clear_errors(tmp_path, capsys):
     def error_of(recipe: dict | None, *argv):
         path = tmp_path / "r.json"

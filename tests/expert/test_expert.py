@@ -440,6 +440,41 @@ def test_turn_error_turns_the_first_chunk_off_the_heading_and_records_the_turn_b
         TurnError(0.0, 0, task)
 
 
+def test_turn_error_subtask_turns_the_start_of_that_subtask_off_too():
+    """--turn-error-subtask 4: the first 16 frames of check_block_color's place subtask run with the
+    torso off by a second draw; everything before that subtask is the first-chunk-only episode's, the
+    expert still places the block, and a subtask the task lacks (or subtask 1) is refused."""
+    from lerobot_activearena.episodes.rollout import (
+        TURN_ERROR_STEPS,
+        DemoVariation,
+        TurnError,
+        run_expert_episode,
+    )
+    from lerobot_activearena.sim.action import TORSO_YAW
+
+    task = "check_block_color"
+    offsets = [TurnError(0.35, seed, task, subtask=4).subtask_offset for seed in range(40)]
+    assert [TurnError(0.35, s, task, subtask=4).offset for s in range(3)] == [
+        TurnError(0.35, s, task).offset for s in range(3)
+    ]  # the first chunk's draw is unchanged
+    seed = int(np.argmax(np.abs(offsets)))
+    placed = run_expert_episode(task, seed, "id", turn_error=0.35, turn_error_subtask=4)
+    first_only = run_expert_episode(task, seed, "id", turn_error=0.35)
+    assert placed.success
+    start = next(t["frame"] for t in placed.sidecar["transitions"] if t["subtask"] == 4)
+    states, actions = np.asarray(placed.states), np.asarray(placed.actions)
+    np.testing.assert_array_equal(states[: start + 1], np.asarray(first_only.states)[: start + 1])
+    lag = states[1:, TORSO_YAW] - actions[:-1, TORSO_YAW]
+    end = start + TURN_ERROR_STEPS
+    np.testing.assert_allclose(lag[end - 6 : end - 1], offsets[seed], atol=0.02)
+    with pytest.raises(ValueError, match="--turn-error-subtask"):
+        DemoVariation(turn_error=0.35, turn_error_subtask=1)
+    with pytest.raises(ValueError, match="needs --turn-error > 0"):
+        DemoVariation(turn_error_subtask=4)
+    with pytest.raises(ValueError, match="subtasks are 1-4"):
+        run_expert_episode(task, seed, "id", turn_error=0.35, turn_error_subtask=5)
+
+
 def test_the_block_patch_is_shown_where_the_camera_sees_it_frontally(monkeypatch):
     """check_block_color's back patch is turned to the head camera at the frontal spot (``fine_print``):
     at the CPU recipe's 192 x 256 it covers over twice the pixels it does turned below the head, where
