@@ -64,6 +64,15 @@ from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
 
 
+def checkpoint_label(path) -> str:
+    """``RUN/STEP`` for a lerobot-train checkpoint (``.../RUN/checkpoints/STEP/pretrained_model``),
+    else the path as given: what the records name the policy by."""
+    parts = Path(path).resolve().parts
+    if len(parts) >= 4 and parts[-1] == "pretrained_model" and parts[-3] == "checkpoints":
+        return f"{parts[-4]}/{parts[-2]}"
+    return str(path)
+
+
 def _sibling(name: str):
     spec = importlib.util.spec_from_file_location(name, Path(__file__).with_name(f"{name}.py"))
     module = importlib.util.module_from_spec(spec)
@@ -387,6 +396,12 @@ def main() -> None:
     points = args.handover.split(",")
     episodes = int_ranges(args.scene_seeds or args.episode_indices)
     as_given = args.scene_seeds is not None
+    validation = args.split == "id" and min(episodes) >= 50  # manifest ID 0-49: the protocol's
+    scenes = (
+        "training scene seeds"
+        if as_given
+        else ("validation manifest ID" if validation else f"manifest {args.split}")
+    )
     rows = []
     with policy_in_env(
         args.checkpoint, args.task, args.split, expert_channel=True, use_manifest=not as_given
@@ -448,7 +463,14 @@ def main() -> None:
                 right = spans.right_after(step) if spans else (0, 0)
                 wheres = spans.where_after(step) if spans else []
                 rows.append(
-                    {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
+                    {
+                        "checkpoint": checkpoint_label(args.checkpoint),
+                        "span": args.span,
+                        "n_action_steps": policy.config.n_action_steps,
+                        "scenes": scenes,
+                    }
+                    | ({"memory_ablation": args.memory_ablation} if args.memory_ablation != "none" else {})
+                    | {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
                     | ({"replan": True} if args.replan else {})
                     | {"span_right": right[0], "span_decisions": right[1]}
                     | ({"span_where_errors": wheres} if wheres else {})
