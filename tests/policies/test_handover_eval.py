@@ -211,3 +211,11 @@ def test_the_reach_line_counts_headings_off_and_the_misses_they_cost():
     assert "1 still that far off where the hand came nearest, missing by 12.0 cm" in line
     assert "furthest stage {'lift': 3, 'reach': 2}" in line
     assert script.reach_line(rows[:2]) == ""  # too few episodes to correlate
+
+
+def test_records_name_a_training_checkpoint_by_run_and_step(tmp_path):
+    """A lerobot-train checkpoint is named RUN/STEP in the records; any other path as given."""
+    script = load("analysis/policies/handover_eval.py")
+    ckpt = tmp_path / "outputs/train/block_run/checkpoints/001500/pretrained_model"
+    assert script.checkpoint_label(ckpt) == "block_run/001500"
+    assert script.checkpoint_label(tmp_path / "model") == str(tmp_path / "model")
