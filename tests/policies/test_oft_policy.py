@@ -1615,16 +1615,9 @@ def test_opening_weight_weighs_every_episodes_first_frames(vlm, root, tmp_path):
     assert batch[ACTION_WEIGHT].tolist() == [3.0, 3.0, 1.0]
     copy = _with_red_pad_reading(root, tmp_path, episode=1)
     onset = int(np.flatnonzero(DatasetAnnotations(copy, REPO).decision_onsets(window=8))[0])
+    weights = {"decision_weight": 5.0, "decision_window": 8, "opening_weight": 3.0}
     _, _, both, _, both_ds = _setup(
-        vlm,
-        copy,
-        memory="chunk",
-        history=2,
-        think="none",
-        decision_weight=5.0,
-        decision_window=8,
-        opening_weight=3.0,
-        opening_window=onset - first + 1,
+        vlm, copy, memory="chunk", history=2, think="none", opening_window=onset - first + 1, **weights
     )
     assert collate(both_ds, both, [onset, first, late])[ACTION_WEIGHT].tolist() == [15.0, 3.0, 3.0]
     policy.train()
