@@ -50,9 +50,7 @@ class BuildPlan:
     face_jitter: float = 0.0  # off-centre demonstrations (``ExpertContext``), rad; 0: the benchmark's expert
     reading_variants: int = 1  # counterfactual readings (``DemoVariation``); 1: the benchmark's scenes
     turn_error: float = 0.0  # turn-recovery demonstrations (``TurnError``), rad; 0: the benchmark's expert
-    turn_error_subtask: int = (
-        0  # ... also at the start of this subtask (``TurnError``); 0: the first chunk only
-    )
+    turn_error_subtask: int = 0  # ... also at this subtask's start (``TurnError``); 0: none
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
