@@ -331,6 +331,24 @@ def missed_places(rows: list[dict]) -> str:
     return text
 
 
+def lifted_choices(rows: list[dict]) -> str:
+    """Of the episodes that lifted the object: in how many the span's last named support was the
+    destination (the decision), and how many of those set the object on it (the place)."""
+    lifted = [r for r in rows if r.get("reach_stage") == "lift"]
+    if not lifted or not any(r.get("span_where_errors") for r in lifted):
+        return ""
+    right = []
+    for r in lifted:
+        named = [w[1] for w in r.get("span_where_errors", []) if w[1] in r["offsets"]]
+        if named and named[-1] == r["destination"]:
+            right.append(r)
+    placed = sum(r["rests_on"] == r["destination"] for r in right)
+    return (
+        f"    of the {len(lifted)} that lifted, the span last named the destination in {len(right)}, "
+        f"{placed} of those set down on it"
+    )
+
+
 def end_place(row: dict) -> str:
     if row["rests_on"] is None:
         return "no support"
@@ -506,6 +524,8 @@ def main() -> None:
         )
         if places and reach_line(mine):
             print(reach_line(mine))
+        if places and lifted_choices(mine):
+            print(lifted_choices(mine))
         decisions = sum(r["span_decisions"] for r in mine)
         if decisions:
             print(

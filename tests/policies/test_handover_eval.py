@@ -219,3 +219,30 @@ def test_records_name_a_training_checkpoint_by_run_and_step(tmp_path):
     ckpt = tmp_path / "outputs/train/block_run/checkpoints/001500/pretrained_model"
     assert script.checkpoint_label(ckpt) == "block_run/001500"
     assert script.checkpoint_label(tmp_path / "model") == str(tmp_path / "model")
+
+
+def test_lifted_choices_split_a_wrong_decision_from_a_missed_set_down():
+    script = load("analysis/policies/handover_eval.py")
+    offsets = {"red_pad": 0.3, "green_pad": 0.2, "blue_pad": 0.4}
+
+    def row(stage, named, rests_on):
+        where = [[0, "gray_block", 1.0, 4.0]] + [[16 * (i + 1), n, 2.0, 8.0] for i, n in enumerate(named)]
+        return {
+            "reach_stage": stage,
+            "span_where_errors": where,
+            "offsets": offsets,
+            "destination": "red_pad",
+            "rests_on": rests_on,
+        }
+
+    rows = [
+        row("reach", ["red_pad"], None),  # never lifted: not counted
+        row("lift", ["blue_pad", "red_pad"], "red_pad"),  # changed its mind to the right pad, placed
+        row("lift", ["red_pad"], None),  # right pad, set down off it
+        row("lift", ["red_pad", "green_pad"], "green_pad"),  # last named the wrong pad
+    ]
+    assert script.lifted_choices(rows) == (
+        "    of the 3 that lifted, the span last named the destination in 2, 1 of those set down on it"
+    )
+    assert script.lifted_choices(rows[:1]) == ""  # nothing lifted
+    assert script.lifted_choices([dict(rows[1], span_where_errors=[])]) == ""  # no span to read
