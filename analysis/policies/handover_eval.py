@@ -36,7 +36,9 @@ forced decision also lands in the spans of the subtasks before the reading, whic
 With ``decision_where`` a span that names the pick subtask is forced to where the object lies instead,
 so a handover at ``start`` tests whether the reach follows the place the span gives (read it for the
 pick only). Every run prints how often the decoded span named the right decision at the decisions
-after the handover and, with ``decision_where``, how far the place it gave was off, per object.
+after the handover and, with ``decision_where``, how far the place it gave was off, per object, and
+of the episodes that lifted the object, in how many the span last named the destination and how many
+of those set it down there (a wrong choice against a missed set-down).
 ``--video DIR`` writes each episode's head camera with the step, who acts and the span's decision.
 """
 
