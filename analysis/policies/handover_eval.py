@@ -524,10 +524,9 @@ def main() -> None:
                 else ""
             )
         )
-        if places and reach_line(mine):
-            print(reach_line(mine))
-        if places and lifted_choices(mine):
-            print(lifted_choices(mine))
+        for line in (reach_line(mine), lifted_choices(mine)) if places else ():
+            if line:
+                print(line)
         decisions = sum(r["span_decisions"] for r in mine)
         if decisions:
             print(
