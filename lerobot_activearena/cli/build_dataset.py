@@ -95,6 +95,14 @@ def parser() -> argparse.ArgumentParser:
         "check_block_color's place: 4) are turned off too, by a second draw (default 0: the first chunk only)",
     )
     p.add_argument(
+        "--grasp-miss",
+        type=float,
+        default=None,
+        help="grasp-retry demonstrations: each pick's first try runs with the arm 0.6-1 x this many m above the "
+        "grasp point and up to half of it beside it (at most 0.08), closes on nothing and is tried again; the "
+        "dataset records the expert's commands (default 0: the benchmark's expert)",
+    )
+    p.add_argument(
         "--reading-variants",
         type=int,
         default=None,
@@ -223,6 +231,7 @@ def make_plan(args: argparse.Namespace, recipe: dict | None = None) -> BuildPlan
         reading_variants=pick("reading_variants"),
         turn_error=float(pick("turn_error")),
         turn_error_subtask=pick("turn_error_subtask"),
+        grasp_miss=float(pick("grasp_miss")),
     )
 
 

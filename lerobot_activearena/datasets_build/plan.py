@@ -51,6 +51,7 @@ class BuildPlan:
     reading_variants: int = 1  # counterfactual readings (``DemoVariation``); 1: the benchmark's scenes
     turn_error: float = 0.0  # turn-recovery demonstrations (``TurnError``), rad; 0: the benchmark's expert
     turn_error_subtask: int = 0  # ... also at this subtask's start (``TurnError``); 0: none
+    grasp_miss: float = 0.0  # grasp-retry demonstrations (``ExpertContext``), m; 0: the benchmark's expert
     shards: list[ShardSpec] = field(init=False)
 
     def __post_init__(self):
@@ -113,6 +114,7 @@ class BuildPlan:
             reading_variants=self.reading_variants,
             turn_error=self.turn_error,
             turn_error_subtask=self.turn_error_subtask,
+            grasp_miss=self.grasp_miss,
         )
 
     def to_json(self) -> dict:

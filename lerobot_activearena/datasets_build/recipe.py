@@ -26,6 +26,7 @@ RECIPE_KEYS = {
     "reading_variants": 1,  # counterfactual readings: each scene demonstrated with N hidden readings
     "turn_error": 0.0,  # turn-recovery demonstrations: the first chunk's torso off by up to this (rad)
     "turn_error_subtask": 0,  # ... and the first chunk of this subtask's too (0: the first chunk only)
+    "grasp_miss": 0.0,  # grasp-retry demonstrations: each pick's first try closes up to this far off (m)
 }
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..annotations.writer import AnnotationWriter
-from ..expert.context import MAX_FACE_JITTER, PRESS_ARMS, ExpertContext, ExpertError
+from ..expert.context import MAX_FACE_JITTER, MAX_GRASP_MISS, PRESS_ARMS, ExpertContext, ExpertError
 from ..expert.kinematics import shared_kinematics
 from ..sim.action import GRIPPER_INDICES, TORSO_YAW
 from ..sim.health import PENETRATION_LIMIT
@@ -101,7 +101,8 @@ class DemoVariation:
     the button's half of the fan); ``reading_variants`` N > 1: counterfactual readings, seed s plays
     scene s // N with its hidden reading shifted by s % N (``sample_scene``), so each scene is
     demonstrated with N readings and N decisions; ``turn_error``: ``TurnError``'s largest angle in rad;
-    ``turn_error_subtask`` K >= 2: ``TurnError`` also turns the first frames of subtask K (0: none)."""
+    ``turn_error_subtask`` K >= 2: ``TurnError`` also turns the first frames of subtask K (0: none);
+    ``grasp_miss``: ``ExpertContext``'s grasp-retry demonstrations (m)."""
 
     search_overshoot: float = 0.0
     action_noise: float = 0.0
@@ -111,6 +112,7 @@ class DemoVariation:
     reading_variants: int = 1
     turn_error: float = 0.0
     turn_error_subtask: int = 0
+    grasp_miss: float = 0.0
 
     def __post_init__(self):
         if not 0.0 <= self.search_overshoot <= 1.0:
@@ -132,6 +134,8 @@ class DemoVariation:
                 f"episode, which --turn-error turns) and needs --turn-error > 0, got K={self.turn_error_subtask} "
                 f"with --turn-error {self.turn_error}"
             )
+        if not 0.0 <= self.grasp_miss <= MAX_GRASP_MISS:
+            raise ValueError(f"--grasp-miss is a distance in [0, {MAX_GRASP_MISS}] m, got {self.grasp_miss}")
         if not isinstance(self.decision_period, int) or self.decision_period < 1:
             raise ValueError(
                 f"--decision-period is a number of frames >= 1 (1: the benchmark's expert), got "
@@ -236,6 +240,7 @@ class ExpertDriver:
         decision_period: int = 1,
         press_arm: str | None = None,
         face_jitter: float = 0.0,
+        grasp_miss: float = 0.0,
     ):
         ik, gaze = shared_kinematics()
         self.task = task
@@ -261,6 +266,10 @@ class ExpertDriver:
             press_arm=press_arm,
             face_jitter=face_jitter,
             face_rng=face_rng,
+            grasp_miss=grasp_miss,
+            miss_rng=np.random.default_rng([int(scene.seed), zlib.crc32(f"grasp_miss/{task.name}".encode())])
+            if grasp_miss > 0.0
+            else None,
         )
         self._script = task.expert(self.ctx, scene)
         self.finished = False
@@ -308,6 +317,7 @@ def run_expert_episode(
     reading_variants: int = 1,
     turn_error: float = 0.0,
     turn_error_subtask: int = 0,
+    grasp_miss: float = 0.0,
 ) -> EpisodeResult:
     """Sample the scene, run the expert until success is reported, it fails or gives up, or the
     step limit; return everything. ``on_frame(t, sim, annotation, action)`` runs before each step
@@ -322,7 +332,9 @@ def run_expert_episode(
     benchmark's expert). ``reading_variants`` N > 1: seed s plays scene s // N with its hidden reading
     shifted by s % N (``DemoVariation``). ``turn_error``: ``TurnError``'s largest angle in rad (0 = none):
     ``actions`` stay the expert's, ``states`` are where the turned torso took the robot;
-    ``turn_error_subtask`` K: also the first frames of subtask K (``TurnError``)."""
+    ``turn_error_subtask`` K: also the first frames of subtask K (``TurnError``). ``grasp_miss``:
+    each pick's first try runs off the expert's command by up to this many m (``ExpertContext``; 0 =
+    the benchmark's expert): ``actions`` stay the expert's."""
     t0 = time.perf_counter()
     task = get_task(task_name)
     scene = sample_scene(task, seed // reading_variants, split, reading_shift=seed % reading_variants)
@@ -337,6 +349,7 @@ def run_expert_episode(
         decision_period=decision_period,
         press_arm=press_arm,
         face_jitter=face_jitter,
+        grasp_miss=grasp_miss,
     )
     perturb = ActionNoise(action_noise, seed, task.name) if action_noise else None
     if turn_error_subtask and not 2 <= turn_error_subtask <= len(task.subtasks):
@@ -362,8 +375,11 @@ def run_expert_episode(
         if on_frame is not None:
             on_frame(t, sim, frame, action)
         executed = action
-        if perturb is not None or turn is not None:  # within the joint limits; the command is as it is
+        miss = driver.ctx.executed_offset
+        if perturb is not None or turn is not None or miss is not None:  # within the joint limits
             low, high = np.minimum(sim.action_low, action), np.maximum(sim.action_high, action)
+            if miss is not None:
+                executed = executed + miss
             if perturb is not None:
                 executed = perturb(executed, driver.ctx.precise)
             if turn is not None:

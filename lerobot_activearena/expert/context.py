@@ -22,6 +22,7 @@ class ExpertError(RuntimeError):
 
 
 MAX_FACE_JITTER = 0.2  # rad: beyond it objects at the fan's edge fall out of the arm's reach
+MAX_GRASP_MISS = 0.08  # m: the largest offset of a missed first grasp (``grasp_miss``)
 
 PRESS_ARMS = (
     None,
@@ -48,6 +49,8 @@ class ExpertContext:
         press_arm: str | None = None,
         face_jitter: float = 0.0,
         face_rng: np.random.Generator | None = None,
+        grasp_miss: float = 0.0,
+        miss_rng: np.random.Generator | None = None,
     ):
         if not isinstance(decision_period, int) or decision_period < 1:
             raise ValueError(f"decision_period is a number of frames >= 1, got {decision_period!r}")
@@ -59,6 +62,10 @@ class ExpertContext:
             raise ValueError("search_overshoot > 0 needs an rng (seeded from the scene seed)")
         if face_jitter > 0.0 and face_rng is None:
             raise ValueError("face_jitter > 0 needs a face_rng (seeded from the scene seed)")
+        if not 0.0 <= grasp_miss <= MAX_GRASP_MISS:
+            raise ValueError(f"grasp_miss is a distance in [0, {MAX_GRASP_MISS}] m, got {grasp_miss}")
+        if grasp_miss > 0.0 and miss_rng is None:
+            raise ValueError("grasp_miss > 0 needs a miss_rng (seeded from the scene seed)")
         self.sim, self.perception, self.ik, self.gaze = sim, perception, ik, gaze
         # Recovery demonstrations for datasets (0 = the benchmark's expert): the probability that a
         # search sweep that found nothing in an end sector goes on to the torso's joint limit before it
@@ -79,6 +86,13 @@ class ExpertContext:
         # +/- this many rad, and the arm reaches from there, so the arm's path depends on where the
         # object sits in the view, not only on the torso's heading.
         self.face_jitter, self.face_rng = face_jitter, face_rng
+        # Grasp-retry demonstrations for datasets (0 = the benchmark's expert): each pick's first try
+        # runs with the arm off the expert's command (``executed_offset``), up to this many m above
+        # and beside the grasp point; it closes on nothing, and the expert lets go and grasps again
+        # (``skills.pick``), so a policy sees what to do after a missed grasp.
+        self.grasp_miss, self.miss_rng = grasp_miss, miss_rng
+        # added to the command the simulator executes, not to the one recorded (dataset builds only)
+        self.executed_offset: np.ndarray | None = None
         self.n_subtasks = n_subtasks
         self.objects = list(objects)
         self.info = {o.name: o for o in sim.info.objects}

@@ -71,32 +71,71 @@ def pick(
     straight_approach: bool = False,
     max_vel: float = 1.5,
 ) -> Actions:
-    """Top-down grasp of object ``i`` from ``approach`` m above the grasp point, and lift; raises
-    ExpertError if it did not come up. ``flip_ok=False`` keeps the finger order given by ``closing``
-    (no 180 deg wrist flip). ``straight_approach``: the gripper rises to the approach height and comes in
-    along straight lines (a tall object: the approach's joint path dips and sweeps over it).
-    ``max_vel``: the joints' peak speed (rad/s) on the way to the approach pose."""
+    """Top-down grasp of object ``i`` from ``approach`` m above the grasp point, and lift. A grasp
+    that did not bring the object up is let go and tried once more from above (after a second miss:
+    ExpertError). ``flip_ok=False`` keeps the finger order given by ``closing`` (no 180 deg wrist
+    flip). ``straight_approach``: the gripper rises to the approach height and comes in along straight
+    lines (a tall object: the approach's joint path dips and sweeps over it). ``max_vel``: the joints'
+    peak speed (rad/s) on the way to the approach pose. With ``ctx.grasp_miss`` the first try runs
+    with the arm off its command (``_miss_first_grasp``)."""
     start_action(ctx, {i})
     closing = box_closing_axis(ctx, i) if closing is None else closing
-    grasp = grasp_point(ctx, i)
-    if flip_ok:
-        rot = top_down_rotation(ctx, side, closing, grasp + [0, 0, approach], grasp, grasp + [0, 0, lift])
-    else:
-        rot = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
-    z0 = ctx.bottom_z(i)
-    if straight_approach:
-        p, rot_now = tcp_pose(ctx, side)
-        if p[2] < grasp[2] + approach:
-            yield from arm_line(ctx, side, [p[0], p[1], grasp[2] + approach], rot_now, 1.0, speed=0.25)
-        yield from arm_line(ctx, side, grasp + [0, 0, approach], rot, 1.0, speed=0.25)
-    else:
-        yield from arm_goto(ctx, side, grasp + [0, 0, approach], rot, gripper=1.0, max_vel=max_vel)
-    yield from arm_line(ctx, side, grasp, rot, 1.0, speed=0.18)
-    yield from set_gripper(ctx, side, 0.0, 10)
-    ctx.intent.carried = {i}
-    yield from arm_line(ctx, side, grasp + [0, 0, lift], rot, 0.0, speed=0.2)
-    if ctx.bottom_z(i) - z0 < 0.5 * lift:
-        raise ExpertError(f"grasp of {ctx.objects[i]} failed: it rose {100 * (ctx.bottom_z(i) - z0):.1f} cm")
+    for attempt in range(GRASP_TRIES):
+        grasp = grasp_point(ctx, i)
+        if flip_ok:
+            rot = top_down_rotation(ctx, side, closing, grasp + [0, 0, approach], grasp, grasp + [0, 0, lift])
+        else:
+            rot = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
+        z0 = ctx.bottom_z(i)
+        missing = attempt == 0 and ctx.grasp_miss > 0.0 and _miss_first_grasp(ctx, side, grasp, rot, closing)
+        if straight_approach:
+            p, rot_now = tcp_pose(ctx, side)
+            if p[2] < grasp[2] + approach:
+                yield from arm_line(ctx, side, [p[0], p[1], grasp[2] + approach], rot_now, 1.0, speed=0.25)
+            yield from arm_line(ctx, side, grasp + [0, 0, approach], rot, 1.0, speed=0.25)
+        else:
+            yield from arm_goto(ctx, side, grasp + [0, 0, approach], rot, gripper=1.0, max_vel=max_vel)
+        yield from arm_line(ctx, side, grasp, rot, 1.0, speed=0.18)
+        yield from set_gripper(ctx, side, 0.0, 10)
+        ctx.intent.carried = {i}
+        yield from arm_line(ctx, side, grasp + [0, 0, lift], rot, 0.0, speed=0.2)
+        ctx.executed_offset = None
+        rose = ctx.bottom_z(i) - z0
+        if rose >= 0.5 * lift:
+            if missing:
+                raise ExpertError(f"the missed grasp demonstrated on {ctx.objects[i]} caught it")
+            return
+        ctx.intent.carried = set()
+        if attempt + 1 < GRASP_TRIES:  # let go; the next try comes in from above the object again
+            yield from hold(ctx, GRASP_SETTLE)
+            yield from set_gripper(ctx, side, 1.0, 6)
+    raise ExpertError(f"grasp of {ctx.objects[i]} failed: it rose {100 * rose:.1f} cm")
+
+
+GRASP_TRIES = 2  # a missed grasp is tried once more
+GRASP_SETTLE = 4  # frames the arm holds after a miss before it lets go (an offset arm comes back)
+
+
+def _miss_first_grasp(ctx: ExpertContext, side: str, grasp: np.ndarray, rot: np.ndarray, closing) -> bool:
+    """Grasp-retry demonstrations: set ``ctx.executed_offset`` so that the arm the simulator moves
+    closes 0.5-1 x ``ctx.grasp_miss`` m above the grasp point and as far beside it, across the
+    fingers' closing axis (the fingers pass beside the object), on nothing: the joints' difference
+    between the two IK solutions. The draws come from the episode's own stream, so the scene is
+    untouched; False where IK cannot reach the offset pose."""
+    up, across, sign = ctx.miss_rng.uniform([GRASP_MISS_MIN, GRASP_MISS_MIN, -1.0], [1.0, 1.0, 1.0])
+    c = np.asarray(closing, float)[:2]
+    perpendicular = np.array([-c[1], c[0]]) / np.linalg.norm(c)
+    offset = ctx.grasp_miss * np.array([*(math.copysign(across, sign) * perpendicular), up])
+    try:
+        q_grasp = solve_ik(ctx, side, arm_of(ctx.action, side), grasp, rot)
+        q_off = solve_ik(ctx, side, q_grasp, grasp + offset, rot)
+    except ExpertError:
+        return False
+    ctx.executed_offset = with_arm(np.zeros_like(ctx.action), side, q_off - q_grasp)
+    return True
+
+
+GRASP_MISS_MIN = 0.5  # the missed grasp's least height above and distance beside, as a part of grasp_miss
 
 
 def _feasible_rotation(

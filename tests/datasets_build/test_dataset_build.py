@@ -360,6 +360,7 @@ def test_bad_arguments_get_clear_errors():
         ("face_jitter", 0.1, "0.15", 0.5),
         ("reading_variants", 3, "2", 0),
         ("turn_error", 0.3, "0.2", 0.5),
+        ("grasp_miss", 0.05, "0.04", 0.2),
     ],
 )
 def test_demonstration_variations_are_an_opt_in_part_of_the_plan(tmp_path, key, value, flag, bad):

@@ -475,6 +475,34 @@ def test_turn_error_subtask_turns_the_start_of_that_subtask_off_too():
         run_expert_episode(task, seed, "id", turn_error=0.35, turn_error_subtask=5)
 
 
+def test_grasp_miss_closes_the_first_try_on_nothing_and_the_expert_grasps_again():
+    """Grasp-retry demonstrations: the first try's arm runs off the expert's command, its gripper
+    closes on nothing, the expert lets go and picks again (the gripper then stops on the block), and
+    the episode succeeds. The recorded commands are the benchmark expert's until the miss shows;
+    deterministic per seed; an offset past the largest is refused."""
+    from lerobot_activearena.episodes.rollout import DemoVariation, run_expert_episode
+    from lerobot_activearena.expert.motion import arm_of, gripper_index
+
+    task, seed = "check_block_color", 0
+    missed = run_expert_episode(task, seed, "id", grasp_miss=0.06)
+    again = run_expert_episode(task, seed, "id", grasp_miss=0.06)
+    plain = run_expert_episode(task, seed, "id")
+    assert missed.success and plain.success
+    np.testing.assert_array_equal(missed.states, again.states)
+    actions, states = np.asarray(missed.actions), np.asarray(missed.states)
+    side = next(s for s in ("left", "right") if actions[:, gripper_index(s)].min() < 0.5)
+    g = gripper_index(side)
+    closes = np.flatnonzero((actions[1:, g] < 0.5) & (actions[:-1, g] >= 0.5)) + 1
+    assert len(closes) == 2 and len(missed.actions) > len(plain.actions)
+    first, second = closes
+    assert np.abs(arm_of(states[first], side) - arm_of(actions[first - 1], side)).max() > 0.05  # off
+    assert np.abs(arm_of(states[second], side) - arm_of(actions[second - 1], side)).max() < 0.02
+    assert states[first + 12, g] < 0.1 < 0.3 < states[second + 12, g]  # shut on nothing, then on the block
+    np.testing.assert_array_equal(actions[: first + 10], np.asarray(plain.actions)[: first + 10])
+    with pytest.raises(ValueError, match="--grasp-miss"):
+        DemoVariation(grasp_miss=0.2)
+
+
 def test_the_block_patch_is_shown_where_the_camera_sees_it_frontally(monkeypatch):
     """check_block_color's back patch is turned to the head camera at the frontal spot (``fine_print``):
     at the CPU recipe's 192 x 256 it covers over twice the pixels it does turned below the head, where
