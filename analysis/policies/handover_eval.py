@@ -38,7 +38,8 @@ so a handover at ``start`` tests whether the reach follows the place the span gi
 pick only). Every run prints how often the decoded span named the right decision at the decisions
 after the handover and, with ``decision_where``, how far the place it gave was off, per object, and
 of the episodes that lifted the object, in how many the span last named the destination and how many
-of those set it down there (a wrong choice against a missed set-down).
+of those set it down there (a wrong choice against a missed set-down), and of the episodes where a
+gripper shut on nothing, in how many it shut again after (a retry) and lifted.
 ``--video DIR`` writes each episode's head camera with the step, who acts and the span's decision.
 """
 
@@ -60,7 +61,7 @@ from lerobot_activearena.policies.activearena_vla.dataset_annotations import (
     pick_clause,
     read_where,
 )
-from lerobot_activearena.sim.action import TORSO_YAW
+from lerobot_activearena.sim.action import GRIPPER_INDICES, TORSO_YAW
 from lerobot_activearena.sim.embodiment import ARMS, TCP_SITES
 from lerobot_activearena.tasks import predicates
 from lerobot_activearena.tasks.shapes.inspection import InspectAndPlaceTask
@@ -147,6 +148,19 @@ class ReachWatch:
     def __init__(self, env, handover: int, expert_states, chunk: int):
         self.env, self.handover, self.t, self.record = env, handover, 0, None
         self.expert, self.chunk, self.headings = expert_states, chunk, {}
+        self.shut, self.closes, self.closing = None, [], {}  # closes: each one on nothing or not
+
+    def _grippers(self, state) -> None:
+        """Each time a gripper shuts after the handover: did it shut on nothing (``GRIP_EMPTY``)?"""
+        grip = np.asarray(state)[list(GRIPPER_INDICES)]
+        shut = grip < GRIP_SHUT
+        for k, now in enumerate(shut):
+            if self.shut is not None and now and not self.shut[k]:
+                self.closing[k] = len(self.closes)
+                self.closes.append(False)
+            if now and k in self.closing and grip[k] < GRIP_EMPTY:
+                self.closes[self.closing[k]] = True
+        self.shut = shut
 
     def _heading_off(self, t: int, yaw: float) -> float | None:
         return float(np.degrees(yaw - self.expert[t][TORSO_YAW])) if t < len(self.expert) else None
@@ -157,6 +171,7 @@ class ReachWatch:
             return
         sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
         centre, yaw = predicates.centre_point(sim, obj), float(sim.state()[TORSO_YAW])
+        self._grippers(sim.state())
         if self.record is None:
             self.record = pick_offsets.new_record(centre[:2])
         before = min(self.record["nearest"].values())
@@ -184,7 +199,26 @@ class ReachWatch:
             "reach_stage": s["stage"],
             "object_start_xy": s["start_xy"].tolist(),
             "hand_nearest_xy": s["nearest_xy"].tolist(),
+            "closes_on_nothing": self.closes,
         } | self.headings
+
+
+GRIP_SHUT = 0.7  # a gripper's state below this has shut (open: 1)
+GRIP_EMPTY = 0.15  # ... below this it shut on nothing (on the block it stops near 0.4)
+
+
+def retry_line(rows: list[dict]) -> str:
+    """Of the episodes where a gripper shut on nothing: in how many one shut again after that (a
+    retry), and how many of those lifted the object."""
+    missed = [r for r in rows if any(r.get("closes_on_nothing", []))]
+    if not missed:
+        return ""
+    retried = [r for r in missed if len(r["closes_on_nothing"]) > r["closes_on_nothing"].index(True) + 1]
+    lifted = sum(r["reach_stage"] == "lift" for r in retried)
+    return (
+        f"    a gripper shut on nothing in {len(missed)}; in {len(retried)} of those one shut again after, "
+        f"{lifted} of which lifted the object"
+    )
 
 
 TURN_TOLERANCE_DEG = float(np.degrees(0.12))  # the demonstrations' largest off-centre turn (--face-jitter)
@@ -524,7 +558,7 @@ def main() -> None:
                 else ""
             )
         )
-        for line in (reach_line(mine), lifted_choices(mine)) if places else ():
+        for line in (reach_line(mine), retry_line(mine), lifted_choices(mine)) if places else ():
             if line:
                 print(line)
         decisions = sum(r["span_decisions"] for r in mine)
