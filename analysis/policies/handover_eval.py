@@ -150,16 +150,17 @@ class ReachWatch:
         self.expert, self.chunk, self.headings = expert_states, chunk, {}
         self.shut, self.closes, self.closing = None, [], {}  # closes: each one on nothing or not
 
-    def _grippers(self, state) -> None:
-        """Each time a gripper shuts after the handover: did it shut on nothing (``GRIP_EMPTY``)?"""
+    def _grippers(self, state, away: list[float]) -> None:
+        """Each time a gripper shuts after the handover: did it shut on nothing (``GRIP_EMPTY``), and how
+        far (cm) its tool centre was from the object then (``away``: per arm, in ``ARMS`` order)."""
         grip = np.asarray(state)[list(GRIPPER_INDICES)]
         shut = grip < GRIP_SHUT
         for k, now in enumerate(shut):
             if self.shut is not None and now and not self.shut[k]:
                 self.closing[k] = len(self.closes)
-                self.closes.append(False)
+                self.closes.append([False, round(100 * away[k], 1)])
             if now and k in self.closing and grip[k] < GRIP_EMPTY:
-                self.closes[self.closing[k]] = True
+                self.closes[self.closing[k]][0] = True
         self.shut = shut
 
     def _heading_off(self, t: int, yaw: float) -> float | None:
@@ -171,13 +172,14 @@ class ReachWatch:
             return
         sim, obj = self.env.sim, self.env.scene.obj(self.env.spec_task.inspected[0])
         centre, yaw = predicates.centre_point(sim, obj), float(sim.state()[TORSO_YAW])
-        self._grippers(sim.state())
+        tcp = {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS}
+        self._grippers(sim.state(), [float(np.linalg.norm(tcp[arm] - centre)) for arm in ARMS])
         if self.record is None:
             self.record = pick_offsets.new_record(centre[:2])
         before = min(self.record["nearest"].values())
         pick_offsets.update(
             self.record,
-            {arm: sim.data.site(TCP_SITES[arm]).xpos.copy() for arm in ARMS},
+            tcp,
             centre,
             {arm: predicates.grasped_by(sim, obj.body, arm) for arm in ARMS},
             float(sim.data.body(obj.body).xpos[2] - sim.model.body(obj.body).pos[2]),
@@ -199,25 +201,30 @@ class ReachWatch:
             "reach_stage": s["stage"],
             "object_start_xy": s["start_xy"].tolist(),
             "hand_nearest_xy": s["nearest_xy"].tolist(),
-            "closes_on_nothing": self.closes,
+            "shuts": self.closes,
         } | self.headings
 
 
 GRIP_SHUT = 0.7  # a gripper's state below this has shut (open: 1)
 GRIP_EMPTY = 0.15  # ... below this it shut on nothing (on the block it stops near 0.4)
+RETRY_NEAR_CM = 6.0  # a shut after one on nothing with the tool centre this near the object: a retry
 
 
 def retry_line(rows: list[dict]) -> str:
-    """Of the episodes where a gripper shut on nothing: in how many one shut again after that (a
-    retry), and how many of those lifted the object."""
-    missed = [r for r in rows if any(r.get("closes_on_nothing", []))]
+    """Of the episodes where a gripper shut on nothing: in how many one shut again near the object
+    after that (a retry), and how many of those lifted it."""
+    missed = [r for r in rows if any(empty for empty, _ in r.get("shuts", []))]
     if not missed:
         return ""
-    retried = [r for r in missed if len(r["closes_on_nothing"]) > r["closes_on_nothing"].index(True) + 1]
+    retried = []
+    for r in missed:
+        first = [empty for empty, _ in r["shuts"]].index(True)
+        if any(cm < RETRY_NEAR_CM for _, cm in r["shuts"][first + 1 :]):
+            retried.append(r)
     lifted = sum(r["reach_stage"] == "lift" for r in retried)
     return (
-        f"    a gripper shut on nothing in {len(missed)}; in {len(retried)} of those one shut again after, "
-        f"{lifted} of which lifted the object"
+        f"    a gripper shut on nothing in {len(missed)}; in {len(retried)} of those one shut again within "
+        f"{RETRY_NEAR_CM:.0f} cm of the object, {lifted} of which lifted it"
     )
 
 

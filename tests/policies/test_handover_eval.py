@@ -250,23 +250,27 @@ def test_lifted_choices_split_a_wrong_decision_from_a_missed_set_down():
 
 def test_the_reach_watch_tells_a_grasp_on_nothing_from_one_on_the_object_and_counts_retries():
     """Gripper states after the handover: each shut is on nothing when the gripper comes below
-    GRIP_EMPTY; retry_line counts the episodes that shut again after one on nothing, and their lifts."""
+    GRIP_EMPTY, with the tool centre's distance from the object then; retry_line counts the episodes
+    that shut again near the object after one on nothing, and their lifts."""
     script = load("analysis/policies/handover_eval.py")
     from lerobot_activearena.sim.action import LEFT_GRIPPER, RIGHT_GRIPPER
 
     watch = script.ReachWatch(env=None, handover=0, expert_states=[], chunk=16)
     state = np.zeros(max(LEFT_GRIPPER, RIGHT_GRIPPER) + 1)
-    for right in [1.0, 0.5, 0.05, 0.6, 1.0, 0.6, 0.42, 0.41]:  # on nothing, open, then on the block
+    steps = [(1.0, 0.3), (0.5, 0.05), (0.05, 0.05), (0.6, 0.1), (1.0, 0.1), (0.6, 0.02), (0.42, 0.02)]
+    for right, away in steps:  # shut on nothing 5 cm off, opened, shut on the block 2 cm off
         state[LEFT_GRIPPER], state[RIGHT_GRIPPER] = 1.0, right
-        watch._grippers(state)
-    assert watch.closes == [True, False]
+        watch._grippers(state, [0.5, away])
+    assert watch.closes == [[True, 5.0], [False, 2.0]]
     rows = [
-        {"closes_on_nothing": [True, False], "reach_stage": "lift"},
-        {"closes_on_nothing": [True], "reach_stage": "grasp"},  # shut on nothing, never again
-        {"closes_on_nothing": [False], "reach_stage": "lift"},
-        {"closes_on_nothing": [True, True], "reach_stage": "grasp"},
+        {"shuts": [[True, 5.0], [False, 2.0]], "reach_stage": "lift"},
+        {"shuts": [[True, 5.0]], "reach_stage": "grasp"},  # shut on nothing, never again
+        {"shuts": [[True, 5.0], [True, 40.0]], "reach_stage": "grasp"},  # shut again far off: no retry
+        {"shuts": [[False, 2.0]], "reach_stage": "lift"},
+        {"shuts": [[True, 8.0], [True, 3.0]], "reach_stage": "grasp"},
     ]
     assert script.retry_line(rows) == (
-        "    a gripper shut on nothing in 3; in 2 of those one shut again after, 1 of which lifted the object"
+        "    a gripper shut on nothing in 4; in 2 of those one shut again within 6 cm of the object, "
+        "1 of which lifted it"
     )
-    assert script.retry_line(rows[2:3]) == ""
+    assert script.retry_line(rows[3:4]) == ""
