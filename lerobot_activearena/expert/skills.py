@@ -88,6 +88,7 @@ def pick(
             rot = grasp_rotation([0, 0, -1], [closing[0], closing[1], 0.0])
         z0 = ctx.bottom_z(i)
         missing = attempt == 0 and ctx.grasp_miss > 0.0 and _miss_first_grasp(ctx, side, grasp, rot, closing)
+        start = ctx.frame
         if straight_approach:
             p, rot_now = tcp_pose(ctx, side)
             if p[2] < grasp[2] + approach:
@@ -106,6 +107,8 @@ def pick(
                 raise ExpertError(f"the missed grasp demonstrated on {ctx.objects[i]} caught it")
             return
         ctx.intent.carried = set()
+        if missing:  # the frames whose arm ran off its command, and the hold while it comes back
+            ctx.notes.setdefault("grasp_misses", []).append([start, ctx.frame + GRASP_SETTLE])
         if attempt + 1 < GRASP_TRIES:  # let go; the next try comes in from above the object again
             yield from hold(ctx, GRASP_SETTLE)
             yield from set_gripper(ctx, side, 1.0, 6)

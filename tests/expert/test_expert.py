@@ -478,8 +478,8 @@ def test_turn_error_subtask_turns_the_start_of_that_subtask_off_too():
 def test_grasp_miss_closes_the_first_try_on_nothing_and_the_expert_grasps_again():
     """Grasp-retry demonstrations: the first try's arm runs off the expert's command, its gripper
     closes on nothing, the expert lets go and picks again (the gripper then stops on the block), and
-    the episode succeeds. The recorded commands are the benchmark expert's until the miss shows;
-    deterministic per seed; an offset past the largest is refused."""
+    the episode succeeds. The recorded commands are the benchmark expert's until the miss shows; the
+    sidecar names the missed try's frames; deterministic per seed; an offset past the largest is refused."""
     from lerobot_activearena.episodes.rollout import DemoVariation, run_expert_episode
     from lerobot_activearena.expert.motion import arm_of, gripper_index
 
@@ -499,6 +499,10 @@ def test_grasp_miss_closes_the_first_try_on_nothing_and_the_expert_grasps_again(
     assert np.abs(arm_of(states[second], side) - arm_of(actions[second - 1], side)).max() < 0.02
     assert states[first + 12, g] < 0.1 < 0.3 < states[second + 12, g]  # shut on nothing, then on the block
     np.testing.assert_array_equal(actions[: first + 10], np.asarray(plain.actions)[: first + 10])
+    [(start, end)] = missed.sidecar["expert_notes"]["grasp_misses"]  # the frames a policy should not copy
+    assert start < first < end < second
+    assert np.abs(arm_of(states[start - 1], side) - arm_of(actions[start - 2], side)).max() < 0.02
+    assert "grasp_misses" not in plain.sidecar["expert_notes"]
     with pytest.raises(ValueError, match="--grasp-miss"):
         DemoVariation(grasp_miss=0.2)
 

@@ -1621,10 +1621,38 @@ def test_opening_weight_weighs_every_episodes_first_frames(vlm, root, tmp_path):
     )
     assert collate(both_ds, both, [onset, first, late])[ACTION_WEIGHT].tolist() == [15.0, 3.0, 3.0]
     policy.train()
-    with pytest.raises(ValueError, match="opening_weight=3.0, but the batch carries no action"):
+    with pytest.raises(
+        ValueError, match="opening_weight=3.0 / --policy.miss_weight=1.0, but the batch carries no"
+    ):
         policy.forward({k: v for k, v in batch.items() if k != ACTION_WEIGHT})
     with pytest.raises(ValueError, match="opening_weight must be > 0"):
         ActiveArenaOFTConfig(vlm_path=str(vlm), opening_weight=0.0)
+
+
+def test_miss_weight_leaves_out_a_grasp_retry_builds_missed_tries(vlm, root, tmp_path):
+    """--policy.miss_weight: the frames of a missed try (the sidecar's expert_notes.grasp_misses,
+    [from, to)) weigh that much in the action loss, 0 leaving them out; a batch of such frames alone
+    adds no action loss; a build without missed tries, or a negative weight, is refused."""
+    from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import ACTION_WEIGHT
+
+    copy = _with_red_pad_reading(root, tmp_path, episode=1)
+    side_path = copy / "meta/activearena/sidecars/episode_000001.json"
+    side = json.loads(side_path.read_text())
+    side["expert_notes"]["grasp_misses"] = [[3, 7]]
+    side_path.write_text(json.dumps(side))
+    first = int(DatasetAnnotations(copy, REPO).ep_start[1])
+    _, policy, pre, _, ds = _setup(vlm, copy, memory="chunk", history=2, think="none", miss_weight=0.0)
+    batch = collate(ds, pre, [first + 2, first + 3, first + 6, first + 7])
+    assert batch[ACTION_WEIGHT].tolist() == [1.0, 0.0, 0.0, 1.0]
+    policy.train()
+    missed = collate(ds, pre, [first + 4, first + 5])
+    loss, info = policy.forward(missed)  # think=none: the action loss alone
+    assert float(loss) == 0.0 and info["l1_loss"] > 0  # unweighted it is not 0
+    _, _, plain_pre, _, plain_ds = _setup(vlm, root, memory="chunk", history=2, think="none", miss_weight=0.0)
+    with pytest.raises(ValueError, match="holds none"):
+        collate(plain_ds, plain_pre, [first])
+    with pytest.raises(ValueError, match="miss_weight must be >= 0"):
+        ActiveArenaOFTConfig(vlm_path=str(vlm), miss_weight=-1.0)
 
 
 def test_decision_think_appends_the_read_decision_from_the_frame_it_was_read_on(vlm, root, tmp_path):

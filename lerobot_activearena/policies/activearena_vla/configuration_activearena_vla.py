@@ -82,6 +82,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # ``opening_weight`` times the others (1: unweighted); it multiplies decision_weight's.
     opening_weight: float = 1.0
     opening_window: int = 32
+    # The action loss of a grasp-retry build's missed tries (``--grasp-miss``: the arm ran off the
+    # recorded command, so those frames pair a state with a command it did not lead to), weighted
+    # ``miss_weight`` times the others (0: left out; 1: unweighted); the retry after them counts fully.
+    miss_weight: float = 1.0
     # think=decision: the decided object also named by its place among its kind by azimuth ("place on
     # the blue pad, the right one"), so the span carries where to go, not only what was read.
     decision_place: bool = False
@@ -300,6 +304,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 f"--policy.opening_weight must be > 0 and --policy.opening_window >= 1 (got "
                 f"{self.opening_weight}, {self.opening_window})"
+            )
+        if self.miss_weight < 0:
+            raise ValueError(
+                f"--policy.miss_weight must be >= 0 (0: the missed tries left out), got {self.miss_weight}"
             )
         # A local folder is stored absolute, so a checkpoint reloads from any working directory.
         for name in ("vlm_path", "dataset_root", "vision_cache"):

@@ -124,6 +124,8 @@ class DatasetAnnotations:
         self.instruction: dict[int, str] = {}
         self.decisions: dict[int, list[tuple[int, str]]] = {}  # (frame read on, decision), in order
         self.inspected: dict[int, str | None] = {}  # the object the expert first inspected
+        # frames [from, to) of a grasp-retry build's missed tries (expert_notes.grasp_misses)
+        self.misses: dict[int, list[tuple[int, int]]] = {}
         # the scene's objects on the table (name, category, angle)
         self.placements: dict[int, list[dict]] = {}
         for ep in self.ep_start:
@@ -136,6 +138,8 @@ class DatasetAnnotations:
                 (int(e["frame"]), e["decision"]) for e in inspections if e.get("decision")
             )
             self.inspected[ep] = inspections[0].get("object") if inspections else None
+            misses = (side.get("expert_notes") or {}).get("grasp_misses", [])
+            self.misses[ep] = [(int(a), int(b)) for a, b in misses]
 
     def decision_onsets(self, window: int) -> np.ndarray:
         """Per global frame: whether it is among the first ``window`` frames of a subtask that began at
@@ -150,6 +154,17 @@ class DatasetAnnotations:
             [self.decisions[int(e)][0][0] if self.decisions[int(e)] else np.inf for e in ep], dtype=float
         )
         return (frame[start_of] >= first_reading) & (np.arange(len(ep)) - start_of < window)
+
+    def miss_frames(self) -> np.ndarray:
+        """Per global frame: whether it lies in a missed try of a grasp-retry build (``--grasp-miss``:
+        the arm ran off the recorded command, then holds while it comes back)."""
+        ep, frame = self.cols["episode_index"], self.cols["frame_index"]
+        out = np.zeros(len(ep), dtype=bool)
+        for e, spans in self.misses.items():
+            rows = ep == e
+            for a, b in spans:
+                out |= rows & (frame >= a) & (frame < b)
+        return out
 
     def subtask(self, index: int) -> str:
         ep, sid = int(self.cols["episode_index"][index]), int(self.cols["subtask_index"][index])

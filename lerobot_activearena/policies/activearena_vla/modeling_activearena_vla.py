@@ -471,16 +471,17 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             *self.training_args(batch), vision_cache=self.cached_memory(batch)
         )
         per_sample, info = self.action_loss(h, kind, batch)
-        weighted = self.config.decision_weight != 1 or self.config.opening_weight != 1
+        c = self.config
+        weighted = c.decision_weight != 1 or c.opening_weight != 1 or c.miss_weight != 1
         if self.training and weighted and ACTION_WEIGHT not in batch:
             raise ValueError(
-                f"--policy.decision_weight={self.config.decision_weight} / --policy.opening_weight="
-                f"{self.config.opening_weight}, but the batch carries no action "
+                f"--policy.decision_weight={c.decision_weight} / --policy.opening_weight="
+                f"{c.opening_weight} / --policy.miss_weight={c.miss_weight}, but the batch carries no action "
                 "weights: the annotation step that writes them was left out of the preprocessor"
             )
-        if ACTION_WEIGHT in batch:  # decision_weight / opening_weight
+        if ACTION_WEIGHT in batch:  # decision_weight / opening_weight / miss_weight
             weight = batch[ACTION_WEIGHT].to(per_sample)
-            per_sample = per_sample * weight * (len(weight) / weight.sum())
+            per_sample = per_sample * weight * (len(weight) / weight.sum().clamp_min(1e-8))  # all 0: no loss
         loss = per_sample.mean() if reduction == "mean" else per_sample
         if lm_loss is not None:
             loss = loss + self.config.lm_loss_weight * lm_loss

@@ -131,6 +131,7 @@ ANNOTATION_SETTINGS = (
     "decision_window",
     "opening_weight",
     "opening_window",
+    "miss_weight",
     "decision_place",
     "decision_layout",
     "decision_where",
@@ -192,11 +193,14 @@ class ActiveArenaAnnotationStep(ProcessorStep):
     # the action-loss weight of every episode's first frames (1: none)
     opening_weight: float = 1.0
     opening_window: int = 32
+    # the action-loss weight of a grasp-retry build's missed tries (1: none)
+    miss_weight: float = 1.0
     decision_place: bool = False  # think=decision: the decided object's place named too
     decision_layout: bool = False  # ... after the places of all of its kind
     decision_where: bool = False  # ... and where the object acted on lies (cm, deg from the base)
     _ann: Any = field(default=None, init=False, repr=False)
     _onsets: Any = field(default=None, init=False, repr=False)
+    _misses: Any = field(default=None, init=False, repr=False)
 
     def _needs_subtask(self) -> bool:
         return self.think == "subtask" or self.subtask_prompt
@@ -214,7 +218,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         )
 
     def _weighted(self) -> bool:
-        return self.decision_weight != 1 or self.opening_weight != 1
+        return self.decision_weight != 1 or self.opening_weight != 1 or self.miss_weight != 1
 
     def __call__(self, transition):
         comp = transition.get(TransitionKey.COMPLEMENTARY_DATA) or {}
@@ -287,6 +291,16 @@ class ActiveArenaAnnotationStep(ProcessorStep):
         if self.opening_weight != 1:
             opening = torch.as_tensor(self._ann.cols["frame_index"][idx] < self.opening_window)
             weight = torch.where(opening, self.opening_weight, weight)
+        if self.miss_weight != 1:
+            if self._misses is None:
+                self._misses = self._ann.miss_frames()
+                if not self._misses.any():
+                    raise ValueError(
+                        f"--policy.miss_weight={self.miss_weight} weighs a grasp-retry build's missed tries, and "
+                        f"{self.dataset_root} holds none (no expert_notes.grasp_misses): train a build made "
+                        "with --grasp-miss, or leave miss_weight at 1"
+                    )
+            weight = torch.where(torch.as_tensor(self._misses[idx]), self.miss_weight * weight, weight)
         if self.decision_weight == 1:
             return weight
         if self._onsets is None:
@@ -306,6 +320,7 @@ class ActiveArenaAnnotationStep(ProcessorStep):
             "decision_window": self.decision_window,
             "opening_weight": self.opening_weight,
             "opening_window": self.opening_window,
+            "miss_weight": self.miss_weight,
             "decision_place": self.decision_place,
             "decision_layout": self.decision_layout,
             "decision_where": self.decision_where,
@@ -552,6 +567,7 @@ def make_activearena_vla_pre_post_processors(
         decision_window=config.decision_window,
         opening_weight=config.opening_weight,
         opening_window=config.opening_window,
+        miss_weight=config.miss_weight,
         decision_place=config.decision_place,
         decision_layout=config.decision_layout,
         decision_where=config.decision_where,
