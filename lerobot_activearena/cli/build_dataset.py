@@ -98,9 +98,10 @@ def parser() -> argparse.ArgumentParser:
         "--grasp-miss",
         type=float,
         default=None,
-        help="grasp-retry demonstrations: each pick's first try runs with the arm 0.6-1 x this many m above the "
-        "grasp point and up to half of it beside it (at most 0.08), closes on nothing and is tried again; the "
-        "dataset records the expert's commands (default 0: the benchmark's expert)",
+        help="grasp-retry demonstrations: each pick's first try runs with the arm 0.5-1 x this many m above the "
+        "grasp point and as far beside it across the fingers (at most 0.08), shuts on nothing and is tried "
+        "again; the dataset records the expert's commands, and the sidecars the missed tries' frames "
+        "(--policy.miss_weight) (default 0: the benchmark's expert)",
     )
     p.add_argument(
         "--reading-variants",
