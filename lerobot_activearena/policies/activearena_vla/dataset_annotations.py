@@ -158,12 +158,10 @@ class DatasetAnnotations:
     def miss_frames(self) -> np.ndarray:
         """Per global frame: whether it lies in a missed try of a grasp-retry build (``--grasp-miss``:
         the arm ran off the recorded command, then holds while it comes back)."""
-        ep, frame = self.cols["episode_index"], self.cols["frame_index"]
-        out = np.zeros(len(ep), dtype=bool)
+        out = np.zeros(len(self.cols["episode_index"]), dtype=bool)
         for e, spans in self.misses.items():
-            rows = ep == e
-            for a, b in spans:
-                out |= rows & (frame >= a) & (frame < b)
+            for a, b in spans:  # episode frames -> global indices, within the episode
+                out[self.ep_start[e] + a : min(self.ep_start[e] + b, self.ep_end[e])] = True
         return out
 
     def subtask(self, index: int) -> str:
