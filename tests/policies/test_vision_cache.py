@@ -509,3 +509,46 @@ def test_the_augmented_frozen_bell_pairs_read_a_tower_grounded_with_their_augmen
     assert differing_policy_keys(chunk, free) == MEMORY_KEYS
     assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
     assert chunk["policy"]["vision_cache"].endswith(f"_grounded_{tower.removeprefix('bell_')}.safetensors")
+
+
+def test_the_inspection_pair_is_the_layout_pair_with_every_later_stage_setting_in_one_run():
+    """``oft_decision_*_ws_inspection``: the layout pair with the settings its chain of fine-tuning
+    stages added one at a time (the decision clause weighed 10, the place spelled out, the first 32
+    frames weighed 4) from the first step, for one 8,000-step run on the inspection recipe's build;
+    the two still differ only in the memory, and LeRobot parses both."""
+    from lerobot.configs.train import TrainPipelineConfig
+
+    from lerobot_activearena.datasets_build.recipe import load_recipe
+
+    stages = {"decision_token_weight", "decision_where", "opening_weight", "opening_window"}
+    pair = {}
+    for memory in ("action_12", "no_0"):
+        laid = json.loads(
+            (
+                CONFIGS
+                / "small"
+                / f"oft_decision_{memory}_ws_grounded_block_readings_tuned_think_first_layout.json"
+            ).read_text()
+        )
+        one = pair[memory] = json.loads(
+            (CONFIGS / "small" / f"oft_decision_{memory}_ws_inspection.json").read_text()
+        )
+        paths = {"vlm_path"} | ({"vision_cache"} if memory == "action_12" else set())
+        schedule = {"subtask_max_tokens", "scheduler_decay_steps"}
+        assert differing_policy_keys(one, laid) == stages | paths | schedule
+        assert one["dataset"] == {**laid["dataset"], "repo_id": "local/cpu_inspection"}
+        assert one["steps"] == one["policy"]["scheduler_decay_steps"] == 8000
+        cfg = TrainPipelineConfig.from_pretrained(
+            CONFIGS / "small" / f"oft_decision_{memory}_ws_inspection.json"
+        )
+        p = cfg.policy
+        assert (p.decision_token_weight, p.opening_weight, p.opening_window) == (10.0, 4.0, 32)
+        assert p.decision_where and p.decision_layout and p.think_first and p.subtask_max_tokens == 64
+    assert differing_policy_keys(pair["action_12"], pair["no_0"]) == MEMORY_KEYS | {"memory_vision"}
+    recipe = load_recipe(CONFIGS.parents[1] / "datasets_build" / "cpu_inspection.json")
+    assert (recipe["tasks"], recipe["episodes"], recipe["image_size"]) == (
+        "check_block_color",
+        900,
+        "192x256",
+    )
+    assert (recipe["reading_variants"], recipe["decision_period"], recipe["turn_error_subtask"]) == (3, 16, 4)
