@@ -4,7 +4,10 @@ one-task merge job."""
 
 from __future__ import annotations
 
+import faulthandler
 import os
+import shutil
+import signal
 import sys
 import threading
 import time
@@ -90,15 +93,47 @@ def _alive(pid: int) -> bool:
         return True
 
 
+class WorkerDiedError(RuntimeError):
+    """A pool worker ended in the middle of a shard without an error (killed, or a crash in native
+    code): the process pool would wait for that shard for ever."""
+
+
+class DeadWorkerWatch(threading.Thread):
+    """In the main process: every ``every_s``, the shards that workers have started
+    (``running/<rank>`` holds the worker's pid) and not completed; when such a worker is gone, note
+    which and interrupt the main thread, which ``QuietLocalExecutor.run`` turns into ``WorkerDiedError``."""
+
+    def __init__(self, executor: QuietLocalExecutor, every_s: float = 2.0):
+        super().__init__(name="dead-worker-watch", daemon=True)
+        self.executor, self.every_s = executor, every_s
+        self.stop, self.dead = threading.Event(), None
+
+    def run(self):
+        running = Path(self.executor.logging_dir.path) / "running"
+        while not self.stop.wait(self.every_s):
+            for path in sorted(running.glob("*")):
+                rank, pid = int(path.name), int(path.read_text() or 0)
+                if pid and not _alive(pid) and not self.executor.is_rank_completed(rank):
+                    self.dead = (rank, pid)
+                    os.kill(os.getpid(), signal.SIGINT)  # wakes the main thread's wait on the pool
+                    return
+
+
 class QuietLocalExecutor(LocalPipelineExecutor):
     """datatrove's local executor with its logs in the run folder only (``logs/task_*.log``,
     ``executor.log``): by default it echoes one worker's task logs and every task's stats block to
-    the terminal, where our progress bars and summary are. Errors still reach the terminal."""
+    the terminal, where our progress bars and summary are. Errors still reach the terminal. A worker
+    that dies in the middle of a shard ends the job with ``WorkerDiedError`` instead of a hang."""
 
     def _run_for_rank(self, rank: int, local_rank: int = 0, node_rank: int = -1):
         main_pid = getattr(self, "main_pid", os.getpid())
         if os.getpid() != main_pid:  # a pool worker
             exit_with(main_pid)
+            logs = Path(self.logging_dir.path)
+            (logs / "running").mkdir(parents=True, exist_ok=True)
+            (logs / "running" / f"{rank:05d}").write_text(str(os.getpid()))
+            # a crash in native code (MuJoCo, the renderer, the video encoder) leaves its Python stack here
+            faulthandler.enable(open(logs / "faults.log", "a"))  # noqa: SIM115 (open for the process's life)
         # local_rank only picks which worker echoes its task log (rank 0 does): none of them
         stats = super()._run_for_rank(rank, local_rank + 1, node_rank)
         _console()  # datatrove re-adds a verbose terminal logger after each task
@@ -106,10 +141,25 @@ class QuietLocalExecutor(LocalPipelineExecutor):
 
     def run(self):
         self.main_pid = os.getpid()  # pickled into the workers with the executor
-        _console(logfile=Path(self.logging_dir.path) / "executor.log")
+        logs = Path(self.logging_dir.path)
+        _console(logfile=logs / "executor.log")
+        shutil.rmtree(logs / "running", ignore_errors=True)  # an earlier, stopped run's
+        watch = DeadWorkerWatch(self)
+        if self.workers != 1:
+            watch.start()
         try:
             return super().run()
+        except KeyboardInterrupt:
+            if watch.dead is None:
+                raise
+            rank, pid = watch.dead
+            raise WorkerDiedError(
+                f"the worker running shard {rank} (pid {pid}) ended without an error: it was killed or "
+                f"crashed in native code (a Python stack of a crash is in {logs / 'faults.log'}). The "
+                "finished shards are kept: run the same command again to resume"
+            ) from None
         finally:
+            watch.stop.set()
             logger.remove()
             logger.add(sys.stderr)  # loguru's default, as datatrove leaves it
 

@@ -1,4 +1,5 @@
-"""The sharded jobs' local executor: a killed job leaves no worker running."""
+"""The sharded jobs' local executor: a killed job leaves no worker running; a worker killed in the
+middle of a shard ends the job with an error instead of a hang."""
 
 import contextlib
 import os
@@ -68,3 +69,46 @@ def test_a_zombie_counts_as_gone():
     assert not _alive(child.pid)
     child.wait()
     assert not _alive(child.pid) and _alive(os.getpid())
+
+
+DYING = textwrap.dedent(
+    """
+    import os, signal, sys, time
+    from pathlib import Path
+    from datatrove.pipeline.base import PipelineStep
+    from lerobot_activearena.sharding import run_local
+
+    class DieOnRankOne(PipelineStep):
+        name, type = "die", "TEST"
+
+        def run(self, data=None, rank=0, world_size=1):
+            if rank == 1 and not Path(sys.argv[1], "died").exists():
+                Path(sys.argv[1], "died").write_text(str(os.getpid()))
+                os.kill(os.getpid(), signal.SIGKILL)  # as the kernel or a native crash ends a worker
+            time.sleep(0.5)
+            return iter(())
+
+    if __name__ == "__main__":
+        run_local(DieOnRankOne(), 3, 2, Path(sys.argv[1]) / "logs")
+    """
+)
+
+
+def test_a_worker_killed_mid_shard_ends_the_job_with_an_error_and_a_rerun_finishes_it(tmp_path):
+    """A pool worker that dies without a Python error (SIGKILL) used to leave the job waiting for its
+    shard for ever; the job now stops with an error that names the shard, keeps the finished shards,
+    and the same command run again completes only the missing one."""
+    script = tmp_path / "job.py"
+    script.write_text(DYING)
+    run = [sys.executable, str(script), str(tmp_path)]
+    first = subprocess.run(run, capture_output=True, text=True, timeout=180, start_new_session=True)
+    assert first.returncode != 0
+    assert "WorkerDiedError" in first.stderr and "shard 1 (pid" in first.stderr, first.stderr[-2000:]
+    assert "run the same command again to resume" in first.stderr
+    completions = tmp_path / "logs" / "completions"
+    assert "00001" not in {p.name for p in completions.glob("*")}
+    done_before = {p.name: p.stat().st_mtime_ns for p in completions.glob("*")}
+    second = subprocess.run(run, capture_output=True, text=True, timeout=180, start_new_session=True)
+    assert second.returncode == 0, second.stderr[-2000:]
+    assert sorted(p.name for p in completions.glob("*")) == ["00000", "00001", "00002"]
+    assert all(completions.joinpath(n).stat().st_mtime_ns == t for n, t in done_before.items())
