@@ -111,12 +111,12 @@ class DeadWorkerWatch(threading.Thread):
     def run(self):
         running = Path(self.executor.logging_dir.path) / "running"
         while not self.stop.wait(self.every_s):
-            for path in sorted(running.glob("*")):
+            for path in sorted(running.glob("*")) if self.dead is None else ():
                 rank, pid = int(path.name), int(path.read_text() or 0)
                 if pid and not _alive(pid) and not self.executor.is_rank_completed(rank):
                     self.dead = (rank, pid)
-                    os.kill(os.getpid(), signal.SIGINT)  # wakes the main thread's wait on the pool
-                    return
+            if self.dead is not None:  # again until the job stops: one landing outside the pool wait is lost
+                os.kill(os.getpid(), signal.SIGINT)  # wakes the main thread's wait on the pool
 
 
 class QuietLocalExecutor(LocalPipelineExecutor):
