@@ -71,6 +71,20 @@ def test_a_zombie_counts_as_gone():
     assert not _alive(child.pid) and _alive(os.getpid())
 
 
+def _run_whole_group(cmd: list[str], timeout_s: float) -> subprocess.CompletedProcess:
+    """Runs `cmd` in its own process group and kills what is left of that group afterwards, so a
+    job that hangs past the timeout leaves no worker or queue manager behind."""
+    proc = subprocess.Popen(
+        cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True
+    )
+    try:
+        out, err = proc.communicate(timeout=timeout_s)
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, signal.SIGKILL)
+    return subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+
+
 DYING = textwrap.dedent(
     """
     import os, signal, sys, time
@@ -101,14 +115,14 @@ def test_a_worker_killed_mid_shard_ends_the_job_with_an_error_and_a_rerun_finish
     script = tmp_path / "job.py"
     script.write_text(DYING)
     run = [sys.executable, str(script), str(tmp_path)]
-    first = subprocess.run(run, capture_output=True, text=True, timeout=180, start_new_session=True)
+    first = _run_whole_group(run, 180)
     assert first.returncode != 0
     assert "WorkerDiedError" in first.stderr and "shard 1 (pid" in first.stderr, first.stderr[-2000:]
     assert "run the same command again to resume" in first.stderr
     completions = tmp_path / "logs" / "completions"
     assert "00001" not in {p.name for p in completions.glob("*")}
     done_before = {p.name: p.stat().st_mtime_ns for p in completions.glob("*")}
-    second = subprocess.run(run, capture_output=True, text=True, timeout=180, start_new_session=True)
+    second = _run_whole_group(run, 180)
     assert second.returncode == 0, second.stderr[-2000:]
     assert sorted(p.name for p in completions.glob("*")) == ["00000", "00001", "00002"]
     assert all(completions.joinpath(n).stat().st_mtime_ns == t for n, t in done_before.items())
