@@ -103,6 +103,8 @@ DYING = textwrap.dedent(
             return iter(())
 
     if __name__ == "__main__":
+        import faulthandler
+        faulthandler.dump_traceback_later(120, exit=True)  # a hang ends with every thread's stack
         run_local(DieOnRankOne(), 3, 2, Path(sys.argv[1]) / "logs")
     """
 )
