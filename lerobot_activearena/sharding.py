@@ -107,6 +107,7 @@ class DeadWorkerWatch(threading.Thread):
         super().__init__(name="dead-worker-watch", daemon=True)
         self.executor, self.every_s = executor, every_s
         self.stop, self.dead = threading.Event(), None
+        self.main_thread = threading.get_ident()  # built in the main thread
 
     def run(self):
         running = Path(self.executor.logging_dir.path) / "running"
@@ -115,8 +116,20 @@ class DeadWorkerWatch(threading.Thread):
                 rank, pid = int(path.name), int(path.read_text() or 0)
                 if pid and not _alive(pid) and not self.executor.is_rank_completed(rank):
                     self.dead = (rank, pid)
-            if self.dead is not None:  # again until the job stops: one landing outside the pool wait is lost
-                os.kill(os.getpid(), signal.SIGINT)  # wakes the main thread's wait on the pool
+            # only while the main thread waits on the pool: an interrupt landing in the pool's or the
+            # queue manager's shutdown leaves the manager running, and the exiting job waits for it
+            if self.dead is not None and _waiting_on_pool(self.main_thread):
+                os.kill(os.getpid(), signal.SIGINT)
+
+
+def _waiting_on_pool(thread_id: int) -> bool:
+    """Whether thread ``thread_id`` is blocked on a process pool's results (``Pool.imap*``)."""
+    frame = sys._current_frames().get(thread_id)
+    while frame is not None:
+        if frame.f_code.co_qualname == "IMapIterator.next":
+            return True
+        frame = frame.f_back
+    return False
 
 
 class QuietLocalExecutor(LocalPipelineExecutor):

@@ -105,6 +105,16 @@ DYING = textwrap.dedent(
     if __name__ == "__main__":
         import faulthandler
         faulthandler.dump_traceback_later(120, exit=True)  # a hang ends with every thread's stack
+        if "--slow-cleanup" in sys.argv:  # as a loaded machine stretches the pool's and the manager's shutdown
+            import multiprocess.managers, multiprocess.pool
+            def after(seconds, f):
+                def slow(*args, **kwargs):
+                    time.sleep(seconds)
+                    return f(*args, **kwargs)
+                return slow
+            pool, manager = multiprocess.pool.Pool, multiprocess.managers.BaseManager
+            pool.terminate = after(3, pool.terminate)
+            manager._finalize_manager = staticmethod(after(5, manager._finalize_manager))
         run_local(DieOnRankOne(), 3, 2, Path(sys.argv[1]) / "logs")
     """
 )
@@ -128,3 +138,14 @@ def test_a_worker_killed_mid_shard_ends_the_job_with_an_error_and_a_rerun_finish
     assert second.returncode == 0, second.stderr[-2000:]
     assert sorted(p.name for p in completions.glob("*")) == ["00000", "00001", "00002"]
     assert all(completions.joinpath(n).stat().st_mtime_ns == t for n, t in done_before.items())
+
+
+def test_a_dead_worker_ends_the_job_even_when_its_cleanup_is_slow(tmp_path):
+    """The main thread is interrupted only while it waits on the pool: an interrupt that landed in the
+    pool's or the queue manager's shutdown (seconds long on a loaded machine) left the manager process
+    running, and the exiting job (and whoever reads its output) waited for it for ever."""
+    script = tmp_path / "job.py"
+    script.write_text(DYING)
+    first = _run_whole_group([sys.executable, str(script), str(tmp_path), "--slow-cleanup"], 90)
+    assert first.returncode != 0
+    assert "WorkerDiedError" in first.stderr and "shard 1 (pid" in first.stderr, first.stderr[-2000:]
