@@ -98,10 +98,23 @@ class WorkerDiedError(RuntimeError):
     code): the process pool would wait for that shard for ever."""
 
 
+class _DeadWorkerInterrupt(BaseException):
+    """Raised in the main thread by the watch's signal: a BaseException, as KeyboardInterrupt, so
+    that no ``except Exception`` on the way out of the pool's wait swallows it."""
+
+
+def _interrupt(signum, frame):
+    raise _DeadWorkerInterrupt
+
+
 class DeadWorkerWatch(threading.Thread):
     """In the main process: every ``every_s``, the shards that workers have started
     (``running/<rank>`` holds the worker's pid) and not completed; when such a worker is gone, note
-    which and interrupt the main thread, which ``QuietLocalExecutor.run`` turns into ``WorkerDiedError``."""
+    which and interrupt the main thread (``INTERRUPT``, whose handler ``QuietLocalExecutor.run``
+    installs; not SIGINT, which a shell's background job ignores), which ``run`` turns into
+    ``WorkerDiedError``."""
+
+    INTERRUPT = signal.SIGUSR1
 
     def __init__(self, executor: QuietLocalExecutor, every_s: float = 2.0):
         super().__init__(name="dead-worker-watch", daemon=True)
@@ -119,7 +132,7 @@ class DeadWorkerWatch(threading.Thread):
             # only while the main thread waits on the pool: an interrupt landing in the pool's or the
             # queue manager's shutdown leaves the manager running, and the exiting job waits for it
             if self.dead is not None and _waiting_on_pool(self.main_thread):
-                os.kill(os.getpid(), signal.SIGINT)
+                os.kill(os.getpid(), self.INTERRUPT)
 
 
 def _waiting_on_pool(thread_id: int) -> bool:
@@ -158,13 +171,13 @@ class QuietLocalExecutor(LocalPipelineExecutor):
         _console(logfile=logs / "executor.log")
         shutil.rmtree(logs / "running", ignore_errors=True)  # an earlier, stopped run's
         watch = DeadWorkerWatch(self)
-        if self.workers != 1:
+        watched = self.workers != 1 and threading.current_thread() is threading.main_thread()
+        if watched:  # a signal handler can only be set from the main thread
+            previous = signal.signal(watch.INTERRUPT, _interrupt)
             watch.start()
         try:
             return super().run()
-        except KeyboardInterrupt:
-            if watch.dead is None:
-                raise
+        except _DeadWorkerInterrupt:
             rank, pid = watch.dead
             raise WorkerDiedError(
                 f"the worker running shard {rank} (pid {pid}) ended without an error: it was killed or "
@@ -173,6 +186,9 @@ class QuietLocalExecutor(LocalPipelineExecutor):
             ) from None
         finally:
             watch.stop.set()
+            if watched:
+                watch.join()  # no signal after the handler is gone: SIGUSR1's default ends the process
+                signal.signal(watch.INTERRUPT, previous)
             logger.remove()
             logger.add(sys.stderr)  # loguru's default, as datatrove leaves it
 
