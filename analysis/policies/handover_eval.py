@@ -23,9 +23,10 @@ decisions (every 16 steps) first plays the rest of the chunk it decided before t
 
 Does a policy place by what its memory holds? Hand over where placing starts (check_block_color:
 ``subtask:4``, the block picked, its patch shown and turned away again) with the memory as it is
-and with ``--memory-ablation blank`` (the memory frames gray from the handover on; before it the
-policy's actions are discarded anyway): a policy that reads the colour from memory puts the block
-on the named pad with its memory and on any pad without it.
+and with ``--memory-ablation blank`` or ``drop`` (the memory frames gray, or left out as at the
+episode's first step, from the handover on; before it the policy's actions are discarded anyway): a
+policy that reads the colour from memory puts the block on the named pad with its memory and on any
+pad without it.
 
 Is it the decision or the set-down that fails? A think-first ``think=decision`` policy (its actions
 read the span it decodes) can be played with ``--span true``: at every decision the span it decoded
@@ -412,9 +413,10 @@ def main() -> None:
     p.add_argument("--handover", default="start,subtask:2", help="comma-separated handover points")
     p.add_argument(
         "--memory-ablation",
-        choices=("none", "blank"),
+        choices=("none", "blank", "drop"),
         default="none",
-        help="blank: the policy's memory frames gray (as --policy.memory_ablation=blank)",
+        help="blank: the policy's memory frames gray; drop: its memory slots empty, as at an episode's "
+        "first step (as --policy.memory_ablation)",
     )
     p.add_argument(
         "--n-action-steps",

@@ -1157,6 +1157,58 @@ def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root
     assert not torch.allclose(a_real, a_blank)
 
 
+def test_dropped_memory_leaves_only_the_current_frame_as_at_an_episode_start(vlm, root):
+    """memory_ablation=drop (evaluation): the decision reads no memory slot, as at an episode's first
+    step; the bank keeps its frames; the chunk changes."""
+    _, policy, pre, _, _ = _setup(vlm, root, memory="chunk", history=2, think="none")
+    policy.eval()
+    for t, obs, _ in _scripted_observations(33):
+        batch = pre(obs)
+        if t == 32:
+            break
+        policy.select_action(batch)
+    real = policy.history_batch(batch)
+    policy.config.memory_ablation = "drop"
+    dropped = policy.history_batch(batch)
+    assert real[2].tolist() == [[True, True, True]]
+    assert dropped[2].tolist() == [[False, False, True]]
+    assert len(dropped[0]) == 1 and torch.equal(dropped[0][0], real[0][2])
+    assert [e["t"] for e in policy.memory(0)] == [0, 16]
+    args = (
+        batch["observation.vlm.prefix_ids"],
+        batch["observation.vlm.prompt_ids"],
+        batch["observation.vlm.prompt_mask"],
+    )
+    with torch.no_grad():
+        a_real = policy.encode(*real[:4], *args)[0]
+        a_dropped = policy.encode(*dropped[:4], *args)[0]
+    assert not torch.allclose(a_real, a_dropped)
+
+
+def test_dropped_memory_in_a_dataset_batch_keeps_only_the_current_frames(vlm, root):
+    """memory_ablation=drop on a dataset batch: only the current frames' pixel rows remain and every
+    memory slot is absent; a sample with memory frames gets another chunk, one at its episode's first
+    frame the same."""
+    from lerobot_activearena.policies.activearena_vla.helpers import drop_memory_frames
+
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="none")
+    policy.eval()
+    batch = collate(ds, pre, [70, 0])
+    pixels, valid = batch[PIXELS], batch["observation.vlm.frame_valid"]
+    grid = batch["observation.vlm.image_grid_thw"]
+    kept, kept_valid = drop_memory_frames(pixels, valid, grid)
+    assert kept_valid.tolist() == [[False, False, True], [False, False, True]]
+    assert torch.equal(kept, pixels[2:])
+    with torch.no_grad():
+        real = policy.predict_action_chunk(dict(batch))
+        policy.config.memory_ablation = "drop"
+        dropped = policy.predict_action_chunk(dict(batch))
+    assert not torch.allclose(real[0], dropped[0], atol=1e-4)
+    assert torch.allclose(real[1], dropped[1], atol=1e-5)
+    with pytest.raises(ValueError, match="vision cache"):
+        drop_memory_frames(pixels[2:], valid, grid)
+
+
 def test_blanked_memory_in_a_dataset_batch_grays_only_the_memory_frames(vlm, root):
     """memory_ablation=blank on a dataset batch (open-loop scoring): the present memory frames' pixel
     rows turn gray and the current frames' stay; the chunk of a sample with memory frames changes,

@@ -21,7 +21,7 @@ from ...sim.scene import HEAD_HEIGHT, HEAD_WIDTH
 
 IMAGE_KEY = "observation.images.head"
 THINK_TARGETS = ("none", "instruction", "subtask", "decision")
-MEMORY_ABLATIONS = ("none", "blank")
+MEMORY_ABLATIONS = ("none", "blank", "drop")
 MEMORY_VISION = ("shared", "frozen")
 DTYPES = ("auto", "float32", "bfloat16")
 ATTENTION = ("sdpa", "flash_attention_2", "eager")
@@ -62,7 +62,8 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # The vision tower's learning rate when it trains (None: optimizer_lr, the backbone's).
     vision_lr: float | None = None
     # Evaluation-only ablation: "blank" replaces every memory image with a uniform gray one (the memory's
-    # state tokens and frame slots stay), so a trained checkpoint can be scored without what it saw.
+    # state tokens and frame slots stay), so a trained checkpoint can be scored without what it saw;
+    # "drop" leaves the memory slots empty, as at an episode's first step (inputs seen in training).
     memory_ablation: str = "none"
     # ActiveArena-Fixed: learn only the 16 arm and gripper dimensions; every output chunk holds the
     # torso yaw and head pitch at home (evaluate with configs/env/activearena_fixed_*.json)
@@ -231,7 +232,7 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             self.history = 0
         if self.memory_ablation != "none" and (self.history == 0 or self.uses_planner_memory):
             raise ValueError(
-                f"--policy.memory_ablation={self.memory_ablation} blanks the frames of a chunk, motion or "
+                f"--policy.memory_ablation={self.memory_ablation} blanks or drops the frames of a chunk, motion or "
                 f"subtask memory; this policy has {'a planner' if self.uses_planner_memory else 'no'} memory"
             )
         if not 1 <= self.n_action_steps <= self.chunk_size:

@@ -167,6 +167,24 @@ def blank_memory_pixels(pixels: Tensor, valid: Tensor, grid: Tensor) -> Tensor:
     )
 
 
+def drop_memory_frames(pixels: Tensor, valid: Tensor, grid: Tensor) -> tuple[Tensor, Tensor]:
+    """``memory_ablation=drop`` for a dataset batch: the pixel values of the current frames only and
+    ``valid`` with every memory slot absent, as at an episode's first frame."""
+    valid = valid.cpu()
+    slots = valid.nonzero()[:, 1]
+    try:
+        rows = frame_rows(pixels, grid.cpu()[valid])
+    except ValueError as err:
+        raise ValueError(
+            f"the batch's pixel values do not fit the {len(slots)} frames frame_valid marks ({err}): dropping "
+            "needs every present frame's (a batch read through a vision cache has only the current frame's)"
+        ) from err
+    last = valid.shape[1] - 1
+    kept = torch.zeros_like(valid)
+    kept[:, last] = valid[:, last]
+    return pack_frames([r for r, s in zip(rows, slots.tolist(), strict=True) if s == last]), kept
+
+
 def frame_rows(pixels: Tensor, grid: Tensor) -> list[Tensor]:
     """``pixels`` (either PIXELS layout) as one (patches, dim) tensor per frame of the (frames, 3) grid."""
     rows = list(pixels) if pixels.dim() == 3 else list(torch.split(pixels, grid.prod(-1).tolist()))

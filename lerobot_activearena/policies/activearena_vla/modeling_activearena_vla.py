@@ -28,6 +28,7 @@ from .helpers import (
     blank_memory_pixels,
     checkpoint_layers,
     compile_layers,
+    drop_memory_frames,
     in_precision,
     residual_in_compute_dtype,
     stack_frames,
@@ -560,6 +561,8 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 memory = self._bank[b][-history:]
             if self.config.memory_ablation == "blank":
                 memory = [blank_entry(e) for e in memory]
+            elif self.config.memory_ablation == "drop":
+                memory = []
             rows.append([*memory, current])
         return stack_frames(rows, history + 1)
 
@@ -576,6 +579,9 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             pixels, grid, valid = batch[PIXELS], batch[GRID], batch[FRAME_VALID]
             if self.config.memory_ablation == "blank":
                 pixels = blank_memory_pixels(pixels, valid, grid)
+            elif self.config.memory_ablation == "drop":
+                pixels, valid = drop_memory_frames(pixels, valid, grid)
+                valid = valid.to(batch[FRAME_VALID].device)
         else:
             if self._bank is None:
                 self.start_episode(batch)
