@@ -7,8 +7,8 @@
 Prints, per checkpoint and subtask, the mean absolute error of the whole predicted 16-step chunk
 against the recorded one (normalised units undone: radians, gripper 0-1), for the arms, the
 grippers and the view (torso yaw, head pitch), over every frame of the held-out set.
-``--memory-ablation blank``: the same with the memory frames gray, where a phase leans on what the
-policy saw before.
+``--memory-ablation blank`` (or ``drop``): the same with the memory frames gray (or left out), where a
+phase leans on what the policy saw before.
 """
 
 from __future__ import annotations
@@ -47,9 +47,10 @@ def main() -> None:
     p.add_argument("--root", type=Path, required=True)
     p.add_argument(
         "--memory-ablation",
-        choices=["none", "blank"],
+        choices=["none", "blank", "drop"],
         default="none",
-        help="blank: the memory frames reach the policy as gray images (--policy.memory_ablation)",
+        help="blank: the memory frames reach the policy as gray images; drop: none reach it, as at an "
+        "episode's first frame (--policy.memory_ablation)",
     )
     args = p.parse_args()
     register_policy_types()
