@@ -1209,6 +1209,54 @@ def test_dropped_memory_in_a_dataset_batch_keeps_only_the_current_frames(vlm, ro
         drop_memory_frames(pixels[2:], valid, grid)
 
 
+def test_memory_dropout_trains_a_sample_as_if_its_memory_were_not_there(vlm, root):
+    """memory_dropout (training): a dropped sample is trained as at its episode's first frame, on its
+    current frame alone: at 1.0 the loss is the one of the batch with its memory slots made absent by
+    hand; at 0 or in evaluation mode the memory is read."""
+    from lerobot_activearena.policies.activearena_vla.helpers import drop_memory_frames
+
+    _, policy, pre, _, ds = _setup(vlm, root, memory="chunk", history=2, think="subtask")
+    batch = collate(ds, pre, [70, 0])
+    valid = batch["observation.vlm.frame_valid"]
+    by_hand = dict(batch)
+    by_hand[PIXELS], by_hand["observation.vlm.frame_valid"] = drop_memory_frames(
+        batch[PIXELS], valid, batch["observation.vlm.image_grid_thw"]
+    )
+    policy.train()
+    with torch.no_grad():
+        full = policy.forward(dict(batch))[0]
+        absent = policy.forward(by_hand)[0]
+        policy.config.memory_dropout = 1.0
+        dropped = policy.forward(dict(batch))[0]
+    assert not torch.allclose(full, absent)
+    assert torch.allclose(dropped, absent, atol=1e-6)
+    with pytest.raises(
+        ValueError, match="memory_dropout leaves a sample's memory frames out: it needs a memory"
+    ):
+        ActiveArenaOFTConfig(memory="none", memory_dropout=0.5, device="cpu")
+    with pytest.raises(ValueError, match="memory_dropout is a probability"):
+        ActiveArenaOFTConfig(memory="chunk", memory_dropout=1.5, device="cpu")
+
+
+def test_memory_dropout_takes_out_cached_frames_and_carried_pixels_alike():
+    """drop_sample_memory on a batch whose memory frames come partly from a vision cache (no pixels)
+    and partly as pixel rows: a dropped sample loses its memory slots, cache entries and pixel rows;
+    the other sample and every current frame keep theirs."""
+    from lerobot_activearena.policies.activearena_vla.helpers import drop_sample_memory
+
+    grid = torch.tensor([1, 2, 2]).repeat(2, 3, 1)  # 2 samples x 3 slots, 4 patches a frame
+    valid = torch.tensor([[True, True, True], [False, True, True]])
+    cache = {(0, 0): {"vision": "a"}, (1, 1): {"vision": "b"}}  # from the table: no pixel rows
+    # carried in (sample, slot) order: (0, 1), (0, 2), (1, 2)
+    pixels = torch.stack([torch.full((4, 3), float(v)) for v in (1, 2, 3)])
+    kept, kept_valid, kept_cache = drop_sample_memory(pixels, grid, valid, cache, torch.tensor([True, False]))
+    assert kept_valid.tolist() == [[False, False, True], [False, True, True]]
+    assert [float(r[0, 0]) for r in kept] == [2.0, 3.0]
+    assert kept_cache == {(1, 1): {"vision": "b"}}
+    same = drop_sample_memory(pixels, grid, valid, cache, torch.tensor([False, False]))
+    assert same[0] is pixels and same[1] is valid and same[2] is cache
+
+
 def test_blanked_memory_in_a_dataset_batch_grays_only_the_memory_frames(vlm, root):
     """memory_ablation=blank on a dataset batch (open-loop scoring): the present memory frames' pixel
     rows turn gray and the current frames' stay; the chunk of a sample with memory frames changes,

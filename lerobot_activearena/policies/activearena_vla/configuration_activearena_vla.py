@@ -48,6 +48,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # so their state tokens show no motion so far and the actions must place the reach from the images
     # (against copying the trend of the states); evaluation always reads the true states. 0: never.
     memory_state_dropout: float = 0.0
+    # Training: the chance that a sample's memory frames are left out altogether, as at an episode's
+    # first frame, so the chunk has to come from the current frame (against reading the motion from
+    # what the memory shows); evaluation reads the whole memory. 0: never.
+    memory_dropout: float = 0.0
     # Keep the vision tower as it was loaded (no gradient, not optimised): a grounded tower as a fixed
     # feature extractor. With it, ``vision_cache`` (a table from activearena-cache-vision) gives the chunk
     # memory's history frames their features at training time by frame index: LeRobot then decodes only
@@ -247,6 +251,13 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 "--policy.memory_state_dropout replaces the memory frames' states: it needs use_state=true and "
                 f"a memory (got use_state={self.use_state}, memory={self.memory}, history={self.history})"
+            )
+        if not 0.0 <= self.memory_dropout <= 1.0:
+            raise ValueError(f"--policy.memory_dropout is a probability in [0, 1], got {self.memory_dropout}")
+        if self.memory_dropout and not self.uses_history:
+            raise ValueError(
+                "--policy.memory_dropout leaves a sample's memory frames out: it needs a memory "
+                f"(got memory={self.memory}, history={self.history})"
             )
         if self.state_frames not in ("all", "memory"):
             raise ValueError(f"--policy.state_frames must be all or memory, got {self.state_frames!r}")

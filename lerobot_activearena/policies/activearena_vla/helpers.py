@@ -185,6 +185,27 @@ def drop_memory_frames(pixels: Tensor, valid: Tensor, grid: Tensor) -> tuple[Ten
     return pack_frames([r for r, s in zip(rows, slots.tolist(), strict=True) if s == last]), kept
 
 
+def drop_sample_memory(
+    pixels: Tensor, grid: Tensor, valid: Tensor, cache: dict | None, dropped: Tensor
+) -> tuple[Tensor, Tensor, dict | None]:
+    """``memory_dropout`` for a training batch: the memory slots of the samples ``dropped`` (B,) marks
+    made absent, as at an episode's first frame. Returns the pixel values without those frames' rows,
+    ``valid`` without their slots and the vision cache ((sample, slot) -> entry: frames whose features
+    come from the cache carry no pixels) without their entries."""
+    valid_cpu = valid.cpu()
+    gone = valid_cpu & dropped.cpu()[:, None]
+    gone[:, -1] = False
+    if not gone.any():
+        return pixels, valid, cache
+    cached = set(cache or {})
+    carried = [(b, s) for b, s in valid_cpu.nonzero().tolist() if (b, s) not in cached]
+    rows = frame_rows(pixels, grid.cpu()[[b for b, _ in carried], [s for _, s in carried]])
+    kept = pack_frames([r for r, (b, s) in zip(rows, carried, strict=True) if not gone[b, s]])
+    if cache is not None:
+        cache = {k: e for k, e in cache.items() if not gone[k]}
+    return kept, (valid_cpu & ~gone).to(valid.device), cache
+
+
 def frame_rows(pixels: Tensor, grid: Tensor) -> list[Tensor]:
     """``pixels`` (either PIXELS layout) as one (patches, dim) tensor per frame of the (frames, 3) grid."""
     rows = list(pixels) if pixels.dim() == 3 else list(torch.split(pixels, grid.prod(-1).tolist()))

@@ -29,6 +29,7 @@ from .helpers import (
     checkpoint_layers,
     compile_layers,
     drop_memory_frames,
+    drop_sample_memory,
     in_precision,
     residual_in_compute_dtype,
     stack_frames,
@@ -468,9 +469,11 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
     def forward(self, batch: dict[str, Tensor], reduction: str = "mean"):
         if self.training:
             self.check_think_budget(batch)
-        h, kind, lm_loss = self.hidden_states(
-            *self.training_args(batch), vision_cache=self.cached_memory(batch)
-        )
+        args, cache = list(self.training_args(batch)), self.cached_memory(batch)
+        if self.training and self.config.memory_dropout > 0:
+            dropped = torch.rand(len(args[2])) < self.config.memory_dropout
+            args[0], args[2], cache = drop_sample_memory(args[0], args[1], args[2], cache, dropped)
+        h, kind, lm_loss = self.hidden_states(*args, vision_cache=cache)
         per_sample, info = self.action_loss(h, kind, batch)
         c = self.config
         weighted = c.decision_weight != 1 or c.opening_weight != 1 or c.miss_weight != 1
