@@ -1126,9 +1126,20 @@ def test_a_frozen_memory_tower_reads_the_memory_bank_as_loaded(vlm, root):
         assert not torch.allclose(entry["vision"][0], trained, atol=1e-3)
 
 
-def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root):
-    """memory_ablation=blank (evaluation): the memory frames reach the backbone as gray images in the
-    same slots with the same state tokens; the bank keeps the real frames; the chunk changes."""
+def _assert_the_ablation_changes_only_the_sample_with_memory(policy, batch, ablation):
+    """Of a dataset batch's two samples (one with memory frames, one at its episode's first frame),
+    ``memory_ablation`` changes the first one's chunk and not the second one's."""
+    with torch.no_grad():
+        real = policy.predict_action_chunk(dict(batch))
+        policy.config.memory_ablation = ablation
+        ablated = policy.predict_action_chunk(dict(batch))
+    assert not torch.allclose(real[0], ablated[0], atol=1e-4)
+    assert torch.allclose(real[1], ablated[1], atol=1e-5)
+
+
+def _chunk_memory_policy_at_step_32(vlm, root):
+    """A chunk-memory policy (K = 2) played on scripted observations to step 32 (memory frames 0 and
+    16), the step's preprocessed batch and its prompt arguments for ``encode``."""
     _, policy, pre, _, _ = _setup(vlm, root, memory="chunk", history=2, think="none")
     policy.eval()
     for t, obs, _ in _scripted_observations(33):
@@ -1136,6 +1147,18 @@ def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root
         if t == 32:
             break
         policy.select_action(batch)
+    args = (
+        batch["observation.vlm.prefix_ids"],
+        batch["observation.vlm.prompt_ids"],
+        batch["observation.vlm.prompt_mask"],
+    )
+    return policy, batch, args
+
+
+def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root):
+    """memory_ablation=blank (evaluation): the memory frames reach the backbone as gray images in the
+    same slots with the same state tokens; the bank keeps the real frames; the chunk changes."""
+    policy, batch, args = _chunk_memory_policy_at_step_32(vlm, root)
     real = policy.history_batch(batch)
     policy.config.memory_ablation = "blank"
     blank = policy.history_batch(batch)
@@ -1146,11 +1169,6 @@ def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root
     assert torch.count_nonzero(real[0][:2]) > 0 and torch.count_nonzero(blank[0][:2]) == 0
     assert torch.equal(real[0][2], blank[0][2])  # the current frame is untouched
     assert all(torch.count_nonzero(e["pixels"]) > 0 for e in policy.memory(0))
-    args = (
-        batch["observation.vlm.prefix_ids"],
-        batch["observation.vlm.prompt_ids"],
-        batch["observation.vlm.prompt_mask"],
-    )
     with torch.no_grad():
         a_real = policy.encode(*real[:4], *args)[0]
         a_blank = policy.encode(*blank[:4], *args)[0]
@@ -1160,13 +1178,7 @@ def test_blanked_memory_keeps_its_slots_and_states_but_not_what_it_saw(vlm, root
 def test_dropped_memory_leaves_only_the_current_frame_as_at_an_episode_start(vlm, root):
     """memory_ablation=drop (evaluation): the decision reads no memory slot, as at an episode's first
     step; the bank keeps its frames; the chunk changes."""
-    _, policy, pre, _, _ = _setup(vlm, root, memory="chunk", history=2, think="none")
-    policy.eval()
-    for t, obs, _ in _scripted_observations(33):
-        batch = pre(obs)
-        if t == 32:
-            break
-        policy.select_action(batch)
+    policy, batch, args = _chunk_memory_policy_at_step_32(vlm, root)
     real = policy.history_batch(batch)
     policy.config.memory_ablation = "drop"
     dropped = policy.history_batch(batch)
@@ -1174,11 +1186,6 @@ def test_dropped_memory_leaves_only_the_current_frame_as_at_an_episode_start(vlm
     assert dropped[2].tolist() == [[False, False, True]]
     assert len(dropped[0]) == 1 and torch.equal(dropped[0][0], real[0][2])
     assert [e["t"] for e in policy.memory(0)] == [0, 16]
-    args = (
-        batch["observation.vlm.prefix_ids"],
-        batch["observation.vlm.prompt_ids"],
-        batch["observation.vlm.prompt_mask"],
-    )
     with torch.no_grad():
         a_real = policy.encode(*real[:4], *args)[0]
         a_dropped = policy.encode(*dropped[:4], *args)[0]
@@ -1199,12 +1206,7 @@ def test_dropped_memory_in_a_dataset_batch_keeps_only_the_current_frames(vlm, ro
     kept, kept_valid = drop_memory_frames(pixels, valid, grid)
     assert kept_valid.tolist() == [[False, False, True], [False, False, True]]
     assert torch.equal(kept, pixels[2:])
-    with torch.no_grad():
-        real = policy.predict_action_chunk(dict(batch))
-        policy.config.memory_ablation = "drop"
-        dropped = policy.predict_action_chunk(dict(batch))
-    assert not torch.allclose(real[0], dropped[0], atol=1e-4)
-    assert torch.allclose(real[1], dropped[1], atol=1e-5)
+    _assert_the_ablation_changes_only_the_sample_with_memory(policy, batch, "drop")
     with pytest.raises(ValueError, match="vision cache"):
         drop_memory_frames(pixels[2:], valid, grid)
 
@@ -1273,12 +1275,7 @@ def test_blanked_memory_in_a_dataset_batch_grays_only_the_memory_frames(vlm, roo
     # packed in (sample, slot) order: sample 0's two memory frames and its current one, sample 1's current
     assert torch.count_nonzero(pixels[:2]) > 0 and torch.count_nonzero(blank[:2]) == 0
     assert torch.equal(blank[2:], pixels[2:])
-    with torch.no_grad():
-        real = policy.predict_action_chunk(dict(batch))
-        policy.config.memory_ablation = "blank"
-        blanked = policy.predict_action_chunk(dict(batch))
-    assert not torch.allclose(real[0], blanked[0], atol=1e-4)
-    assert torch.allclose(real[1], blanked[1], atol=1e-5)
+    _assert_the_ablation_changes_only_the_sample_with_memory(policy, batch, "blank")
     with pytest.raises(ValueError, match="vision cache"):
         blank_memory_pixels(pixels[2:], valid, grid)
 

@@ -148,41 +148,37 @@ def blank_entry(entry: dict) -> dict:
     return entry["blank"]
 
 
-def blank_memory_pixels(pixels: Tensor, valid: Tensor, grid: Tensor) -> Tensor:
-    """``blank_entry`` for a dataset batch: the pixel values (every present frame's, packed in
-    (sample, slot) order; ``grid`` (batch, slots, 3)) of every frame before a sample's last slot (its
-    memory frames) set to gray (zeros); the current frames' kept."""
+def present_frame_rows(pixels: Tensor, valid: Tensor, grid: Tensor, ablation: str) -> tuple[list, list]:
+    """A dataset batch's pixel values (every present frame's, packed in (sample, slot) order; ``grid``
+    (batch, slots, 3)) as one row per present frame, and each row's slot, for a memory ablation."""
     valid = valid.cpu()
-    slots = valid.nonzero()[:, 1]
+    slots = valid.nonzero()[:, 1].tolist()
     try:
-        rows = frame_rows(pixels, grid.cpu()[valid])
+        return frame_rows(pixels, grid.cpu()[valid]), slots
     except ValueError as err:
         raise ValueError(
-            f"the batch's pixel values do not fit the {len(slots)} frames frame_valid marks ({err}): blanking "
-            "needs every present frame's (a batch read through a vision cache has only the current frame's)"
+            f"the batch's pixel values do not fit the {len(slots)} frames frame_valid marks ({err}): "
+            f"memory_ablation={ablation} needs every present frame's (a batch read through a vision cache "
+            "has only the current frame's)"
         ) from err
+
+
+def blank_memory_pixels(pixels: Tensor, valid: Tensor, grid: Tensor) -> Tensor:
+    """``blank_entry`` for a dataset batch: the pixel values of every frame before a sample's last slot
+    (its memory frames) set to gray (zeros); the current frames' kept."""
+    rows, slots = present_frame_rows(pixels, valid, grid, "blank")
     last = valid.shape[1] - 1
-    return pack_frames(
-        [r if s == last else torch.zeros_like(r) for r, s in zip(rows, slots.tolist(), strict=True)]
-    )
+    return pack_frames([r if s == last else torch.zeros_like(r) for r, s in zip(rows, slots, strict=True)])
 
 
 def drop_memory_frames(pixels: Tensor, valid: Tensor, grid: Tensor) -> tuple[Tensor, Tensor]:
     """``memory_ablation=drop`` for a dataset batch: the pixel values of the current frames only and
     ``valid`` with every memory slot absent, as at an episode's first frame."""
-    valid = valid.cpu()
-    slots = valid.nonzero()[:, 1]
-    try:
-        rows = frame_rows(pixels, grid.cpu()[valid])
-    except ValueError as err:
-        raise ValueError(
-            f"the batch's pixel values do not fit the {len(slots)} frames frame_valid marks ({err}): dropping "
-            "needs every present frame's (a batch read through a vision cache has only the current frame's)"
-        ) from err
+    rows, slots = present_frame_rows(pixels, valid, grid, "drop")
     last = valid.shape[1] - 1
     kept = torch.zeros_like(valid)
     kept[:, last] = valid[:, last]
-    return pack_frames([r for r, s in zip(rows, slots.tolist(), strict=True) if s == last]), kept
+    return pack_frames([r for r, s in zip(rows, slots, strict=True) if s == last]), kept
 
 
 def drop_sample_memory(
