@@ -148,37 +148,32 @@ def blank_entry(entry: dict) -> dict:
     return entry["blank"]
 
 
-def present_frame_rows(pixels: Tensor, valid: Tensor, grid: Tensor, ablation: str) -> tuple[list, list]:
-    """A dataset batch's pixel values (every present frame's, packed in (sample, slot) order; ``grid``
-    (batch, slots, 3)) as one row per present frame, and each row's slot, for a memory ablation."""
+def blank_memory_pixels(pixels: Tensor, valid: Tensor, grid: Tensor) -> Tensor:
+    """``blank_entry`` for a dataset batch: the pixel values (every present frame's, packed in
+    (sample, slot) order; ``grid`` (batch, slots, 3)) of every frame before a sample's last slot (its
+    memory frames) set to gray (zeros); the current frames' kept."""
     valid = valid.cpu()
-    slots = valid.nonzero()[:, 1].tolist()
+    slots = valid.nonzero()[:, 1]
     try:
-        return frame_rows(pixels, grid.cpu()[valid]), slots
+        rows = frame_rows(pixels, grid.cpu()[valid])
     except ValueError as err:
         raise ValueError(
-            f"the batch's pixel values do not fit the {len(slots)} frames frame_valid marks ({err}): "
-            f"memory_ablation={ablation} needs every present frame's (a batch read through a vision cache "
-            "has only the current frame's)"
+            f"the batch's pixel values do not fit the {len(slots)} frames frame_valid marks ({err}): blanking "
+            "needs every present frame's (a batch read through a vision cache has only the current frame's)"
         ) from err
-
-
-def blank_memory_pixels(pixels: Tensor, valid: Tensor, grid: Tensor) -> Tensor:
-    """``blank_entry`` for a dataset batch: the pixel values of every frame before a sample's last slot
-    (its memory frames) set to gray (zeros); the current frames' kept."""
-    rows, slots = present_frame_rows(pixels, valid, grid, "blank")
     last = valid.shape[1] - 1
-    return pack_frames([r if s == last else torch.zeros_like(r) for r, s in zip(rows, slots, strict=True)])
+    return pack_frames(
+        [r if s == last else torch.zeros_like(r) for r, s in zip(rows, slots.tolist(), strict=True)]
+    )
 
 
 def drop_memory_frames(pixels: Tensor, valid: Tensor, grid: Tensor) -> tuple[Tensor, Tensor]:
     """``memory_ablation=drop`` for a dataset batch: the pixel values of the current frames only and
     ``valid`` with every memory slot absent, as at an episode's first frame."""
-    rows, slots = present_frame_rows(pixels, valid, grid, "drop")
-    last = valid.shape[1] - 1
-    kept = torch.zeros_like(valid)
-    kept[:, last] = valid[:, last]
-    return pack_frames([r for r, s in zip(rows, slots, strict=True) if s == last]), kept
+    kept, kept_valid, _ = drop_sample_memory(
+        pixels, grid, valid, None, torch.ones(len(valid), dtype=torch.bool)
+    )
+    return kept, kept_valid
 
 
 def drop_sample_memory(
@@ -195,7 +190,14 @@ def drop_sample_memory(
         return pixels, valid, cache
     cached = set(cache or {})
     carried = [(b, s) for b, s in valid_cpu.nonzero().tolist() if (b, s) not in cached]
-    rows = frame_rows(pixels, grid.cpu()[[b for b, _ in carried], [s for _, s in carried]])
+    try:
+        rows = frame_rows(pixels, grid.cpu()[[b for b, _ in carried], [s for _, s in carried]])
+    except ValueError as err:
+        raise ValueError(
+            f"the batch's pixel values do not fit the {len(carried)} frames frame_valid marks outside the "
+            f"vision cache ({err}): a batch read through a vision cache has only the current frame's, "
+            "whose memory frames are left out through the cache"
+        ) from err
     kept = pack_frames([r for r, (b, s) in zip(rows, carried, strict=True) if not gone[b, s]])
     if cache is not None:
         cache = {k: e for k, e in cache.items() if not gone[k]}

@@ -584,7 +584,6 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 pixels = blank_memory_pixels(pixels, valid, grid)
             elif self.config.memory_ablation == "drop":
                 pixels, valid = drop_memory_frames(pixels, valid, grid)
-                valid = valid.to(batch[FRAME_VALID].device)
         else:
             if self._bank is None:
                 self.start_episode(batch)
