@@ -1,8 +1,9 @@
 """One process of a two-process CPU (gloo) DDP run of activearena_oft, launched by
-test_oft_policy.py with `torchrun --nproc_per_node=2 tests/ddp_two_steps.py VLM ROOT REPO OUT`:
+test_oft_policy.py with `torchrun --nproc_per_node=2 tests/helpers/ddp_two_steps.py VLM ROOT REPO OUT`:
 lerobot-train's Accelerator setup, two steps on this rank's share of the data; the main process saves
-every rank's parameter sums and losses to OUT."""
+every rank's parameter sums and losses to OUT; the run ends as lerobot-train's does."""
 
+import os
 import sys
 
 import torch
@@ -45,12 +46,19 @@ def main(vlm: str, root: str, repo: str, out: str) -> None:
         acc.backward(loss)
         opt.step()
         opt.zero_grad()
-        losses.append(float(loss))
+        losses.append(float(loss.detach()))
     sums = torch.stack([p.detach().double().sum() for p in acc.unwrap_model(policy).parameters()])
     gathered = acc.gather(sums[None])
     rank_losses = acc.gather(torch.tensor([losses], dtype=torch.float64))
     if acc.is_main_process:
         torch.save({"before": before, "after": gathered, "losses": rank_losses}, out)
+    # As lerobot-train ends. Then leave without tearing down the interpreter: freeing the DDP model's
+    # gloo process group at exit now and then aborts or hangs the process (pytorch/pytorch#179291).
+    acc.wait_for_everyone()
+    acc.end_training()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)
 
 
 if __name__ == "__main__":
