@@ -43,6 +43,20 @@ def _exe(name):
     return shutil.which(name, path=str(Path(sys.executable).parent)) or shutil.which(name)
 
 
+def _torchrun(args, timeout):
+    """``torchrun --nproc_per_node=2 *args``; on a timeout torchrun is stopped with SIGTERM, on which it
+    ends its ranks (each runs in a session of its own, so killing torchrun alone would leave them)."""
+    cmd = [_exe("torchrun"), "--nproc_per_node=2", *map(str, args)]
+    with subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as proc:
+        try:
+            stdout, stderr = proc.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            proc.terminate()
+            proc.communicate(timeout=60)
+            raise
+    return subprocess.CompletedProcess(cmd, proc.returncode, stdout, stderr)
+
+
 @pytest.fixture(scope="module")
 def vlm(tiny_vlm):
     return tiny_vlm
@@ -984,19 +998,15 @@ def test_two_process_ddp_keeps_the_replicas_identical(vlm, root, tmp_path):
     the CPU, two fresh processes from torchrun): each process sees different samples, the
     all-reduced gradients keep both replicas equal."""
     out = tmp_path / "ddp.pt"
-    run = subprocess.run(
+    run = _torchrun(
         [
-            _exe("torchrun"),
-            "--nproc_per_node=2",
             "--master_port=29532",
-            str(Path(__file__).parents[1] / "helpers" / "ddp_two_steps.py"),
-            str(vlm),
-            str(root),
+            Path(__file__).parents[1] / "helpers" / "ddp_two_steps.py",
+            vlm,
+            root,
             REPO,
-            str(out),
+            out,
         ],
-        capture_output=True,
-        text=True,
         timeout=600,
     )
     assert run.returncode == 0, run.stderr[-3000:]
@@ -1010,10 +1020,8 @@ def test_two_process_ddp_keeps_the_replicas_identical(vlm, root, tmp_path):
 @pytest.mark.slow
 def test_lerobot_train_runs_a_preset_on_two_processes(vlm, root, tmp_path):
     out = tmp_path / "train"
-    run = subprocess.run(
+    run = _torchrun(
         [
-            _exe("torchrun"),
-            "--nproc_per_node=2",
             "--master_port=29531",
             _exe("lerobot-train"),
             f"--config_path={CONFIGS / 'oft_subtask_action_6_ws.json'}",
@@ -1029,8 +1037,6 @@ def test_lerobot_train_runs_a_preset_on_two_processes(vlm, root, tmp_path):
             "--log_freq=1",
             f"--output_dir={out}",
         ],
-        capture_output=True,
-        text=True,
         timeout=900,
     )
     assert run.returncode == 0, run.stderr[-3000:]
