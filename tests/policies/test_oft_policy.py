@@ -28,7 +28,7 @@ from lerobot_activearena.policies.activearena_vla.dataset_annotations import (
     DatasetAnnotations,
     decision_clause,
 )
-from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import STATE
+from lerobot_activearena.policies.activearena_vla.modeling_activearena_vla import QUERY, STATE, THINK
 from lerobot_activearena.policies.activearena_vla.processor_activearena_vla import (
     PIXELS,
     THINK_IDS,
@@ -1244,6 +1244,111 @@ def test_memory_dropout_trains_a_sample_as_if_its_memory_were_not_there(vlm, roo
         ActiveArenaOFTConfig(memory="none", memory_dropout=0.5, device="cpu")
     with pytest.raises(ValueError, match="memory_dropout is a probability"):
         ActiveArenaOFTConfig(memory="chunk", memory_dropout=1.5, device="cpu")
+
+
+def test_memory_readers_span_lets_only_the_think_span_read_the_memory(vlm, root):
+    """memory_readers=span: graying the memory images changes the last-layer states of the think span
+    (and of the memory itself); the prompt and the current frame never attend to a memory frame, nor do
+    the action queries, which see it only through the span: without a span their states stay as they
+    were. With all, the queries change too. Cached decoding decodes what uncached decoding does."""
+    from lerobot_activearena.policies.activearena_vla.helpers import blank_memory_pixels
+
+    _, policy, pre, _, ds = _setup(
+        vlm, root, memory="chunk", history=2, think="subtask", think_first=True, memory_readers="span"
+    )
+    batch = collate(ds, pre, [70, len(ds) - 10])
+    gray = dict(batch)
+    gray[PIXELS] = blank_memory_pixels(
+        batch[PIXELS], batch["observation.vlm.frame_valid"], batch["observation.vlm.image_grid_thw"]
+    )
+    policy.eval()
+
+    def change(span: bool):
+        args, gray_args = (list(policy.training_args(dict(b))) for b in (batch, gray))
+        if not span:
+            args[-2:] = gray_args[-2:] = None, None
+        with torch.no_grad():
+            h, kind, _ = policy.hidden_states(*args)
+            h_gray = policy.hidden_states(*gray_args)[0]
+        memory = policy.assemble(*args)["memory"]
+        return (h - h_gray).abs().amax(-1), kind, memory
+
+    diff, kind, memory = change(span=True)
+    assert memory.sum(1).min() > 0  # both samples remember something
+    later = (memory.long().cumsum(1) > 0) & ~memory  # after the first memory frame
+    before_span = later & (kind >= 0) & ((kind == THINK).long().cumsum(1) == 0)
+    assert diff[before_span].max() < 1e-5  # the current frame, its state and the prompt
+    assert diff[kind == THINK].min() > 1e-4 and diff[memory].max() > 1e-4
+    diff, kind, _ = change(span=False)
+    assert (kind == QUERY).any() and diff[kind == QUERY].max() < 1e-5
+    policy.config.memory_readers = "all"
+    diff, kind, _ = change(span=False)
+    assert diff[kind == QUERY].min() > 1e-4
+    policy.config.memory_readers = "span"
+    target = batch[THINK_IDS][0][batch[THINK_MASK][0]].tolist()
+    one = collate(ds, pre, [len(ds) - 10])
+    with torch.no_grad():
+        cached = policy.greedy_decode(_encode_args(one), target[:1], target[-2], 6, use_cache=True)
+        full = policy.greedy_decode(_encode_args(one), target[:1], target[-2], 6, use_cache=False)
+    assert cached[0] == full[0]
+    for a, b in zip(cached[1], full[1], strict=True):
+        assert torch.allclose(a, b, atol=1e-4), (a - b).abs().max()
+    with pytest.raises(ValueError, match="memory_readers=span lets only the think span"):
+        ActiveArenaOFTConfig(memory="chunk", history=2, think="none", memory_readers="span", device="cpu")
+    with pytest.raises(ValueError, match="flash-attn"):
+        ActiveArenaOFTConfig(
+            memory="chunk",
+            history=2,
+            think="subtask",
+            memory_readers="span",
+            attn_implementation="flash_attention_2",
+            device="cpu",
+        )
+
+
+def test_a_memory_checkpoint_warm_started_from_a_memory_free_one_acts_as_it_does(vlm, root, tmp_path):
+    """analysis/policies/warm_start_memory.py: the memory-free checkpoint's weights in a chunk-memory
+    checkpoint's layout. Loaded with memory_readers=span, at an episode's first frame (nothing in
+    memory) its chunk is the memory-free policy's, not the layout checkpoint's; its memory tower is the
+    layout's. A checkpoint with a memory is refused as the memory-free one."""
+    from helpers.analysis_scripts import load
+
+    warm = load("analysis/policies/warm_start_memory.py")
+    common = {"think": "subtask", "think_first": True}
+    saved, batches, chunks = {}, {}, {}
+    for name, extra in (
+        ("free", {"memory": "none", "history": 0}),
+        ("memory", {"memory": "chunk", "history": 2, "memory_vision": "frozen"}),
+    ):
+        cfg, policy, pre, _, ds = _setup(vlm, root, **common, **extra)
+        with torch.no_grad():  # tell the two apart: the memory preset's weights are not the memory-free ones
+            for param in policy.parameters():
+                param.add_(0.01 * torch.randn_like(param) if name == "memory" else 0)
+        saved[name] = tmp_path / name
+        policy.save_pretrained(saved[name])
+        pre.save_pretrained(saved[name])
+        batches[name] = collate(ds, pre, [0])
+        assert not batches[name]["observation.vlm.frame_valid"][0, :-1].any()  # the first frame
+        policy.eval()
+        with torch.no_grad():
+            b = batches[name]
+            chunks[name] = policy.encode(*_encode_args(b), b[THINK_IDS], b[THINK_MASK])[0]
+        if name == "memory":
+            memory_cfg, tower = cfg, {k: v.clone() for k, v in policy.memory_tower.state_dict().items()}
+    counts = warm.warm_start(saved["free"], saved["memory"], tmp_path / "warm")
+    assert counts["layout"] == len(tower)
+    merged = ActiveArenaOFTPolicy.from_pretrained(
+        tmp_path / "warm", config=dataclasses.replace(memory_cfg, memory_readers="span")
+    )
+    merged.eval()
+    b = batches["memory"]
+    with torch.no_grad():
+        chunk = merged.encode(*_encode_args(b), b[THINK_IDS], b[THINK_MASK])[0]
+    assert torch.allclose(chunk, chunks["free"], atol=1e-5)
+    assert (chunk - chunks["memory"]).abs().max() > 1e-3
+    assert all(torch.equal(v, tower[k]) for k, v in merged.memory_tower.state_dict().items())
+    with pytest.raises(SystemExit, match="has a memory"):
+        warm.warm_start(saved["memory"], saved["memory"], tmp_path / "again")
 
 
 def test_memory_dropout_takes_out_cached_frames_and_carried_pixels_alike():

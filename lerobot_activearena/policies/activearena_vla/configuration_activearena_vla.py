@@ -52,6 +52,10 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
     # first frame, so the chunk has to come from the current frame (against reading the motion from
     # what the memory shows); evaluation reads the whole memory. 0: never.
     memory_dropout: float = 0.0
+    # Which tokens read the memory frames: all (every later token, as the paper's) | span (only the think
+    # span: the prompt, the current frame and the action queries do not attend to a memory frame, so the
+    # actions see the memory only through the span decoded from it).
+    memory_readers: str = "all"
     # Keep the vision tower as it was loaded (no gradient, not optimised): a grounded tower as a fixed
     # feature extractor. With it, ``vision_cache`` (a table from activearena-cache-vision) gives the chunk
     # memory's history frames their features at training time by frame index: LeRobot then decodes only
@@ -258,6 +262,18 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
             raise ValueError(
                 "--policy.memory_dropout leaves a sample's memory frames out: it needs a memory "
                 f"(got memory={self.memory}, history={self.history})"
+            )
+        if self.memory_readers not in ("all", "span"):
+            raise ValueError(f"--policy.memory_readers must be all or span, got {self.memory_readers!r}")
+        if self.memory_readers == "span" and (self.think == "none" or not self.uses_history):
+            raise ValueError(
+                "--policy.memory_readers=span lets only the think span read the memory frames: it needs a "
+                f"think target and a memory (got think={self.think}, memory={self.memory}, history={self.history})"
+            )
+        if self.memory_readers == "span" and self.attn_implementation == "flash_attention_2":
+            raise ValueError(
+                "--policy.memory_readers=span masks the attention to the memory frames, which flash-attn's "
+                "kernel cannot take: use --policy.attn_implementation=sdpa or eager"
             )
         if self.state_frames not in ("all", "memory"):
             raise ValueError(f"--policy.state_frames must be all or memory, got {self.state_frames!r}")

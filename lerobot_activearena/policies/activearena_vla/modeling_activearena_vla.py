@@ -192,9 +192,10 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
             think, think_mask = think.cpu(), think_mask.cpu()
         if state is not None and state.dim() == 2:  # no history: one state per sample
             state = state[:, None]
-        seqs, kinds, images, states = [], [], [], []
+        seqs, kinds, memories, images, states = [], [], [], [], []
         for b in range(batch_size):
             ids, kind = prefix[b].tolist(), [TEXT] * prefix.shape[1]
+            memory = [False] * len(ids)  # the positions of a memory frame (its image, markers and state)
             for j in range(n_frames):
                 if not valid[b, j]:
                     continue
@@ -210,6 +211,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                     states.append(
                         (b, j, j + self.max_frames - n_frames)
                     )  # current frame: always the last slot
+                memory += [j < n_frames - 1] * (len(ids) - len(memory))
             p = prompt[b][prompt_mask[b]].tolist()
             t = think[b][think_mask[b]].tolist() if think is not None else []
             n_queries = self.n_queries if queries else 0
@@ -221,11 +223,14 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
                 kind += [TEXT] * len(p) + [QUERY] * n_queries + [THINK] * len(t)
             seqs.append(ids)
             kinds.append(kind)
+            memories.append(memory)
         seq_len = max(len(s) for s in seqs)
         input_ids = torch.full((batch_size, seq_len), self.pad_id, dtype=torch.long)
         kind = torch.full((batch_size, seq_len), -1, dtype=torch.long)
-        for b, (s, k) in enumerate(zip(seqs, kinds, strict=True)):
+        memory = torch.zeros((batch_size, seq_len), dtype=torch.bool)
+        for b, (s, k, m) in enumerate(zip(seqs, kinds, memories, strict=True)):
             input_ids[b, : len(s)], kind[b, : len(k)] = torch.tensor(s), torch.tensor(k)
+            memory[b, : len(m)] = torch.tensor(m, dtype=torch.bool)
         attn = (kind >= 0).long()
         mm = (kind == IMAGE).long()
         # M-RoPE positions from the host copies (Qwen3-VL's get_rope_index reads them per image), and
@@ -258,6 +263,7 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         return {
             "input_ids": input_ids,
             "kind": kind,
+            "memory": memory.to(dev),
             "inputs_embeds": embeds,
             "attention_mask": attn,
             "position_ids": position_ids.to(dev),
@@ -329,11 +335,12 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         # cache the padding mask changes only the pads' own (unread) outputs, and leaving it out lets
         # SDPA run its causal flash kernel with grouped-query heads instead of a masked kernel over
         # repeated keys and values. A cache is kept for tokens appended after the pads: they need it.
+        readers = self.memory_read_mask(seq, embeds.dtype)
         if self.config.unpad_language_model and not use_cache and len(embeds) > 1:
-            return self.language_model_per_sample(embeds, seq, mask, deep), feats
+            return self.language_model_per_sample(embeds, seq, mask, deep, readers), feats
         out = self.vlm.model.language_model(
             inputs_embeds=embeds,
-            attention_mask=seq["attention_mask"] if use_cache else None,
+            attention_mask=readers if readers is not None else seq["attention_mask"] if use_cache else None,
             position_ids=seq["position_ids"],
             use_cache=use_cache,
             visual_pos_masks=mask,
@@ -341,16 +348,37 @@ class ActiveArenaVLAPolicy(PreTrainedPolicy):
         )
         return out, feats
 
-    def language_model_per_sample(self, embeds: Tensor, seq: dict, mask: Tensor, deep: list):
+    def memory_read_mask(self, seq: dict, dtype: torch.dtype) -> Tensor | None:
+        """With ``memory_readers=span``: the (B, 1, L, L) attention mask under which a memory frame's
+        positions are read only by the think span and by later positions of the memory itself (causal
+        otherwise; True or 0 = attends, as the attention kernel takes it). None: plain causal attention."""
+        memory = seq["memory"]
+        if self.config.memory_readers == "all" or not memory.any():
+            return None
+        kind, length = seq["kind"], memory.shape[1]
+        allowed = torch.ones(length, length, dtype=torch.bool, device=memory.device).tril()
+        allowed = allowed & (kind >= 0)[:, None, :]
+        allowed = allowed & ~(memory[:, None, :] & ~(memory | (kind == THINK))[:, :, None])
+        allowed |= torch.eye(length, dtype=torch.bool, device=memory.device)  # a pad reads itself
+        if self.config.attn_implementation == "eager":  # added to the scores
+            return torch.zeros(allowed.shape, dtype=dtype, device=memory.device).masked_fill(
+                ~allowed, torch.finfo(dtype).min
+            )[:, None]
+        return allowed[:, None]
+
+    def language_model_per_sample(
+        self, embeds: Tensor, seq: dict, mask: Tensor, deep: list, readers: Tensor | None = None
+    ):
         """The language model once per sample over its own tokens (``unpad_language_model``): no pad
         position is computed or kept for the backward pass. Same outputs as the padded batch (causal
-        attention over right-padded rows); the pads' rows are zeros."""
+        attention over right-padded rows, or ``readers``' mask); the pads' rows are zeros."""
         lengths, position_ids = (seq["kind"] >= 0).sum(1), seq["position_ids"]
         rows, start = [], 0
         for b, n in enumerate(lengths.tolist()):
             images = int(mask[b, :n].sum())
             out = self.vlm.model.language_model(
                 inputs_embeds=embeds[b : b + 1, :n],
+                attention_mask=None if readers is None else readers[b : b + 1, :, :n, :n],
                 position_ids=position_ids[:, b : b + 1, :n],
                 use_cache=False,
                 visual_pos_masks=mask[b : b + 1, :n],
