@@ -1407,6 +1407,27 @@ def test_small_presets_differ_only_in_their_memory():
     assert chunk["policy"]["scheduler_decay_steps"] == chunk["steps"]
 
 
+def test_the_continued_inspection_pair_differs_only_in_the_memory():
+    """oft_decision_{action_12_ws_inspection_span_from_no_0, no_0_ws_inspection_continued}: both continue
+    the memory-free one-run checkpoint (the chunk-12 one from its warm-started copy) with the same
+    schedule; they differ in the memory (read by the span alone) and where the weights come from."""
+    small = CONFIGS / "small"
+    chunk = json.loads((small / "oft_decision_action_12_ws_inspection_span_from_no_0.json").read_text())
+    free = json.loads((small / "oft_decision_no_0_ws_inspection_continued.json").read_text())
+    base = json.loads((small / "oft_decision_action_12_ws_inspection.json").read_text())
+    diff = {
+        k
+        for k in chunk["policy"].keys() | free["policy"].keys()
+        if chunk["policy"].get(k) != free["policy"].get(k)
+    }
+    assert diff == {"memory", "history", "memory_vision", "vision_cache", "memory_readers", "pretrained_path"}
+    assert chunk["policy"]["memory_readers"] == "span" and "memory_readers" not in free["policy"]
+    assert free["policy"]["pretrained_path"].startswith("outputs/train/inspection_no_0/")
+    assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
+    assert chunk["steps"] == chunk["policy"]["scheduler_decay_steps"] < base["steps"]
+    assert chunk["policy"]["optimizer_lr"] < base["policy"]["optimizer_lr"]
+
+
 @pytest.mark.parametrize("preset", ["oft_subtask_action_12_ws", "oft_subtask_action_12_ws_grounded_bell"])
 def test_small_jitter_presets_add_only_act_cpu_jitter_colour_jitter(preset):
     """<preset>_jitter: the chunk-12 preset with the image transforms of ACT's colour-jitter preset,
