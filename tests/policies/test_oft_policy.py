@@ -1407,25 +1407,32 @@ def test_small_presets_differ_only_in_their_memory():
     assert chunk["policy"]["scheduler_decay_steps"] == chunk["steps"]
 
 
-def test_the_continued_inspection_pair_differs_only_in_the_memory():
-    """oft_decision_{action_12_ws_inspection_span_from_no_0, no_0_ws_inspection_continued}: both continue
-    the memory-free one-run checkpoint (the chunk-12 one from its warm-started copy) with the same
-    schedule; they differ in the memory (read by the span alone) and where the weights come from."""
+def test_the_span_read_inspection_presets_change_only_who_reads_the_memory():
+    """oft_decision_action_12_ws_inspection_span: the one-run chunk-12 preset with memory_readers=span,
+    nothing else changed; _span_from_no_0 also continues the memory-free checkpoint's warm-started copy
+    on a shorter, lower schedule."""
     small = CONFIGS / "small"
-    chunk = json.loads((small / "oft_decision_action_12_ws_inspection_span_from_no_0.json").read_text())
-    free = json.loads((small / "oft_decision_no_0_ws_inspection_continued.json").read_text())
     base = json.loads((small / "oft_decision_action_12_ws_inspection.json").read_text())
-    diff = {
-        k
-        for k in chunk["policy"].keys() | free["policy"].keys()
-        if chunk["policy"].get(k) != free["policy"].get(k)
+    span = json.loads((small / "oft_decision_action_12_ws_inspection_span.json").read_text())
+    warm = json.loads((small / "oft_decision_action_12_ws_inspection_span_from_no_0.json").read_text())
+
+    def changed(a, b):
+        return {
+            k for k in a["policy"].keys() | b["policy"].keys() if a["policy"].get(k) != b["policy"].get(k)
+        }
+
+    assert changed(span, base) == {"memory_readers"} and span["policy"]["memory_readers"] == "span"
+    assert {k for k in span if span[k] != base[k]} == {"policy", "job_name"}
+    assert changed(warm, span) == {
+        "pretrained_path",
+        "optimizer_lr",
+        "head_lr",
+        "vision_lr",
+        "scheduler_decay_steps",
     }
-    assert diff == {"memory", "history", "memory_vision", "vision_cache", "memory_readers", "pretrained_path"}
-    assert chunk["policy"]["memory_readers"] == "span" and "memory_readers" not in free["policy"]
-    assert free["policy"]["pretrained_path"].startswith("outputs/train/inspection_no_0/")
-    assert {k for k in chunk if chunk[k] != free[k]} == {"policy", "job_name"}
-    assert chunk["steps"] == chunk["policy"]["scheduler_decay_steps"] < base["steps"]
-    assert chunk["policy"]["optimizer_lr"] < base["policy"]["optimizer_lr"]
+    assert warm["policy"]["pretrained_path"] == "outputs/warm/no_0_as_action_12"
+    assert warm["steps"] == warm["policy"]["scheduler_decay_steps"] < base["steps"]
+    assert {k for k in warm if warm[k] != span[k]} == {"policy", "steps", "job_name"}
 
 
 @pytest.mark.parametrize("preset", ["oft_subtask_action_12_ws", "oft_subtask_action_12_ws_grounded_bell"])
