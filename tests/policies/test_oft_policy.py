@@ -1295,11 +1295,14 @@ def test_memory_readers_span_lets_only_the_think_span_read_the_memory(vlm, root)
         assert torch.allclose(a, b, atol=1e-4), (a - b).abs().max()
     with pytest.raises(ValueError, match="memory_readers=span lets only the think span"):
         ActiveArenaOFTConfig(memory="chunk", history=2, think="none", memory_readers="span", device="cpu")
+    with pytest.raises(ValueError, match="add --policy.think_first=true"):
+        ActiveArenaOFTConfig(memory="chunk", history=2, think="subtask", memory_readers="span", device="cpu")
     with pytest.raises(ValueError, match="flash-attn"):
         ActiveArenaOFTConfig(
             memory="chunk",
             history=2,
             think="subtask",
+            think_first=True,
             memory_readers="span",
             attn_implementation="flash_attention_2",
             device="cpu",

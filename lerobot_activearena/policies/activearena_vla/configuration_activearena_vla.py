@@ -270,6 +270,12 @@ class ActiveArenaVLAConfig(PreTrainedConfig):
                 "--policy.memory_readers=span lets only the think span read the memory frames: it needs a "
                 f"think target and a memory (got think={self.think}, memory={self.memory}, history={self.history})"
             )
+        if self.memory_readers == "span" and not getattr(self, "think_first", False):
+            raise ValueError(
+                "--policy.memory_readers=span: the actions must read the span that reads the memory, which "
+                "only activearena_oft with the span before its action queries does; add "
+                "--policy.think_first=true (activearena_oft)"
+            )
         if self.memory_readers == "span" and self.attn_implementation == "flash_attention_2":
             raise ValueError(
                 "--policy.memory_readers=span masks the attention to the memory frames, which flash-attn's "
