@@ -41,12 +41,19 @@ after the handover and, with ``decision_where``, how far the place it gave was o
 of the episodes that lifted the object, in how many the span last named the destination and how many
 of those set it down there (a wrong choice against a missed set-down), and of the episodes where a
 gripper shut on nothing, in how many it shut again after (a retry) and lifted.
+``--span-from READER``: the policy acts on the decision another think-first checkpoint decodes from the
+same observations (READER sees every step, decides at the same steps; the policy's own subtask is
+kept): one checkpoint's reading with another's hand, e.g. how far a memory run's reading carried by
+the memory-free run's set-down would go. The decisions reported are READER's; the records also count
+how often the policy's own span was right.
 ``--video DIR`` writes each episode's head camera with the step, who acts and the span's decision.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import copy
 import importlib.util
 import json
 from collections import Counter
@@ -268,8 +275,9 @@ class SpanWatch:
     decoded subtask kept). With ``decision_where`` the true text of a span that names the task's first
     subtask (the pick) is where the inspected object lies, as training writes it."""
 
-    def __init__(self, policy, env, force: bool):
+    def __init__(self, policy, env, force: bool, source: SpanWatch | None = None):
         self.policy, self.env, self.force, self.decisions, self.last = policy, env, force, [], ""
+        self.source, self.unmatched = source, 0  # force the source's decoded decision, not the truth
         self.decode, self.tokenizer = policy.greedy_decode, policy.text_tokenizer
         self.start, self.end = policy.think_token_ids()
         self.wheres: list[tuple[int, tuple[str, float, float]]] = []
@@ -301,12 +309,19 @@ class SpanWatch:
             off = where_error(decided, self.env.scene.params["placements"])
             if off is not None:
                 self.wheres.append((self.policy.step, off))
+            if self.source is not None:
+                # the reader decoded on this step's observation first (SpanReader); else its last span
+                self.unmatched += self.source.decided_at != self.policy.step
+                truth = self.source.decided
             self.last = decided.strip() if not self.force else f"{decided.strip()} -> forced: {truth}"
+            self.decided, self.decided_at = decided.strip(), self.policy.step
             if self.force:
                 forced = self.tokenizer(f"{subtask}; {truth}", add_special_tokens=False)["input_ids"]
                 t = (*forced, self.end)
             out.append(tuple(t))
         return out, logits, first
+
+    decided, decided_at = "", -1
 
     def right_after(self, step: int) -> tuple[int, int]:
         """(decoded right, decisions) among those at or after env step ``step``; then forgets them."""
@@ -320,6 +335,29 @@ class SpanWatch:
         after = [(t, *off) for t, off in self.wheres if t >= step]
         self.wheres = []
         return after
+
+
+class SpanReader:
+    """``--span-from``: the acting policy's preprocessor wrapped so that every observation also goes,
+    first, to a second (reader) policy through its own preprocessor; the reader's actions are
+    discarded, its decoded span kept (its ``SpanWatch``). The reader's bank fills from the same views
+    and it decodes at the same steps (same ``n_action_steps``), so at each of the actor's decisions the
+    reader's span of that observation is there to force."""
+
+    def __init__(self, actor, pre, reader, reader_pre):
+        self.pre, self.reader, self.reader_pre = pre, reader, reader_pre
+        if reader.config.n_action_steps != actor.config.n_action_steps:
+            raise ValueError(
+                f"--span-from: the reader decides every {reader.config.n_action_steps} steps, the policy every "
+                f"{actor.config.n_action_steps}; pass --n-action-steps so both decide at the same steps"
+            )
+        real_reset, real_replan = actor.reset, actor.replan
+        actor.reset = lambda: (reader.reset(), real_reset())[-1]
+        actor.replan = lambda: (reader.replan(), real_replan())[-1]
+
+    def __call__(self, observation):
+        self.reader.select_action(self.reader_pre(copy.deepcopy(observation)))
+        return self.pre(observation)
 
 
 class VideoWatch:
@@ -438,6 +476,14 @@ def main() -> None:
         "with the scene's at every decision",
     )
     p.add_argument(
+        "--span-from",
+        type=Path,
+        metavar="READER",
+        help="another think-first think=decision checkpoint fed the same observations: at every decision "
+        "the policy acts on the decision READER decoded (its own subtask kept). Reads like READER, "
+        "acts like CHECKPOINT: what a policy with one's reading and the other's hand would score",
+    )
+    p.add_argument(
         "--replan",
         action="store_true",
         help="the policy decides a new chunk at the handover (default: a handover between its decisions first "
@@ -465,16 +511,15 @@ def main() -> None:
         if as_given
         else ("validation manifest ID" if validation else f"manifest {args.split}")
     )
+    if args.span_from and args.span != "decoded":
+        p.error("--span-from forces the reader's decoded decision; leave --span at decoded")
     rows = []
-    with policy_in_env(
-        args.checkpoint, args.task, args.split, expert_channel=True, use_manifest=not as_given
-    ) as (
-        policy,
-        processors,
-        vec,
-        env_cfg,
-        logs,
-    ):
+    with contextlib.ExitStack() as stack:
+        policy, processors, vec, env_cfg, logs = stack.enter_context(
+            policy_in_env(
+                args.checkpoint, args.task, args.split, expert_channel=True, use_manifest=not as_given
+            )
+        )
         if args.memory_ablation != "none":
             if not policy.config.history:
                 p.error(f"--memory-ablation {args.memory_ablation}: {args.checkpoint} has no memory")
@@ -487,13 +532,26 @@ def main() -> None:
             policy.config.n_action_steps = args.n_action_steps
         env = vec.envs[0].unwrapped
         places = isinstance(env.spec_task, InspectAndPlaceTask)
-        spans = None
-        if places and policy.config.think == "decision" and getattr(policy, "think_first", False):
-            spans = SpanWatch(policy, env, force=args.span == "true")
-        elif args.span != "decoded":
-            p.error(
-                f"--span {args.span}: {args.checkpoint} does not act on a think=decision span it decodes first"
+        spans = own = None
+        acts_on_span = places and policy.config.think == "decision" and getattr(policy, "think_first", False)
+        if acts_on_span and args.span_from:
+            reader, reader_processors, *_ = stack.enter_context(
+                policy_in_env(args.span_from, args.task, args.split, use_manifest=not as_given)
             )
+            if reader.config.think != "decision" or not getattr(reader, "think_first", False):
+                p.error(f"--span-from {args.span_from}: it does not decode a think=decision span first")
+            if args.n_action_steps is not None:
+                reader.config.n_action_steps = args.n_action_steps
+            # spans: what the policy acts on (the reader's); own: what the policy itself decoded
+            spans = SpanWatch(reader, env, force=False)
+            own = SpanWatch(policy, env, force=True, source=spans)
+            pre = SpanReader(policy, processors[2], reader, reader_processors[2])
+            processors = (processors[0], processors[1], pre, processors[3])
+        elif acts_on_span:
+            spans = SpanWatch(policy, env, force=args.span == "true")
+        elif args.span != "decoded" or args.span_from:
+            which = f"--span {args.span}" if args.span != "decoded" else "--span-from"
+            p.error(f"{which}: {args.checkpoint} does not act on a think=decision span it decodes first")
         for ep in tqdm(episodes, desc="episodes"):
             seed = ep if as_given else env_cfg.seed_base + ep
             scene = ep if as_given else manifest_seed(args.task, args.split, ep)
@@ -525,6 +583,10 @@ def main() -> None:
                 rec = json.loads(log.read_text().splitlines()[-1])
                 right = spans.right_after(step) if spans else (0, 0)
                 wheres = spans.where_after(step) if spans else []
+                if own is not None:
+                    own_right, unmatched = own.right_after(step), own.unmatched
+                    own.where_after(step)
+                    own.unmatched = 0
                 rows.append(
                     {
                         "checkpoint": checkpoint_label(args.checkpoint),
@@ -535,6 +597,15 @@ def main() -> None:
                     | ({"memory_ablation": args.memory_ablation} if args.memory_ablation != "none" else {})
                     | {"episode": ep, "handover": point, "step": step, "expert_steps": expert.length}
                     | ({"replan": True} if args.replan else {})
+                    | (
+                        {
+                            "span_from": checkpoint_label(args.span_from),
+                            "own_span_right": own_right[0],
+                            "decisions_without_reader_span": unmatched,
+                        }
+                        if own is not None
+                        else {}
+                    )
                     | {"span_right": right[0], "span_decisions": right[1]}
                     | ({"span_where_errors": wheres} if wheres else {})
                     | {k: rec[k] for k in ("success", "failure_state", "failure_reason", "steps")}
@@ -548,6 +619,8 @@ def main() -> None:
         memory += f", {args.n_action_steps} actions a decision"
     if args.span != "decoded":
         memory += f", span {args.span}"
+    if args.span_from:
+        memory += f", acting on the span {args.span_from} decodes"
     if args.replan:
         memory += ", a new decision at the handover"
     if args.torso_offset:

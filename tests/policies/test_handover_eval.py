@@ -187,6 +187,68 @@ def test_span_watch_with_decision_where_forces_the_pick_place_and_scores_the_pla
     assert script.where_error("place the block", placements) is None
 
 
+def test_span_from_forces_the_readers_decision_and_feeds_it_every_observation_first(tiny_vlm):
+    """--span-from: the acting policy's span keeps its subtask and takes the decision the reader decoded
+    at the same step (not the truth); a decision the reader did not make at that step is counted. The
+    wrapped preprocessor gives the reader each observation (a copy) before the policy's own, and the
+    policy's reset and replan reach the reader too."""
+    from transformers import AutoTokenizer
+
+    from lerobot_activearena.policies.activearena_vla.dataset_annotations import decision_clause
+
+    script, env, block, named = _block_scene()
+    tok = AutoTokenizer.from_pretrained(tiny_vlm)
+    start, end = tok.convert_tokens_to_ids("<think>"), tok.convert_tokens_to_ids("</think>")
+    placements = env.scene.params["placements"]
+    truth = decision_clause(placements, env.spec_task.read(env.scene, block.attributes).text, place=True)
+    other = next(c for c in ("red", "green", "blue") if f"{c}_pad" != named)
+    wrong = decision_clause(placements, f"place on the {other} pad", place=True)
+    calls = []
+
+    def make_policy(text, subtask, steps=16):
+        def greedy_decode(encode_args, first, stop, *args, **kwargs):
+            return [(*tok(f"{subtask}; {text}", add_special_tokens=False)["input_ids"], end)], [], None
+
+        policy = SimpleNamespace(
+            greedy_decode=greedy_decode,
+            text_tokenizer=tok,
+            think_token_ids=lambda: (start, end),
+            step=40,
+            config=SimpleNamespace(
+                decision_place=True, decision_layout=False, decision_where=False, n_action_steps=steps
+            ),
+            reset=lambda: calls.append(f"{subtask} reset"),
+            replan=lambda: calls.append(f"{subtask} replan"),
+        )
+        policy.select_action = lambda batch: calls.append((subtask, batch))
+        return policy
+
+    reader, actor = make_policy(wrong, "reader's subtask"), make_policy(truth, "place the block")
+    read = script.SpanWatch(reader, env, force=False)
+    acts = script.SpanWatch(actor, env, force=True, source=read)
+    reader.greedy_decode(None, [start], end, 48)
+    tokens, _, _ = actor.greedy_decode(None, [start], end, 48)
+    assert tok.decode(tokens[0]) == f"place the block; {wrong}</think>"  # the reader's, not the truth
+    assert (read.right_after(0), acts.right_after(0), acts.unmatched) == ((0, 1), (1, 1), 0)
+    actor.step = 56  # the reader did not decide at step 56: its last span is used, and counted
+    actor.greedy_decode(None, [start], end, 48)
+    assert acts.unmatched == 1
+
+    pre = script.SpanReader(actor, lambda obs: ("actor", obs), reader, lambda obs: ("reader", obs))
+    obs = {"observation.state": [1.0]}
+    assert pre(obs) == ("actor", obs)
+    (who, (tag, seen)) = calls[-1]
+    assert (who, tag) == ("reader's subtask", "reader") and seen == obs and seen is not obs
+    actor.reset()
+    actor.replan()
+    assert calls[-4:] == ["reader's subtask reset", "place the block reset"] + [
+        "reader's subtask replan",
+        "place the block replan",
+    ]
+    with pytest.raises(ValueError, match="--n-action-steps"):
+        script.SpanReader(make_policy(truth, "a", steps=8), None, reader, None)
+
+
 def test_the_reach_line_counts_headings_off_and_the_misses_they_cost():
     """From the per-episode rows: the reach's correlations, and how many first chunks left the torso
     further off the expert's heading than the demonstrations' off-centre turns, how many were still
