@@ -268,6 +268,11 @@ def reach_line(rows: list[dict]) -> str:
     return text
 
 
+def decodes_decision_first(policy) -> bool:
+    """A think-first ``think=decision`` policy: its actions read the span it decodes first."""
+    return policy.config.think == "decision" and getattr(policy, "think_first", False)
+
+
 class SpanWatch:
     """Wraps a think-first policy's ``greedy_decode``: records, per decision, the env step, whether the
     decoded span's text after its subtask is the scene's true one and (``decision_where``) how far the
@@ -278,6 +283,7 @@ class SpanWatch:
     def __init__(self, policy, env, force: bool, source: SpanWatch | None = None):
         self.policy, self.env, self.force, self.decisions, self.last = policy, env, force, [], ""
         self.source, self.unmatched = source, 0  # force the source's decoded decision, not the truth
+        self.decided, self.decided_at = "", -1  # the last decoded decision and its env step
         self.decode, self.tokenizer = policy.greedy_decode, policy.text_tokenizer
         self.start, self.end = policy.think_token_ids()
         self.wheres: list[tuple[int, tuple[str, float, float]]] = []
@@ -320,8 +326,6 @@ class SpanWatch:
                 t = (*forced, self.end)
             out.append(tuple(t))
         return out, logits, first
-
-    decided, decided_at = "", -1
 
     def right_after(self, step: int) -> tuple[int, int]:
         """(decoded right, decisions) among those at or after env step ``step``; then forgets them."""
@@ -533,12 +537,12 @@ def main() -> None:
         env = vec.envs[0].unwrapped
         places = isinstance(env.spec_task, InspectAndPlaceTask)
         spans = own = None
-        acts_on_span = places and policy.config.think == "decision" and getattr(policy, "think_first", False)
+        acts_on_span = places and decodes_decision_first(policy)
         if acts_on_span and args.span_from:
             reader, reader_processors, *_ = stack.enter_context(
                 policy_in_env(args.span_from, args.task, args.split, use_manifest=not as_given)
             )
-            if reader.config.think != "decision" or not getattr(reader, "think_first", False):
+            if not decodes_decision_first(reader):
                 p.error(f"--span-from {args.span_from}: it does not decode a think=decision span first")
             if args.n_action_steps is not None:
                 reader.config.n_action_steps = args.n_action_steps
