@@ -7,6 +7,12 @@ failed episodes' DM / CO / CR counts; resumable) and ``learning_curve.png``.
     activearena-learning-curve outputs/train/act_cpu_click_bell --task click_bell_rotate_view \\
         --heldout-repo-id local/cpu_click_bell_heldout --heldout-root outputs/datasets/cpu_click_bell_heldout \\
         --episodes 20 --out outputs/curves/act_cpu_click_bell
+
+With ``--overlay LABEL=CURVE_DIR ...`` it measures nothing: it draws the curves those runs wrote on one
+axis (a chunk-12 run beside its memory-free partner) into the PNG ``--out`` names.
+
+    activearena-learning-curve --overlay chunk-12=outputs/curves/a memory-free=outputs/curves/b \\
+        --title "click_bell_rotate_view" --out outputs/curves/pair.png
 """
 
 from __future__ import annotations
@@ -104,8 +110,14 @@ def learning_curve(
 
 def main(argv: list[str] | None = None) -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("train_dir", type=Path, help="a lerobot-train --output_dir (with checkpoints/)")
-    p.add_argument("--task", required=True, help="the task the closed-loop episodes play")
+    p.add_argument("train_dir", type=Path, nargs="?", help="a lerobot-train --output_dir (with checkpoints/)")
+    p.add_argument("--task", help="the task the closed-loop episodes play (required with train_dir)")
+    p.add_argument(
+        "--overlay",
+        nargs="+",
+        metavar="LABEL=CURVE_DIR",
+        help="draw the curves earlier runs wrote on one axis instead of measuring; --out is then a .png",
+    )
     p.add_argument(
         "--episodes", type=int, default=20, help="ID manifest episodes per checkpoint (default 20)"
     )
@@ -120,6 +132,12 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--out", type=Path, required=True)
     p.add_argument("--title", default=None)
     args = p.parse_args(argv)
+    if args.overlay:
+        if args.train_dir is not None:
+            p.error("--overlay draws curves already measured: give it without train_dir")
+        return _overlay(p, args)
+    if args.train_dir is None or args.task is None:
+        p.error("give a train_dir and --task to measure a curve (or --overlay to draw measured ones)")
     if args.episodes < 1 or args.every < 1:
         p.error("--episodes and --every must be >= 1")
     if (args.heldout_repo_id is None) != (args.heldout_root is None):
@@ -152,6 +170,31 @@ def main(argv: list[str] | None = None) -> None:
     indices = best["closed_loop"].get("indices", f"0-{best['closed_loop']['episodes'] - 1}")
     print(f"best on {where} episodes {indices}: step {best['step']} ({best['closed_loop']['success']:.1f}%)")
     print(f"wrote {args.out}/curve.jsonl and {args.out}/learning_curve.png")
+
+
+def _overlay(p: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    from ..eval.learning_curve import plot_overlay, read_curve
+
+    if args.out.suffix != ".png":
+        p.error(f"--out {args.out}: with --overlay, name the .png to write")
+    curves = []
+    for item in args.overlay:
+        label, sep, folder = item.partition("=")
+        if not sep or not label or not folder:
+            p.error(
+                f"--overlay {item!r}: write each curve as LABEL=CURVE_DIR, e.g. chunk-12=outputs/curves/a"
+            )
+        try:
+            curves.append((label, read_curve(Path(folder))))
+        except (FileNotFoundError, ValueError) as exc:
+            p.error(str(exc))
+    plot_overlay(curves, args.out, args.title or ", ".join(label for label, _ in curves))
+    for label, records in curves:
+        best = max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))
+        print(
+            f"{label}: {len(records)} checkpoints, best step {best['step']} ({best['closed_loop']['success']:.1f}%)"
+        )
+    print(f"wrote {args.out}")
 
 
 if __name__ == "__main__":

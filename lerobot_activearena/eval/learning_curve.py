@@ -6,6 +6,7 @@ then executed, in joint units), and the plot of both against the closed-loop suc
 from __future__ import annotations
 
 import dataclasses
+import json
 from pathlib import Path
 
 import numpy as np
@@ -165,5 +166,43 @@ def plot_curve(records: list[dict], path: Path, title: str) -> None:
         ax.legend(fontsize=8)
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def read_curve(curve_dir: Path) -> list[dict]:
+    """The records of a learning curve's ``curve.jsonl``, by step; a clear error if there are none."""
+    path = Path(curve_dir) / "curve.jsonl"
+    if not path.is_file():
+        raise FileNotFoundError(f"{path} not found: give a folder activearena-learning-curve wrote")
+    records = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    if not records:
+        raise ValueError(f"{path} holds no checkpoint yet")
+    return sorted(records, key=lambda r: r["step"])
+
+
+def plot_overlay(curves: list[tuple[str, list[dict]]], path: Path, title: str) -> None:
+    """Closed-loop success of several runs against training steps on one axis (a pair's curves side
+    by side); each label names the episodes its points were scored on."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4), dpi=120)
+    for label, records in curves:
+        last = records[-1]["closed_loop"]
+        indices = last.get("indices", f"0-{last['episodes'] - 1}")
+        steps = [r["step"] for r in records]
+        success = [r["closed_loop"]["success"] for r in records]
+        ax.plot(steps, success, "o-", label=f"{label} (ID episodes {indices})")
+    ax.set_xlabel("training step")
+    ax.set_ylabel("success (%)")
+    ax.set_ylim(-2, 102)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path)
     plt.close(fig)

@@ -90,3 +90,47 @@ def test_the_annotation_step_refuses_frames_of_another_build(bell_count_dataset)
     for index, episode in (([0, 1], [0, 1]), ([frames], [1])):
         with pytest.raises(ValueError, match="dataset_root and repo_id"):
             step(batch(index, episode))
+
+
+def _write_curve(folder, successes):
+    import json
+
+    folder.mkdir(parents=True)
+    lines = [
+        json.dumps({"step": 500 * (i + 1), "closed_loop": {"episodes": 50, "success": s, "indices": "50-99"}})
+        for i, s in enumerate(successes)
+    ]
+    (folder / "curve.jsonl").write_text("\n".join(reversed(lines)) + "\n")  # order on disk is not assumed
+
+
+def test_overlay_draws_a_pairs_measured_curves_on_one_axis_and_names_each_runs_best_step(tmp_path, capsys):
+    from PIL import Image
+
+    from lerobot_activearena.cli.learning_curve import main
+
+    _write_curve(tmp_path / "a", [0.0, 40.0, 30.0])
+    _write_curve(tmp_path / "b", [10.0, 10.0, 5.0])
+    out = tmp_path / "fig" / "pair.png"
+    main(["--overlay", f"chunk-12={tmp_path / 'a'}", f"memory-free={tmp_path / 'b'}", "--out", str(out)])
+    printed = capsys.readouterr().out
+    assert "chunk-12: 3 checkpoints, best step 1000 (40.0%)" in printed
+    assert "memory-free: 3 checkpoints, best step 1000 (10.0%)" in printed  # the latest of a tie
+    assert Image.open(out).size[0] > 0
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--overlay", "no-equals-sign", "--out", "x.png"], "LABEL=CURVE_DIR"),
+        (["--overlay", "a=/nonexistent", "--out", "x.png"], "curve.jsonl not found"),
+        (["--overlay", "a=/nonexistent", "--out", "folder"], "name the .png"),
+        (["--out", "folder"], "give a train_dir and --task"),
+    ],
+)
+def test_overlay_and_measure_modes_refuse_bad_arguments_by_name(argv, message, capsys):
+    from lerobot_activearena.cli.learning_curve import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    assert message in capsys.readouterr().err
