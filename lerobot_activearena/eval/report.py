@@ -257,7 +257,17 @@ def merge_runs(runs: list[Run]) -> list[Run]:
     return list(merged.values())
 
 
-def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0) -> dict:
+COMPARISON_NOTE = (
+    "The memory comparison: the same policy with and without memory, and with its memory images blanked, "
+    "success % (ID / OOD) per task, ID failures by state, and how each row was trained."
+)
+
+
+def build_report(
+    run_specs: list[str], out: Path, inline_video_mb: float = 64.0, comparison: dict | None = None
+) -> dict:
+    """The report of ``run_specs``; ``comparison`` (``results_page.comparison_report``'s second
+    value) opens it with the memory comparison's table, picture and commands."""
     runs = merge_runs([load_run(s) for s in expand_specs(run_specs)])
     out.mkdir(parents=True, exist_ok=True)
     lb, fl, pt = leaderboard(runs), failure_table(runs), per_task_table(runs)
@@ -286,6 +296,16 @@ def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0)
         ),
         ("Per task (success %)", "One column per policy and split.", pt, "per_task.png"),
     ]
+    commands = []
+    if comparison:
+        picture, caption = comparison["picture"] or (None, "")
+        if picture:
+            shutil.copyfile(picture, out / "memory_bank.png")
+        text = COMPARISON_NOTE + (f" Picture: {caption}" if caption else "")
+        sections.insert(
+            0, ("Memory comparison", text, comparison["table"], "memory_bank.png" if picture else None)
+        )
+        commands = comparison["commands"]
     videos = [  # (task, caption, file, link relative to the report)
         (t, f"{r.label} {r.split.upper()}", Path(p), _relative(p, out))
         for r in runs
@@ -294,8 +314,12 @@ def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0)
     ]
     md = ["# ActiveArena leaderboard", ""]
     for k, (title, text, table, png) in enumerate(sections):
-        md += ([] if k == 0 else [f"## {title}", ""]) + [text, "", markdown(*table), ""]
+        md += ([] if k == 0 and not comparison else [f"## {title}", ""]) + [text, "", markdown(*table), ""]
         md += [f"![{title}]({png})", ""] if png else []
+    if commands:
+        md += ["## How each compared row was made", ""]
+        for policy, hardware, lines in commands:
+            md += [f"### {policy}", "", f"Hardware: {hardware}", "", "```bash", *lines, "```", ""]
     md += ["## Rollout videos", ""]
     md += [f"- {cap} `{t}`: [{path.name}]({link})" for t, cap, path, link in videos] or ["(none saved)"]
     md += [
@@ -305,7 +329,7 @@ def build_report(run_specs: list[str], out: Path, inline_video_mb: float = 64.0)
     ]
     (out / "report.md").write_text("\n".join(md))
     html_info = write_html(
-        out, sections, videos, lambda x, h: _fmt(x, 2 if "(deg)" in h else 1), inline_video_mb
+        out, sections, videos, lambda x, h: _fmt(x, 2 if "(deg)" in h else 1), inline_video_mb, commands
     )
     return {"leaderboard": lb, "failures": fl, "per_task": pt, "html": html_info}
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 import base64
 import html
 import io
+import re
 from pathlib import Path
 
 CSS = """
@@ -44,12 +45,17 @@ def _poster(path: Path) -> str:
     return f"data:image/jpeg;base64,{base64.b64encode(buf.getvalue()).decode('ascii')}"
 
 
+def _code(text: str) -> str:
+    """Escaped text with Markdown's `code` spans as <code>."""
+    return re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(text))
+
+
 def _table(header: list[str], rows: list[list], fmt) -> str:
-    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    head = "".join(f"<th>{_code(str(h))}</th>" for h in header)
     body = "".join(
         "<tr>"
         + "".join(
-            f'<td class="text">{html.escape(str(x))}</td>' if isinstance(x, str) else f"<td>{fmt(x, h)}</td>"
+            f'<td class="text">{_code(str(x))}</td>' if isinstance(x, str) else f"<td>{fmt(x, h)}</td>"
             for x, h in zip(row, header, strict=True)
         )
         + "</tr>"
@@ -64,16 +70,25 @@ def write_html(
     videos: list[tuple[str, str, Path, str]],
     fmt,
     inline_video_mb: float = 64.0,
+    commands: list[tuple[str, str, list[str]]] = (),
 ) -> dict:
     """Write ``out/report.html``. ``sections``: (title, explanation, (header, rows), PNG name in
     ``out`` or None); ``videos``: (task, caption, mp4 path, link relative to ``out``), shown grouped
-    by task. Returns how many videos were embedded / linked."""
+    by task; ``commands``: (policy, hardware, command lines) of compared rows, each folded under its
+    name. Returns how many videos were embedded / linked."""
     parts = ["<h1>ActiveArena leaderboard</h1>"]
     for title, text, (header, rows), png in sections:
         parts += [f"<h2>{html.escape(title)}</h2>", f'<p class="note">{html.escape(text)}</p>']
         parts.append(_table(header, rows, fmt))
         if png and (out / png).is_file():
             parts.append(f'<img alt="{html.escape(title)}" src="{_data_uri(out / png, "image/png")}">')
+    if commands:
+        parts.append("<h2>How each compared row was made</h2>")
+    for policy, hardware, lines in commands:
+        parts.append(
+            f'<details><summary>{html.escape(policy)}</summary><p class="note">Hardware: '
+            f"{html.escape(hardware)}</p><pre>{html.escape(chr(10).join(lines))}</pre></details>"
+        )
     budget, embedded, linked = inline_video_mb * 2**20, 0, 0
     by_task: dict[str, list[str]] = {}
     for task, caption, path, link in videos:

@@ -163,28 +163,79 @@ def _cell_range(row: Row) -> str:
     return " / ".join(parts)
 
 
-def comparison_table(spec: dict, rows: list[Row]) -> str:
-    """The manifest's ``comparison``: the named rows side by side on its ``tasks``, ID / OOD success per
-    task and the ID failures by state (the memory comparison: the same policy with and without
-    memory); "-" where a row was not evaluated on a task."""
-    comp = spec["comparison"]
+def comparison_cells(
+    spec: dict, rows: list[Row], names: list[str] | None = None
+) -> tuple[list[str], list[list[str]]]:
+    """The manifest's ``comparison``: the named rows (``names``, default all of the comparison's) side by
+    side on its ``tasks``, ID / OOD success per task, the ID failures by state and the training (the
+    memory comparison: the same policy with and without memory); "-" where a row was not evaluated on
+    a task."""
+    comp = spec.get("comparison")
+    if not comp:
+        raise ValueError("the manifest has no 'comparison' (its 'tasks' and 'rows')")
     tasks, by_name = comp["tasks"], {r.name: r for r in rows}
-    missing = [n for n in comp["rows"] if n not in by_name]
+    names = list(comp["rows"] if names is None else names)
+    missing = [n for n in names if n not in by_name]
     if missing:
-        raise ValueError(f"the manifest's comparison names rows it does not hold: {missing}")
+        raise ValueError(
+            f"the manifest's comparison names rows it does not hold: {missing} (its rows: {sorted(by_name)})"
+        )
     head = ["policy", "memory", *[f"`{_short(t)}` ID / OOD" for t in tasks]]
     head += ["ID failures DM / CO / CR", "training"]
-    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    for name in comp["rows"]:
+    cells = []
+    for name in names:
         row = by_name[name]
         fails = []
         for task in (t for t in tasks if t in row.success):
             counts = row.task_failures.get(task, {}).get("id", dict.fromkeys(FAILURES, 0))
             fails.append(f"`{_short(task)}` " + " / ".join(str(counts[k]) for k in FAILURES))
-        cells = [row.policy, row.memory or "-", *[_cell(row, t) for t in tasks]]
-        cells += ["; ".join(fails) or "-", row.training]
-        lines.append("| " + " | ".join(cells) + " |")
+        cells.append(
+            [
+                row.policy,
+                row.memory or "-",
+                *[_cell(row, t) for t in tasks],
+                "; ".join(fails) or "-",
+                row.training,
+            ]
+        )
+    return head, cells
+
+
+def comparison_table(spec: dict, rows: list[Row]) -> str:
+    """The comparison as the results page's Markdown table."""
+    head, cells = comparison_cells(spec, rows)
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    lines += ["| " + " | ".join(c) + " |" for c in cells]
     return "\n".join(lines)
+
+
+def comparison_picture(manifest: Path, spec: dict) -> tuple[Path, str] | None:
+    """The picture the comparison names (``comparison.picture``: a path relative to the manifest and a
+    caption), or None; a clear error if it names a file that is not there."""
+    pic = spec.get("comparison", {}).get("picture")
+    if not pic:
+        return None
+    path = (manifest.parent / pic["path"]).resolve()
+    if not path.is_file():
+        raise FileNotFoundError(f"{manifest}: comparison.picture names {path}, which does not exist")
+    return path, pic.get("caption", "")
+
+
+def comparison_report(manifest: Path, names: list[str] | None = None) -> tuple[list[str], dict]:
+    """What ``activearena-report --comparison`` shows: the run specs of the rows' records (labelled by
+    row name) and the comparison itself (its table, picture, and each row's hardware and commands)."""
+    spec, rows = load_rows(manifest)
+    head, cells = comparison_cells(spec, rows, names)
+    records_dir = manifest.parent / spec.get("records_dir", "records")
+    by_name = {r.name: r for r in rows}
+    chosen = [by_name[n] for n in (spec["comparison"]["rows"] if names is None else names)]
+    specs = [f"{row.name}={records_dir / record}" for row in chosen for record in row.records]
+    info = {
+        "table": (head, cells),
+        "picture": comparison_picture(manifest, spec),
+        "commands": [(row.policy, row.hardware, row.commands) for row in chosen],
+    }
+    return specs, info
 
 
 def replace_block(text: str, name: str, content: str, where: str = "page") -> str:

@@ -84,3 +84,61 @@ def test_the_comparison_table_reads_the_rows_failures_on_its_tasks(tmp_path):
     spec["comparison"]["rows"] = ["nobody"]
     with pytest.raises(ValueError, match="comparison names rows it does not hold"):
         comparison_table(spec, rows)
+
+
+def test_the_report_opens_with_the_comparison_its_picture_and_each_rows_commands(tmp_path, capsys):
+    from lerobot_activearena.cli.report import main as report
+
+    manifest = _one_row_manifest(tmp_path, "act_cpu_count_target_100demos")
+    spec = json.loads(manifest.read_text())
+    name = spec["rows"][0]["name"]
+    (tmp_path / "bank.png").write_bytes((ROOT / "docs" / "img" / "memory_pair_click_bell.png").read_bytes())
+    spec["comparison"] = {
+        "tasks": ["count_target_press_button"],
+        "rows": [name],
+        "picture": {"path": "bank.png", "caption": "a memory bank"},
+    }
+    manifest.write_text(json.dumps(spec))
+    out = tmp_path / "report"
+    report(["--comparison", str(manifest), "--rows", name, "--out", str(out)])
+    md = (out / "report.md").read_text()
+    comparison = md.split("## Memory comparison", 1)[1].split("## Success by category")[0]
+    row = spec["rows"][0]
+    assert f"| {row['policy']} | {row.get('memory') or '-'} | 8 / 0 | `count_target` 1 / 41 / 4 |" in comparison
+    assert "![Memory comparison](memory_bank.png)" in comparison and "a memory bank" in comparison
+    assert (out / "memory_bank.png").read_bytes() == (tmp_path / "bank.png").read_bytes()
+    made = md.split("## How each compared row was made", 1)[1]
+    assert spec["rows"][0]["commands"][0] in made and spec["rows"][0]["hardware"] in made
+    page = (out / "report.html").read_text()
+    assert page.count("<details>") == 1 and "data:image/png;base64," in page
+    assert "| 8.0 | 0.0 |" in md  # the row's records feed the report's own tables, under the row's name
+    assert f"| {name} |" in md
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--rows", "x"], "give --comparison too"),
+        ([], "give run folders to report on, or --comparison"),
+        (
+            ["--comparison", "MANIFEST", "--rows", "nobody"],
+            "comparison names rows it does not hold: ['nobody']",
+        ),
+        (["--comparison", "MANIFEST", "--picture-missing"], "comparison.picture names"),
+    ],
+)
+def test_the_reports_comparison_refuses_bad_arguments_by_name(tmp_path, capsys, argv, message):
+    from lerobot_activearena.cli.report import main as report
+
+    manifest = _one_row_manifest(tmp_path, "act_cpu_count_target_100demos")
+    spec = json.loads(manifest.read_text())
+    spec["comparison"] = {"tasks": ["count_target_press_button"], "rows": [spec["rows"][0]["name"]]}
+    if "--picture-missing" in argv:
+        argv = [a for a in argv if a != "--picture-missing"]
+        spec["comparison"]["picture"] = {"path": "no_such.png"}
+    manifest.write_text(json.dumps(spec))
+    argv = [str(manifest) if a == "MANIFEST" else a for a in argv]
+    with pytest.raises(SystemExit) as exc:
+        report([*argv, "--out", str(tmp_path / "out")])
+    assert exc.value.code == 2
+    assert message in capsys.readouterr().err
