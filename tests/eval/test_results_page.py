@@ -104,7 +104,9 @@ def test_the_report_opens_with_the_comparison_its_picture_and_each_rows_commands
     md = (out / "report.md").read_text()
     comparison = md.split("## Memory comparison", 1)[1].split("## Success by category")[0]
     row = spec["rows"][0]
-    assert f"| {row['policy']} | {row.get('memory') or '-'} | 8 / 0 | `count_target` 1 / 41 / 4 |" in comparison
+    assert (
+        f"| {row['policy']} | {row.get('memory') or '-'} | 8 / 0 | `count_target` 1 / 41 / 4 |" in comparison
+    )
     assert "![Memory comparison](memory_bank.png)" in comparison and "a memory bank" in comparison
     assert (out / "memory_bank.png").read_bytes() == (tmp_path / "bank.png").read_bytes()
     made = md.split("## How each compared row was made", 1)[1]
