@@ -9,6 +9,8 @@
 # a finished stage is skipped (its folder holds .done).
 #   bash scripts/inspection_pair.sh                       # everything under outputs/
 #   OUT=/data/pair bash scripts/inspection_pair.sh         # elsewhere
+# Another chunk-12 preset against the same memory-free run, e.g. the span-read memory:
+#   CHUNK_PRESET=oft_decision_action_12_ws_inspection_span CHUNK_RUN=inspection_action_12_span bash scripts/inspection_pair.sh
 # Smaller, to try the pipeline (every stage, minutes): EPISODES=3 GROUND_EPISODES=0-2 GROUND_EPOCHS=1
 #   STEPS=2 BATCH=2 SAVE_FREQ=1 VAL_EPISODES=1 PROTOCOL_EPISODES=1 OUT=/tmp/pair bash scripts/inspection_pair.sh
 set -euo pipefail
@@ -24,6 +26,8 @@ SAVE_FREQ="${SAVE_FREQ:-500}"
 VAL_EPISODES="${VAL_EPISODES:-50}"
 PROTOCOL_EPISODES="${PROTOCOL_EPISODES:-50}"
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}" OMP_WAIT_POLICY=PASSIVE HF_HUB_OFFLINE=1
+CHUNK_PRESET="${CHUNK_PRESET:-oft_decision_action_12_ws_inspection}"
+CHUNK_RUN="${CHUNK_RUN:-inspection_action_12}"
 REPO=local/cpu_inspection
 BUILD="$OUT/datasets/cpu_inspection"
 SLIM="$OUT/datasets/cpu_inspection_vla"
@@ -73,23 +77,23 @@ train() {  # train RUN PRESET: from the start, from its last checkpoint, or not 
     say "training $run"
     rm -rf "$run"  # nothing saved yet: lerobot-train refuses an existing output_dir
     lerobot-train --config_path="$preset" --dataset.repo_id="$REPO" --dataset.root="$SLIM" --output_dir="$run" \
-      --policy.vlm_path="$GROUNDED" $( [ "$1" = inspection_action_12 ] && echo --policy.vision_cache="$CACHE" ) \
+      --policy.vlm_path="$GROUNDED" $( [ "$1" = "$CHUNK_RUN" ] && echo --policy.vision_cache="$CACHE" ) \
       --steps="$STEPS" --policy.scheduler_decay_steps="$STEPS" --batch_size="$BATCH" --save_freq="$SAVE_FREQ"
   fi
 }
 say "3/7 training the chunk-12 run"
-train inspection_action_12 oft_decision_action_12_ws_inspection
+train "$CHUNK_RUN" "$CHUNK_PRESET"
 say "4/7 training the memory-free run"
 train inspection_no_0 oft_decision_no_0_ws_inspection
 
 say "5/7 validation curves (manifest ID 50-99, every other checkpoint; resumes)"
-for run in inspection_action_12 inspection_no_0; do
+for run in "$CHUNK_RUN" inspection_no_0; do
   activearena-learning-curve "$OUT/train/$run" --task check_block_color --validation --episodes "$VAL_EPISODES" \
     --every 2 --out "$OUT/curves/$run"
 done
-activearena-learning-curve --overlay "chunk-12=$OUT/curves/inspection_action_12" "memory-free=$OUT/curves/inspection_no_0" \
-  --title "check_block_color: the inspection pair, validation by step" --out "$OUT/curves/inspection_pair.png"
-STEP="$(python - "$OUT/curves/inspection_action_12/curve.jsonl" <<'EOF'
+activearena-learning-curve --overlay "chunk-12=$OUT/curves/$CHUNK_RUN" "memory-free=$OUT/curves/inspection_no_0" \
+  --title "check_block_color: $CHUNK_RUN and inspection_no_0, validation by step" --out "$OUT/curves/$CHUNK_RUN.png"
+STEP="$(python - "$OUT/curves/$CHUNK_RUN/curve.jsonl" <<'EOF'
 import json, sys
 records = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
 print(max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))["step"])
@@ -99,15 +103,15 @@ CKPT="$(printf '%06d' "$STEP")"
 say "the chunk-12 run's checkpoint on validation: step $STEP; both runs are scored there"
 
 say "6/7 the protocol ($PROTOCOL_EPISODES ID + $PROTOCOL_EPISODES OOD; resumes), and the chunk-12 run blanked (ID)"
-for run in inspection_action_12 inspection_no_0; do
+for run in "$CHUNK_RUN" inspection_no_0; do
   activearena-eval --policy.path="$OUT/train/$run/checkpoints/$CKPT/pretrained_model" --policy.device=cpu "${SIZE[@]}" \
     --tasks=check_block_color --episodes "$PROTOCOL_EPISODES" --workers 2 --label "$run" --out "$OUT/protocol/$run"
 done
-activearena-eval --policy.path="$OUT/train/inspection_action_12/checkpoints/$CKPT/pretrained_model" \
+activearena-eval --policy.path="$OUT/train/$CHUNK_RUN/checkpoints/$CKPT/pretrained_model" \
   --policy.memory_ablation=blank --splits id --policy.device=cpu "${SIZE[@]}" --tasks=check_block_color \
-  --episodes "$PROTOCOL_EPISODES" --workers 2 --label inspection_action_12_blank --out "$OUT/protocol/inspection_action_12_blank"
+  --episodes "$PROTOCOL_EPISODES" --workers 2 --label "${CHUNK_RUN}_blank" --out "$OUT/protocol/${CHUNK_RUN}_blank"
 
 say "7/7 the report"
-activearena-report "$OUT/protocol/inspection_action_12" "$OUT/protocol/inspection_action_12_blank" \
-  "$OUT/protocol/inspection_no_0" --out "$OUT/report/inspection_pair"
-say "done: $OUT/report/inspection_pair/report.html, curves in $OUT/curves/"
+activearena-report "$OUT/protocol/$CHUNK_RUN" "$OUT/protocol/${CHUNK_RUN}_blank" \
+  "$OUT/protocol/inspection_no_0" --out "$OUT/report/$CHUNK_RUN"
+say "done: $OUT/report/$CHUNK_RUN/report.html, curves in $OUT/curves/"

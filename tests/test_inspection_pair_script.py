@@ -43,8 +43,8 @@ def test_the_inspection_pair_runs_end_to_end_and_a_rerun_skips_what_is_done(tmp_
     assert "checkpoint on validation: step 4" in run.stderr  # the latest of a tie (one episode: 0 % each)
     blank = json.loads((tmp_path / "protocol/inspection_action_12_blank/run.json").read_text())
     assert blank["splits"] == ["id"]
-    assert (tmp_path / "report/inspection_pair/report.html").is_file()
-    assert (tmp_path / "curves/inspection_pair.png").is_file()
+    assert (tmp_path / "report/inspection_action_12/report.html").is_file()
+    assert (tmp_path / "curves/inspection_action_12.png").is_file()
 
     again = subprocess.run(
         ["bash", "scripts/inspection_pair.sh"],
