@@ -23,6 +23,7 @@ SMOKE = {
 
 
 @pytest.mark.slow
+@pytest.mark.timeout(3600)  # two runs of the pipeline: about 7 min each on 2 idle cores
 def test_the_inspection_pair_runs_end_to_end_and_a_rerun_skips_what_is_done(tmp_path):
     env = {**os.environ, **SMOKE, "OUT": str(tmp_path)}
     run = subprocess.run(
