@@ -4,9 +4,10 @@
 # (configs/policy/small/oft_decision_{action_12,no_0}_ws_inspection.json), draw their validation
 # curves, choose the chunk-12 run's best checkpoint on validation (manifest ID 50-99; the latest of a
 # tie), score both runs at that step on the protocol and the chunk-12 one with its memory blanked, and
-# write the report of the three. About 6 h on 2 CPU cores. Killed at any point, the same command goes
-# on where it stopped: the build and the evaluations resume, training resumes from its last checkpoint,
-# a finished stage is skipped (its folder holds .done).
+# write the report of the three. About 11 h on 2 CPU cores (estimated from the stages' times in
+# docs/results.md: 8 h of it training). Killed at any point, the same command goes on where it
+# stopped: the build and the evaluations resume, training resumes from its last checkpoint, a
+# finished stage is skipped (its folder holds .done).
 #   bash scripts/inspection_pair.sh                       # everything under outputs/
 #   OUT=/data/pair bash scripts/inspection_pair.sh         # elsewhere
 # Another chunk-12 preset against the same memory-free run, e.g. the span-read memory:
