@@ -94,12 +94,8 @@ for run in "$CHUNK_RUN" inspection_no_0; do
 done
 activearena-learning-curve --overlay "chunk-12=$OUT/curves/$CHUNK_RUN" "memory-free=$OUT/curves/inspection_no_0" \
   --title "check_block_color: $CHUNK_RUN and inspection_no_0, validation by step" --out "$OUT/curves/$CHUNK_RUN.png"
-STEP="$(python - "$OUT/curves/$CHUNK_RUN/curve.jsonl" <<'EOF'
-import json, sys
-records = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
-print(max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))["step"])
-EOF
-)"
+STEP="$(python -c "import sys; from lerobot_activearena.eval.learning_curve import best_checkpoint, read_curve
+print(best_checkpoint(read_curve(sys.argv[1]))['step'])" "$OUT/curves/$CHUNK_RUN")"
 CKPT="$(printf '%06d' "$STEP")"
 say "the chunk-12 run's checkpoint on validation: step $STEP; both runs are scored there"
 

@@ -22,18 +22,16 @@ SMOKE = {
 }
 
 
+def _pipeline(out: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, **SMOKE, "OUT": str(out)}
+    cmd = ["bash", "scripts/inspection_pair.sh"]
+    return subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=3000)
+
+
 @pytest.mark.slow
-@pytest.mark.timeout(3600)  # two runs of the pipeline: about 7 min each on 2 idle cores
+@pytest.mark.timeout(3600)  # two runs of the pipeline: about 7 min together on 2 idle cores
 def test_the_inspection_pair_runs_end_to_end_and_a_rerun_skips_what_is_done(tmp_path):
-    env = {**os.environ, **SMOKE, "OUT": str(tmp_path)}
-    run = subprocess.run(
-        ["bash", "scripts/inspection_pair.sh"],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=3000,
-    )
+    run = _pipeline(tmp_path)
     assert run.returncode == 0, run.stderr[-3000:]
     for name in ("inspection_action_12", "inspection_no_0"):
         step = json.loads(
@@ -47,14 +45,7 @@ def test_the_inspection_pair_runs_end_to_end_and_a_rerun_skips_what_is_done(tmp_
     assert (tmp_path / "report/inspection_action_12/report.html").is_file()
     assert (tmp_path / "curves/inspection_action_12.png").is_file()
 
-    again = subprocess.run(
-        ["bash", "scripts/inspection_pair.sh"],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=3000,
-    )
+    again = _pipeline(tmp_path)
     assert again.returncode == 0, again.stderr[-3000:]
     for line in (
         "done: " + str(tmp_path / "train/inspection_action_12") + " (step 4)",

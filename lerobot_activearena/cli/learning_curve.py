@@ -143,7 +143,7 @@ def main(argv: list[str] | None = None) -> None:
     if (args.heldout_repo_id is None) != (args.heldout_root is None):
         p.error("give both --heldout-repo-id and --heldout-root, or neither")
     logging.basicConfig(level=logging.WARNING)
-    from ..eval.learning_curve import plot_curve
+    from ..eval.learning_curve import best_checkpoint, plot_curve
     from ..tasks import get_task
 
     try:
@@ -165,7 +165,7 @@ def main(argv: list[str] | None = None) -> None:
             + (", failures " + " / ".join(f"{k} {v}" for k, v in failures.items()) if failures else "")
             + (f", held-out |error| {ol['l1']:.4f} (view {ol['l1_view']:.4f})" if ol else "")
         )
-    best = max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))
+    best = best_checkpoint(records)
     where = "validation" if args.validation else "ID"
     indices = best["closed_loop"].get("indices", f"0-{best['closed_loop']['episodes'] - 1}")
     print(f"best on {where} episodes {indices}: step {best['step']} ({best['closed_loop']['success']:.1f}%)")
@@ -173,7 +173,7 @@ def main(argv: list[str] | None = None) -> None:
 
 
 def _overlay(p: argparse.ArgumentParser, args: argparse.Namespace) -> None:
-    from ..eval.learning_curve import plot_overlay, read_curve
+    from ..eval.learning_curve import best_checkpoint, plot_overlay, read_curve
 
     if args.out.suffix != ".png":
         p.error(f"--out {args.out}: with --overlay, name the .png to write")
@@ -190,7 +190,7 @@ def _overlay(p: argparse.ArgumentParser, args: argparse.Namespace) -> None:
             p.error(str(exc))
     plot_overlay(curves, args.out, args.title or ", ".join(label for label, _ in curves))
     for label, records in curves:
-        best = max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))
+        best = best_checkpoint(records)
         print(
             f"{label}: {len(records)} checkpoints, best step {best['step']} ({best['closed_loop']['success']:.1f}%)"
         )

@@ -181,6 +181,11 @@ def read_curve(curve_dir: Path) -> list[dict]:
     return sorted(records, key=lambda r: r["step"])
 
 
+def best_checkpoint(records: list[dict]) -> dict:
+    """The record of the checkpoint to choose: the highest closed-loop success, the latest of a tie."""
+    return max(records, key=lambda r: (r["closed_loop"]["success"], r["step"]))
+
+
 def plot_overlay(curves: list[tuple[str, list[dict]]], path: Path, title: str) -> None:
     """Closed-loop success of several runs against training steps on one axis (a pair's curves side
     by side); each label names the episodes its points were scored on."""
